@@ -1,0 +1,85 @@
+"""hullslice: water-impact loads on hulls and fuselages by the 2D+t method.
+
+The hull is cut into cross-sections at each instant; each section is treated as a 2D wedge
+entering the water (the paper's extended von Karman momentum theory by default, other 2D
+solvers through plugins), and the 2D forces are summed along the body.
+
+    >>> import hullslice as hs
+    >>> hull = hs.load_hull("meshes/paper_prism.stl", mass=1.0)
+    >>> study = hs.convergence(hull, draft=0.0383, velocity=-3.4943, slices=(16, 32, 64))
+
+All quantities are SI: m, kg, s, N; angles in rad inside the library.
+"""
+
+from importlib.metadata import PackageNotFoundError, version
+
+from .constants import RHO_WATER, TOL, G
+from .convergence import Richardson, richardson
+from .errors import (
+    CaseError,
+    HullsliceError,
+    HullsliceWarning,
+    InputError,
+    MeshError,
+    MeshRepairWarning,
+    PluginError,
+    PluginWarning,
+    SolverError,
+    UnitsWarning,
+    UnknownSolverError,
+)
+from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
+from .mesh import Hull, load_hull
+from .sections import DEADRISE_ESTIMATORS, Sections, cut
+from .solvers import (
+    CharacteristicCurves,
+    CurveSolver,
+    SectionLoads,
+    Solver,
+    get_solver,
+    list_solvers,
+)
+from .state import Fluid, Motion, Pose
+
+try:
+    __version__ = version("hullslice")
+except PackageNotFoundError:  # running from a source tree that is not installed
+    __version__ = "0.0.0+unknown"
+
+__all__ = [
+    "DEADRISE_ESTIMATORS",
+    "RHO_WATER",
+    "TOL",
+    "CaseError",
+    "CharacteristicCurves",
+    "ConvergenceStudy",
+    "CurveSolver",
+    "Fluid",
+    "ForceResult",
+    "G",
+    "Hull",
+    "HullsliceError",
+    "HullsliceWarning",
+    "InputError",
+    "MeshError",
+    "MeshRepairWarning",
+    "Motion",
+    "PluginError",
+    "PluginWarning",
+    "Pose",
+    "Richardson",
+    "SectionLoads",
+    "Sections",
+    "Solver",
+    "SolverError",
+    "UnitsWarning",
+    "UnknownSolverError",
+    "__version__",
+    "compute_force",
+    "convergence",
+    "cut",
+    "get_solver",
+    "list_solvers",
+    "load_hull",
+    "richardson",
+]

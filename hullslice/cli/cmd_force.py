@@ -1,0 +1,156 @@
+"""``hullslice force``: the 2D+t force at one state, per slice and in total, with convergence."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..forces import convergence
+from ..report import (
+    SLICE_COLUMNS,
+    Column,
+    convergence_summary,
+    csv_text,
+    force_records,
+    json_text,
+    table_text,
+)
+from ..sections import DEADRISE_ESTIMATORS
+from ..solvers.registry import DEFAULT_SOLVER
+from ..state import Motion, Pose
+from .common import (
+    add_fluid_options,
+    add_mesh_options,
+    add_output_options,
+    emit,
+    fluid,
+    load,
+    number,
+    slice_list,
+)
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "force",
+        help="the vertical force at one draft and velocity, per slice and in total",
+        description="The 2D+t force on a level hull at one state (draft and vertical "
+        "velocity), for one or more slice counts; with three or more, the Richardson-"
+        "extrapolated force and its GCI error band (Roache).",
+    )
+    add_mesh_options(p, mass_required=True)
+    g = p.add_argument_group("state and method")
+    g.add_argument(
+        "--draft",
+        type=number("m"),
+        required=True,
+        metavar="M",
+        help="depth of the body's lowest point below the calm water, in m",
+    )
+    g.add_argument(
+        "--velocity",
+        type=number("m/s"),
+        required=True,
+        metavar="M/S",
+        help="vertical velocity in m/s, negative downward (e.g. --velocity=-3.5)",
+    )
+    g.add_argument(
+        "--slices",
+        type=slice_list,
+        default=[16, 32, 64],
+        metavar="N[,N...]",
+        help="slice counts over the wetted length; three or more give the extrapolated "
+        "force (default: 16,32,64)",
+    )
+    g.add_argument(
+        "--solver",
+        default=DEFAULT_SOLVER,
+        metavar="NAME",
+        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
+    )
+    g.add_argument(
+        "--deadrise",
+        choices=list(DEADRISE_ESTIMATORS),
+        default="wedge",
+        help="local deadrise estimator (default: wedge)",
+    )
+    add_fluid_options(p)
+    add_output_options(p)
+    p.set_defaults(func=run)
+
+
+CONVERGENCE_COLUMNS = (
+    Column("slices", "slices"),
+    Column("force", "force", "N", ".4f"),
+    Column("valid", "valid"),
+)
+
+
+def run(args: argparse.Namespace) -> int:
+    hull = load(args)
+    study = convergence(
+        hull,
+        Pose(args.draft),
+        Motion(args.velocity),
+        slices=args.slices,
+        solver=args.solver,
+        fluid=fluid(args),
+        deadrise=args.deadrise,
+    )
+    finest = study.finest
+    summary = convergence_summary(study)
+    records = force_records(finest)
+    if args.format == "json":
+        data = {
+            "mesh": args.mesh,
+            "mass": hull.mass,
+            "draft": args.draft,
+            "velocity": args.velocity,
+            "solver": finest.solver,
+            "rho": finest.fluid.rho,
+            "g": finest.fluid.g,
+            "wetted_length": finest.sections.wetted_length,
+            "deadrise_method": finest.sections.deadrise_method,
+            **summary,
+            "valid": finest.all_valid,
+            "slices": records,
+        }
+        data["slice_count"] = summary["slices"]
+        emit(args, json_text(data))
+    elif args.format == "csv":
+        emit(args, csv_text(["j", *finest.columns()], records))
+    else:
+        emit(args, _table(hull, args, study, summary, records))
+    return 0
+
+
+def _table(hull, args, study, summary, records) -> str:
+    finest = study.finest
+    lines = [
+        f"{hull.name}: mass {hull.mass:g} kg, draft {args.draft:g} m, velocity "
+        f"{args.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
+        f"solver {finest.solver}, water {finest.fluid.rho:g} kg/m^3, g {finest.fluid.g:g} m/s^2,"
+        f" deadrise by {finest.sections.deadrise_method}",
+        "",
+        table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
+        "",
+        f"slices at n = {study.counts[-1]}:",
+        table_text(SLICE_COLUMNS, records),
+        "",
+        f"force {finest.total:.4f} N at {study.counts[-1]} slices",
+    ]
+    rich = study.richardson
+    if rich is not None:
+        if rich.behaviour == "divergent":
+            lines.append("extrapolated force: none, the forces do not converge")
+        else:
+            lines.append(
+                f"extrapolated force {rich.extrapolated:.4f} N (Richardson, order "
+                f"{rich.order:.2f}, GCI {100 * rich.gci:.4f} %, {rich.behaviour})"
+            )
+    invalid = int((~finest.valid).sum())
+    lines.append(
+        "all slices inside the method's validity range"
+        if invalid == 0
+        else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
+    )
+    return "\n".join(lines)

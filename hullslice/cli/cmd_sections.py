@@ -1,0 +1,73 @@
+"""``hullslice sections``: the slice table of a hull at one draft."""
+
+from __future__ import annotations
+
+import argparse
+
+from ..report import SECTION_COLUMNS, csv_text, json_text, section_records, table_text
+from ..sections import DEADRISE_ESTIMATORS, cut
+from ..state import Pose
+from .common import add_mesh_options, add_output_options, emit, load, number, positive_int
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "sections",
+        help="cut a hull into the 2D+t slices at one draft and list them",
+        description="Cut the wetted length of a level hull into equal slices and list each "
+        "mid-station's penetration, half-beam at the waterline, deadrise, area and mass "
+        "per metre.",
+    )
+    add_mesh_options(p)
+    g = p.add_argument_group("pose and slicing")
+    g.add_argument(
+        "--draft",
+        type=number("m"),
+        required=True,
+        metavar="M",
+        help="depth of the body's lowest point below the calm water, in m",
+    )
+    g.add_argument(
+        "--slices",
+        type=positive_int,
+        default=32,
+        metavar="N",
+        help="number of slices over the wetted length (default: 32)",
+    )
+    g.add_argument(
+        "--deadrise",
+        choices=list(DEADRISE_ESTIMATORS),
+        default="wedge",
+        help="local deadrise estimator (default: wedge, the equivalent wedge p / c)",
+    )
+    add_output_options(p)
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    hull = load(args)
+    sections = cut(hull, Pose(args.draft), args.slices, deadrise=args.deadrise)
+    records = section_records(sections)
+    if args.format == "json":
+        emit(
+            args,
+            json_text(
+                {
+                    "mesh": args.mesh,
+                    "draft": sections.draft,
+                    "wetted_length": sections.wetted_length,
+                    "deadrise_method": sections.deadrise_method,
+                    "sections": records,
+                }
+            ),
+        )
+    elif args.format == "csv":
+        emit(args, csv_text(["j", *sections.as_dict()], records))
+    else:
+        head = (
+            f"{hull.name}: draft {sections.draft:g} m, wetted length "
+            f"{sections.wetted_length:.5f} m, {len(sections)} slices, deadrise by "
+            f"{sections.deadrise_method}"
+        )
+        emit(args, head + "\n" + table_text(SECTION_COLUMNS, records))
+    return 0

@@ -1,0 +1,592 @@
+"""Loading a hull mesh: STL/OBJ to an immutable :class:`Hull` in SI units and the body frame.
+
+The body frame is the mesh's own coordinates after the axis mapping and unit scale:
+``x`` forward along the body, ``y`` to port, ``z`` up (right-handed). Every hull is checked
+and converted to a manifold3d ``Manifold`` on loading; what manifold3d refuses becomes a
+:class:`~hullslice.errors.MeshError` that says what is wrong, and what can be repaired
+without guessing is repaired with a :class:`~hullslice.errors.MeshRepairWarning`.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+from .constants import AXES, LENGTH_UNITS, TOL
+from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
+
+__all__ = ["SUPPORTED_FORMATS", "Hull", "axis_matrix", "load_hull"]
+
+#: File formats :func:`load_hull` reads (by file extension).
+SUPPORTED_FORMATS = ("stl", "obj")
+
+#: Largest file :func:`load_hull` reads, in bytes (about 4 GiB holds a 80M-face binary STL).
+MAX_FILE_BYTES = 4 * 1024**3
+
+# Densities outside this range (kg/m^3) are not a plausible body for a water-impact study:
+# lighter than air means a mesh in mm read as metres, denser than osmium the reverse.
+_PLAUSIBLE_DENSITY = (1.0, 25000.0)
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a.flags.writeable = False
+    return a
+
+
+def axis_matrix(forward: str = "+x", up: str = "+z") -> np.ndarray:
+    """Rotation taking mesh coordinates to the body frame.
+
+    Parameters
+    ----------
+    forward, up : str
+        Which mesh axis points forward along the body and which points up, each one of
+        ``+x, -x, +y, -y, +z, -z`` (a bare ``x`` means ``+x``).
+
+    Returns
+    -------
+    (3, 3) float
+        Matrix ``R`` with ``body = R @ mesh``; its rows are the body's x (forward),
+        y (port = up x forward) and z (up) axes in mesh coordinates. ``det(R) = +1``.
+    """
+    f = _axis(forward, "forward")
+    u = _axis(up, "up")
+    if abs(float(np.dot(f, u))) > 0.5:
+        raise InputError(
+            f"forward axis {forward!r} and up axis {up!r} are not perpendicular: "
+            "choose two different mesh axes (for instance forward='+x', up='+z')"
+        )
+    return np.array([f, np.cross(u, f), u])
+
+
+def _axis(name: str, role: str) -> np.ndarray:
+    key = str(name).strip().lower()
+    if key in ("x", "y", "z"):
+        key = "+" + key
+    if key not in AXES:
+        raise InputError(f"{role} axis {name!r} is not one of {', '.join(AXES)}")
+    return np.array(AXES[key])
+
+
+def _unit_scale(units: str) -> float:
+    try:
+        return LENGTH_UNITS[str(units).strip().lower()]
+    except KeyError:
+        raise InputError(
+            f"length unit {units!r} is not one of {', '.join(LENGTH_UNITS)}"
+        ) from None
+
+
+def _check_mass(mass: float | None) -> float | None:
+    if mass is None:
+        return None
+    try:
+        m = float(mass)
+    except (TypeError, ValueError):
+        raise InputError(f"mass {mass!r} is not a number: give the body's mass in kg") from None
+    if not np.isfinite(m) or m <= 0.0:
+        raise InputError(f"mass {mass!r} kg is not positive: give the body's mass in kg")
+    return m
+
+
+class Hull:
+    """An immutable closed body in SI units and in the body frame.
+
+    Use :func:`load_hull` to read one from a file, or :meth:`Hull.from_arrays` for arrays.
+
+    Parameters
+    ----------
+    vertices : (n, 3) float
+        Vertex coordinates in metres, body frame (x forward, y port, z up).
+    faces : (m, 3) int
+        Triangles as indices into ``vertices``, counter-clockwise seen from outside.
+    mass : float, optional
+        Mass of the body in kg. Needed for mass per metre and forces.
+    name : str
+        A name for reports (the file name when loaded from a file).
+    source : dict, optional
+        How the mesh was read: path, units, forward and up axes, repairs made.
+
+    Notes
+    -----
+    The constructor checks the mesh and repairs what can be repaired safely (see the
+    module's documentation); the arrays it stores are float64/int64 and read-only.
+    """
+
+    def __init__(
+        self,
+        vertices: np.ndarray,
+        faces: np.ndarray,
+        *,
+        mass: float | None = None,
+        name: str = "hull",
+        source: dict | None = None,
+    ) -> None:
+        v, f, manifold, repairs = _checked_mesh(vertices, faces, name)
+        self._vertices = _readonly(v)
+        self._faces = _readonly(f)
+        self._manifold = manifold
+        self.mass = _check_mass(mass)
+        self.name = str(name)
+        src = dict(source or {})
+        src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
+        self.source = src
+        if self.mass is not None:
+            _check_density(self)
+
+    # -- construction -------------------------------------------------------------------
+
+    @classmethod
+    def from_arrays(
+        cls,
+        vertices: np.ndarray,
+        faces: np.ndarray,
+        *,
+        units: str = "m",
+        forward: str = "+x",
+        up: str = "+z",
+        mass: float | None = None,
+        name: str = "hull",
+    ) -> Hull:
+        """Build a hull from mesh arrays given in any length unit and axis orientation.
+
+        Parameters
+        ----------
+        vertices : (n, 3) float
+            Vertex coordinates in ``units``, mesh axes.
+        faces : (m, 3) int
+            Triangle vertex indices.
+        units : str
+            Length unit of the coordinates: ``m, cm, mm, in, ft`` (default ``m``).
+        forward, up : str
+            Mesh axes pointing forward and up (defaults ``+x`` and ``+z``).
+        mass : float, optional
+            Body mass in kg.
+        name : str
+            Name for reports.
+        """
+        scale = _unit_scale(units)
+        rot = axis_matrix(forward, up)
+        v = np.asarray(vertices, dtype=np.float64)
+        if v.ndim != 2 or v.shape[1] != 3:
+            raise MeshError(f"mesh {name!r}: vertices have shape {v.shape}, expected (n, 3)")
+        v = (v * scale) @ rot.T
+        src = {"units": str(units), "forward": str(forward), "up": str(up)}
+        return cls(v, faces, mass=mass, name=name, source=src)
+
+    def with_mass(self, mass: float | None) -> Hull:
+        """The same hull with another mass in kg (a new object; this one is unchanged)."""
+        new = object.__new__(Hull)
+        new.__dict__.update({k: v for k, v in self.__dict__.items() if k != "mass"})
+        new.mass = _check_mass(mass)
+        if new.mass is not None:
+            _check_density(new)
+        return new
+
+    # -- geometry -------------------------------------------------------------------------
+
+    @property
+    def vertices(self) -> np.ndarray:
+        """(n, 3) float: vertex coordinates in m, body frame (read-only)."""
+        return self._vertices
+
+    @property
+    def faces(self) -> np.ndarray:
+        """(m, 3) int: triangle vertex indices (read-only)."""
+        return self._faces
+
+    @property
+    def manifold(self):
+        """The hull as a ``manifold3d.Manifold`` in the body frame."""
+        return self._manifold
+
+    @functools.cached_property
+    def bounds(self) -> np.ndarray:
+        """(2, 3) float: lowest and highest corner of the bounding box, in m."""
+        return _readonly(np.array([self._vertices.min(axis=0), self._vertices.max(axis=0)]))
+
+    @property
+    def extents(self) -> np.ndarray:
+        """(3,) float: length, beam and height of the bounding box, in m."""
+        return self.bounds[1] - self.bounds[0]
+
+    @functools.cached_property
+    def size(self) -> float:
+        """Diagonal of the bounding box in m: the length scale of the tolerances."""
+        return float(np.linalg.norm(self.extents))
+
+    @functools.cached_property
+    def edges(self) -> np.ndarray:
+        """(e, 2) int: the unique undirected edges as vertex index pairs (low, high)."""
+        n = len(self._vertices)
+        e = np.sort(self._faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+        key = np.unique(e[:, 0] * n + e[:, 1])
+        return _readonly(np.stack([key // n, key % n], axis=1))
+
+    @functools.cached_property
+    def volume(self) -> float:
+        """Enclosed volume in m^3."""
+        return float(self._manifold.volume())
+
+    @functools.cached_property
+    def centroid(self) -> np.ndarray:
+        """(3,) float: centre of volume in m, body frame."""
+        tri = self._vertices[self._faces]
+        # signed volumes of the tetrahedra (origin, triangle), shifted for accuracy
+        o = self._vertices.mean(axis=0)
+        a, b, c = tri[:, 0] - o, tri[:, 1] - o, tri[:, 2] - o
+        vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+        cen = (a + b + c) / 4.0
+        return _readonly(o + (vol[:, None] * cen).sum(axis=0) / vol.sum())
+
+    @property
+    def density(self) -> float | None:
+        """Mean density in kg/m^3 (mass / volume), or None without a mass."""
+        return None if self.mass is None else self.mass / self.volume
+
+    @functools.cached_property
+    def _slicer(self):
+        # The hull moved so that its bounding-box centre is the origin, with axes permuted
+        # cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at constant Z, so a slice at
+        # Z = x - xc is the body's station x, in (y - yc, z - zc). Centring keeps
+        # manifold3d's single-precision cross sections accurate for any placement.
+        c = self.bounds.mean(axis=0)
+        m = np.array(
+            [
+                [0.0, 1.0, 0.0, -c[1]],
+                [0.0, 0.0, 1.0, -c[2]],
+                [1.0, 0.0, 0.0, -c[0]],
+            ]
+        )
+        return self._manifold.transform(m), c
+
+    def __repr__(self) -> str:
+        mass = "no mass" if self.mass is None else f"{self.mass:g} kg"
+        L, B, H = self.extents
+        return (
+            f"<Hull {self.name!r}: {len(self._faces)} faces, "
+            f"{L:.4g} x {B:.4g} x {H:.4g} m, {self.volume:.6g} m^3, {mass}>"
+        )
+
+
+def _check_density(hull: Hull) -> None:
+    rho = hull.density
+    lo, hi = _PLAUSIBLE_DENSITY
+    if rho is not None and not (lo <= rho <= hi):
+        units = hull.source.get("units", "m")
+        hint = (
+            "the mesh may be in mm or cm while read as metres: pass units='mm'"
+            if rho < lo
+            else "the mesh may be in metres while read as mm or cm: pass units='m'"
+        )
+        warnings.warn(
+            f"hull {hull.name!r}: mass {hull.mass:g} kg in a volume of {hull.volume:.6g} m^3 "
+            f"(units {units!r}) is a density of {rho:.4g} kg/m^3, implausible for a body; "
+            f"{hint}",
+            UnitsWarning,
+            stacklevel=3,
+        )
+
+
+# -- reading files ---------------------------------------------------------------------------
+
+
+def load_hull(
+    path: str | os.PathLike,
+    *,
+    units: str = "m",
+    forward: str = "+x",
+    up: str = "+z",
+    mass: float | None = None,
+) -> Hull:
+    """Read an STL or OBJ file into a :class:`Hull`.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The mesh file; its extension (``.stl`` or ``.obj``) gives the format.
+    units : str
+        Length unit of the file's coordinates: ``m, cm, mm, in, ft`` (default ``m``).
+    forward : str
+        Mesh axis pointing forward along the body (default ``+x``).
+    up : str
+        Mesh axis pointing up (default ``+z``).
+    mass : float, optional
+        Body mass in kg.
+
+    Returns
+    -------
+    Hull
+
+    Raises
+    ------
+    MeshError
+        The file is missing, empty, not a mesh, or not a closed 2-manifold body.
+    InputError
+        A bad option (unknown unit or axis, non-positive mass).
+    """
+    p = Path(path)
+    v, f = read_mesh(p)
+    hull = Hull.from_arrays(v, f, units=units, forward=forward, up=up, mass=mass, name=p.stem)
+    hull.source["path"] = str(p)
+    return hull
+
+
+def read_mesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
+    """Read the vertices and faces of a mesh file as they are in the file.
+
+    Only mesh formats are read (no scene, no script, no external references); the file size
+    is bounded by :data:`MAX_FILE_BYTES`.
+
+    Returns
+    -------
+    vertices : (n, 3) float
+    faces : (m, 3) int
+    """
+    if not path.exists():
+        raise MeshError(f"mesh file {str(path)!r} does not exist")
+    if not path.is_file():
+        raise MeshError(f"mesh path {str(path)!r} is not a file")
+    ext = path.suffix.lower().lstrip(".")
+    if ext not in SUPPORTED_FORMATS:
+        raise MeshError(
+            f"mesh file {str(path)!r} has format {ext or '(no extension)'!r}; "
+            f"hullslice reads {', '.join(SUPPORTED_FORMATS)}: export the hull as STL or OBJ"
+        )
+    size = path.stat().st_size
+    if size == 0:
+        raise MeshError(f"mesh file {str(path)!r} is empty")
+    if size > MAX_FILE_BYTES:
+        raise MeshError(
+            f"mesh file {str(path)!r} is {size / 1024**3:.1f} GiB, more than the "
+            f"{MAX_FILE_BYTES / 1024**3:.0f} GiB hullslice reads: decimate the mesh"
+        )
+    import trimesh  # heavy: imported only when a file is read
+
+    try:
+        with open(path, "rb") as fh:
+            mesh = trimesh.load_mesh(fh, file_type=ext, process=False, maintain_order=True)
+    except Exception as exc:  # trimesh raises many types on malformed files
+        raise MeshError(
+            f"mesh file {str(path)!r} could not be read as {ext.upper()}: {exc}"
+        ) from exc
+    if isinstance(mesh, list | tuple):
+        raise MeshError(f"mesh file {str(path)!r} holds several meshes: export a single body")
+    v = np.asarray(getattr(mesh, "vertices", np.empty((0, 3))), dtype=np.float64)
+    f = np.asarray(getattr(mesh, "faces", np.empty((0, 3))))
+    if len(v) == 0 or len(f) == 0:
+        raise MeshError(
+            f"mesh file {str(path)!r} holds no triangles: is it a {ext.upper()} mesh file?"
+        )
+    return v, f
+
+
+# -- checking and repairing a mesh ----------------------------------------------------------
+
+
+def _edge_use(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How many faces use each undirected edge, and how many of them run from low to high index.
+
+    In a closed, consistently oriented surface every edge is used twice, once each way.
+    """
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    lo = directed.min(axis=1)
+    hi = directed.max(axis=1)
+    key = lo * (int(faces.max()) + 1) + hi
+    _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
+    n_forward = np.bincount(inverse, weights=directed[:, 0] < directed[:, 1])
+    return counts, n_forward
+
+
+def _unique_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exactly equal rows of a float array merged: the unique rows and the inverse index."""
+    v = np.ascontiguousarray(v + 0.0)  # -0.0 and 0.0 are the same point
+    raw = v.view(np.dtype((np.void, v.dtype.itemsize * v.shape[1]))).ravel()
+    _, first, inverse = np.unique(raw, return_index=True, return_inverse=True)
+    return v[first], inverse.reshape(-1)
+
+
+def _merge_close(v: np.ndarray, f: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray, int]:
+    """Merge vertices closer than ``tol``; returns new arrays and the number merged."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    pairs = cKDTree(v).query_pairs(tol, output_type="ndarray")
+    if len(pairs) == 0:
+        return v, f, 0
+    n = len(v)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    ncomp, labels = connected_components(graph, directed=False)
+    # representative: the first vertex of each group
+    first = np.full(ncomp, n, dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(n))
+    return v[first], labels[f], n - ncomp
+
+
+def _checked_mesh(vertices, faces, name: str):
+    """Validate a mesh, repair what is safe, and build its manifold3d ``Manifold``."""
+    import manifold3d
+
+    repairs: list[str] = []
+
+    def repaired(msg: str) -> None:
+        repairs.append(msg)
+        warnings.warn(f"mesh {name!r}: {msg}", MeshRepairWarning, stacklevel=4)
+
+    v = np.array(vertices, dtype=np.float64)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise MeshError(f"mesh {name!r}: vertices have shape {v.shape}, expected (n, 3)")
+    try:
+        f = np.array(faces)
+    except (TypeError, ValueError) as exc:
+        raise MeshError(f"mesh {name!r}: faces are not an (m, 3) integer array") from exc
+    if f.ndim != 2 or f.shape[1] != 3:
+        raise MeshError(
+            f"mesh {name!r}: faces have shape {f.shape}, expected (m, 3) triangles"
+        )
+    if len(v) == 0 or len(f) == 0:
+        raise MeshError(f"mesh {name!r} is empty ({len(v)} vertices, {len(f)} faces)")
+    if not np.issubdtype(f.dtype, np.integer):
+        if not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
+            raise MeshError(f"mesh {name!r}: face indices are not whole numbers")
+    f = f.astype(np.int64)
+    bad = ~np.isfinite(v)
+    if bad.any():
+        rows = np.flatnonzero(bad.any(axis=1))
+        raise MeshError(
+            f"mesh {name!r}: {len(rows)} vertices have NaN or infinite coordinates "
+            f"(first: vertex {rows[0]} = {v[rows[0]].tolist()}); fix the export"
+        )
+    if f.min() < 0 or f.max() >= len(v):
+        badf = np.flatnonzero((f < 0).any(axis=1) | (f >= len(v)).any(axis=1))
+        raise MeshError(
+            f"mesh {name!r}: face {badf[0]} refers to vertex {f[badf[0]].tolist()} but the "
+            f"mesh has only {len(v)} vertices (indices 0 to {len(v) - 1}); the file is corrupt"
+        )
+    # drop unused vertices (they carry no geometry) so later counts mean something
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    if not used.all():
+        remap = np.cumsum(used) - 1
+        v, f = v[used], remap[f]
+    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    if size == 0.0:
+        raise MeshError(f"mesh {name!r}: all vertices are at one point")
+
+    # exact duplicates (every STL is a triangle soup on disk): merging them changes nothing
+    uniq, inverse = _unique_rows(v)
+    if len(uniq) < len(v):
+        v, f = uniq, inverse[f]
+
+    # faces that repeat a vertex have no area and no orientation
+    degenerate = (f[:, 0] == f[:, 1]) | (f[:, 1] == f[:, 2]) | (f[:, 2] == f[:, 0])
+    if degenerate.any():
+        f = f[~degenerate]
+        repaired(f"removed {int(degenerate.sum())} degenerate faces (a repeated vertex)")
+        if len(f) == 0:
+            raise MeshError(f"mesh {name!r} has only degenerate faces")
+
+    counts, n_forward = _edge_use(f)
+    if (counts == 1).any():
+        # perhaps vertices that should be shared differ by rounding: merge them
+        v2, f2, n_merged = _merge_close(v, f, TOL.merge * size)
+        if n_merged:
+            deg2 = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
+            f2 = f2[~deg2]
+            counts2, n_forward2 = _edge_use(f2)
+            if not (counts2 == 1).any():
+                v, f, counts, n_forward = v2, f2, counts2, n_forward2
+                repaired(
+                    f"merged {n_merged} vertices closer than {TOL.merge * size:.3g} m "
+                    "to close the surface"
+                )
+    open_edges = int((counts == 1).sum())
+    if open_edges:
+        raise MeshError(
+            f"mesh {name!r} is open: {open_edges} edges belong to a single face (holes in "
+            "the surface); close the holes in your CAD tool or with a mesh repair tool"
+        )
+    nonmanifold = int((counts > 2).sum())
+    if nonmanifold:
+        raise MeshError(
+            f"mesh {name!r} is not manifold: {nonmanifold} edges are shared by more than two "
+            "faces; separate the touching bodies or remesh"
+        )
+    # each edge used by two faces must be used once in each direction
+    misoriented = int((n_forward != 1).sum())
+    if misoriented:
+        import trimesh
+
+        tm = trimesh.Trimesh(v, f, process=False)
+        trimesh.repair.fix_winding(tm)
+        f2 = np.asarray(tm.faces, dtype=np.int64)
+        _, nf2 = _edge_use(f2)
+        if (nf2 != 1).any():
+            raise MeshError(
+                f"mesh {name!r}: the faces cannot be oriented consistently "
+                "(a non-orientable surface); remesh the hull"
+            )
+        flipped = int((f2 != f).any(axis=1).sum())
+        flipped = min(flipped, len(f) - flipped)
+        f = f2
+        repaired(f"re-oriented {flipped} faces whose winding disagreed with their neighbours")
+
+    manifold = _to_manifold(v, f, name)
+    if manifold.volume() < 0.0:
+        f = f[:, ::-1].copy()
+        manifold = _to_manifold(v, f, name)
+        repaired("the mesh was inside out (negative volume); all faces were flipped")
+
+    parts = manifold.decompose()
+    if len(parts) > 1:
+        vols = np.array([p.volume() for p in parts])
+        shells = [p for p, vol in zip(parts, vols, strict=True) if vol > 0]
+        total = float(vols[vols > 0].sum())
+        union = manifold3d.Manifold.batch_boolean(shells, manifold3d.OpType.Add)
+        if len(shells) > 1 and union.volume() < total * (1.0 - TOL.volume):
+            cavities = [_flipped(p) for p, vol in zip(parts, vols, strict=True) if vol < 0]
+            body = union
+            if cavities:
+                body = manifold3d.Manifold.batch_boolean(
+                    [union, *cavities], manifold3d.OpType.Subtract
+                )
+            mesh = body.to_mesh64()
+            v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3].copy()
+            f = np.asarray(mesh.tri_verts, dtype=np.int64).copy()
+            manifold = _to_manifold(v, f, name)
+            repaired(
+                f"{len(shells)} shells overlap (their volumes add to {total:.6g} m^3, "
+                f"their union is {union.volume():.6g} m^3); the body is taken as their union"
+            )
+    if manifold.volume() <= 0.0:
+        raise MeshError(f"mesh {name!r} encloses no volume")
+    return v, f, manifold, repairs
+
+
+def _to_manifold(v: np.ndarray, f: np.ndarray, name: str):
+    import manifold3d
+
+    mesh = manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(v, dtype=np.float64),
+        tri_verts=np.ascontiguousarray(f, dtype=np.uint64),
+    )
+    man = manifold3d.Manifold(mesh)
+    status = man.status()
+    if status != manifold3d.Error.NoError:
+        raise MeshError(
+            f"mesh {name!r} was refused by manifold3d ({status.name}): it is not a closed, "
+            "consistently oriented 2-manifold; repair it in your CAD tool"
+        )
+    return man
+
+
+def _flipped(manifold):
+    """The same surface with every face reversed (a cavity turned into a solid)."""
+    mesh = manifold.to_mesh64()
+    v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    f = np.asarray(mesh.tri_verts, dtype=np.int64)[:, ::-1]
+    return _to_manifold(v, f, "cavity")

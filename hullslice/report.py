@@ -1,0 +1,228 @@
+"""Turning results into text: aligned tables, CSV and JSON, and files written atomically."""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import os
+import tempfile
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+__all__ = [
+    "Column",
+    "csv_text",
+    "json_text",
+    "table_text",
+    "write_atomic",
+]
+
+
+@dataclass(frozen=True)
+class Column:
+    """One column of a report table.
+
+    Attributes
+    ----------
+    key : str
+        Key of the data in the records / machine formats (CSV header, JSON field).
+    label : str
+        Heading in a terminal table.
+    unit : str
+        Unit shown under the heading (``""`` for none).
+    fmt : str
+        Format spec for numbers in a terminal table, e.g. ``".4f"``.
+    """
+
+    key: str
+    label: str
+    unit: str = ""
+    fmt: str = ".6g"
+
+
+def _cell(value: Any, fmt: str) -> str:
+    if isinstance(value, bool | np.bool_):
+        return "yes" if value else "no"
+    if isinstance(value, int | np.integer):
+        return str(int(value))
+    if isinstance(value, float | np.floating):
+        v = float(value)
+        return "-" if math.isnan(v) else format(v, fmt)
+    return str(value)
+
+
+def table_text(columns: Sequence[Column], rows: Sequence[Mapping[str, Any]]) -> str:
+    """An aligned text table: a heading line, a unit line, then one line per row.
+
+    Numbers are right-aligned, text left-aligned.
+    """
+    cells = [[_cell(r.get(c.key, ""), c.fmt) for c in columns] for r in rows]
+    heads = [c.label for c in columns]
+    units = [f"[{c.unit}]" if c.unit else "" for c in columns]
+    widths = [
+        max([len(h), len(u), *(len(row[i]) for row in cells)])
+        for i, (h, u) in enumerate(zip(heads, units, strict=True))
+    ]
+    numeric = [
+        all(_is_number(r.get(c.key)) for r in rows) if rows else True for c in columns
+    ]
+
+    def line(items: Sequence[str]) -> str:
+        parts = [
+            s.rjust(w) if num else s.ljust(w)
+            for s, w, num in zip(items, widths, numeric, strict=True)
+        ]
+        return "  ".join(parts).rstrip()
+
+    out = [line(heads)]
+    if any(units):
+        out.append(line(units))
+    out += [line(row) for row in cells]
+    return "\n".join(out)
+
+
+def _is_number(v: Any) -> bool:
+    return isinstance(v, int | float | np.integer | np.floating) and not isinstance(
+        v, bool | np.bool_
+    )
+
+
+def _plain(value: Any) -> Any:
+    """Numpy scalars and arrays to plain Python; NaN and infinities to None (valid JSON)."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, np.ndarray):
+        return [_plain(v) for v in value.tolist()]
+    if isinstance(value, list | tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.bool_):
+        return bool(value)
+    if isinstance(value, np.integer):
+        return int(value)
+    if isinstance(value, float | np.floating):
+        v = float(value)
+        return v if math.isfinite(v) else None
+    return value
+
+
+def json_text(data: Mapping[str, Any]) -> str:
+    """JSON with plain types; NaN and infinite numbers become ``null``."""
+    return json.dumps(_plain(data), indent=2, allow_nan=False) + "\n"
+
+
+def csv_text(columns: Sequence[str], rows: Sequence[Mapping[str, Any]]) -> str:
+    """CSV with a header line of column keys; numbers with full precision (``repr``)."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(columns)
+    for r in rows:
+        vals = []
+        for c in columns:
+            v = _plain(r.get(c, ""))
+            vals.append("" if v is None else repr(v) if isinstance(v, float) else v)
+        w.writerow(vals)
+    return buf.getvalue()
+
+
+def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
+    """Write a file completely or not at all.
+
+    The data goes to a temporary file in the same folder, which then replaces ``path`` in
+    one step; after an error ``path`` is unchanged.
+    """
+    target = Path(path)
+    parent = target.parent if str(target.parent) else Path(".")
+    if not parent.is_dir():
+        raise FileNotFoundError(f"folder {str(parent)!r} does not exist")
+    mode = "wb" if isinstance(data, bytes) else "w"
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent)
+    try:
+        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8"})) as fh:
+            fh.write(data)
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except OSError:
+            pass
+        raise
+    return target
+
+
+# -- records of results -----------------------------------------------------------------------
+
+#: Columns of the per-slice table of a force result (terminal view).
+SLICE_COLUMNS = (
+    Column("j", "j", ""),
+    Column("x", "x", "m", ".5f"),
+    Column("dx", "d", "m", ".5f"),
+    Column("penetration", "p", "m", ".5f"),
+    Column("velocity", "v", "m/s", ".4f"),
+    Column("half_beam", "c", "m", ".5f"),
+    Column("deadrise_deg", "beta", "deg", ".3f"),
+    Column("mass_per_metre", "M", "kg/m", ".4f"),
+    Column("z_tilde", "z~", "", ".5f"),
+    Column("force_per_metre", "f", "N/m", ".2f"),
+    Column("force", "F", "N", ".4f"),
+    Column("valid", "valid", ""),
+    Column("reason", "reason", ""),
+)
+
+#: Columns of the section table at one pose (terminal view).
+SECTION_COLUMNS = (
+    Column("j", "j", ""),
+    Column("x", "x", "m", ".5f"),
+    Column("dx", "d", "m", ".5f"),
+    Column("penetration", "p", "m", ".5f"),
+    Column("half_beam", "c", "m", ".5f"),
+    Column("deadrise_deg", "beta", "deg", ".3f"),
+    Column("area", "A", "m^2", ".6g"),
+    Column("mass_per_metre", "M", "kg/m", ".4f"),
+    Column("chine_wetted", "chine wet", ""),
+)
+
+
+def _records(columns: Mapping[str, np.ndarray]) -> list[dict[str, Any]]:
+    n = len(next(iter(columns.values()))) if columns else 0
+    return [{"j": j + 1, **{k: v[j] for k, v in columns.items()}} for j in range(n)]
+
+
+def section_records(sections) -> list[dict[str, Any]]:
+    """One dict per station of a :class:`~hullslice.sections.Sections` (SI, deadrise in deg)."""
+    return _records(sections.as_dict())
+
+
+def force_records(result) -> list[dict[str, Any]]:
+    """One dict per slice of a :class:`~hullslice.forces.ForceResult` (SI, deadrise in deg)."""
+    return _records(result.columns())
+
+
+def convergence_summary(study) -> dict[str, Any]:
+    """The totals of a :class:`~hullslice.forces.ConvergenceStudy` and its extrapolation."""
+    rich = study.richardson
+    out: dict[str, Any] = {
+        "force": study.finest.total,
+        "slices": study.counts[-1],
+        "convergence": [
+            {"slices": n, "force": r.total, "valid": r.all_valid}
+            for n, r in zip(study.counts, study.results, strict=True)
+        ],
+        "extrapolated_force": None,
+        "gci": None,
+        "order": None,
+        "convergence_behaviour": None,
+    }
+    if rich is not None:
+        out.update(
+            extrapolated_force=rich.extrapolated,
+            gci=rich.gci,
+            order=rich.order,
+            convergence_behaviour=rich.behaviour,
+        )
+    return out

@@ -1,0 +1,367 @@
+"""Cutting a hull into cross-sections at a pose: the 2D+t slices and their properties.
+
+At a pose the wetted part of the hull (below ``z = 0``), of length ``DeltaL`` along ``x``, is
+cut into ``n`` slices of thickness ``d = DeltaL / n`` (paper, Eq. 7); each slice is
+represented by the hull's cross-section at its mid-station, cut by manifold3d. The result
+is a :class:`Sections`: one array per property, one entry per station.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .constants import TOL
+from .errors import InputError
+from .mesh import Hull
+from .state import Pose
+
+__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "wetted_extent"]
+
+Polygons = tuple[np.ndarray, ...]
+
+
+def _readonly(a: np.ndarray) -> np.ndarray:
+    a = np.ascontiguousarray(a)
+    a.flags.writeable = False
+    return a
+
+
+@dataclass(frozen=True, eq=False)
+class Sections:
+    """Cross-sections of a hull at one pose, as arrays over stations.
+
+    Attributes
+    ----------
+    x : (n,) float
+        Station (mid-slice) positions along the body, in m (body frame ``x``).
+    dx : (n,) float
+        Slice thicknesses in m; they add up to the wetted length.
+    penetration : (n,) float
+        Depth of each section's lowest point below the water, in m (``>= 0``).
+    half_beam : (n,) float
+        Half the width of the wetted section at the waterline, in m.
+    deadrise : (n,) float
+        Local deadrise angle in rad, from the estimator named in ``deadrise_method``
+        (NaN where the section is dry).
+    area : (n,) float
+        Area of the whole cross-section (not only its wetted part), in m^2.
+    mass_per_metre : (n,) float
+        Mass per metre of body length at each station, in kg/m (NaN without a hull mass).
+    chine_wetted : (n,) bool
+        True where the water has reached the section's widest point (its chine or deck):
+        the wedge-entry model no longer describes the flow there.
+    polygons : (n,) tuple of tuples of (k, 2) float
+        The cross-section contours at each station in the earth frame ``(y, z)``, m; the
+        waterline is ``z = 0``. Outer contours run counter-clockwise, holes clockwise.
+    deadrise_method : str
+        Name of the deadrise estimator used (see :data:`DEADRISE_ESTIMATORS`).
+    draft : float
+        Depth of the body's lowest point below the water, m.
+    wetted_length : float
+        Length along ``x`` of the hull's part below the water, m.
+    """
+
+    x: np.ndarray
+    dx: np.ndarray
+    penetration: np.ndarray
+    half_beam: np.ndarray
+    deadrise: np.ndarray
+    area: np.ndarray
+    mass_per_metre: np.ndarray
+    chine_wetted: np.ndarray
+    polygons: tuple[Polygons, ...] = field(repr=False)
+    deadrise_method: str = "wedge"
+    draft: float = 0.0
+    wetted_length: float = 0.0
+
+    _ARRAYS = (
+        "x",
+        "dx",
+        "penetration",
+        "half_beam",
+        "deadrise",
+        "area",
+        "mass_per_metre",
+        "chine_wetted",
+    )
+
+    def __post_init__(self) -> None:
+        n = len(self.x)
+        for name in self._ARRAYS:
+            arr = np.asarray(getattr(self, name))
+            if arr.shape != (n,):
+                raise ValueError(f"Sections.{name} has shape {arr.shape}, expected ({n},)")
+            object.__setattr__(self, name, _readonly(arr))
+        if len(self.polygons) != n:
+            raise ValueError(f"Sections.polygons has {len(self.polygons)} entries, expected {n}")
+
+    def __len__(self) -> int:
+        return len(self.x)
+
+    @property
+    def wetted(self) -> np.ndarray:
+        """(n,) bool: sections with a positive penetration."""
+        return self.penetration > 0.0
+
+    @property
+    def deadrise_deg(self) -> np.ndarray:
+        """(n,) float: deadrise angles in degrees."""
+        return np.degrees(self.deadrise)
+
+    def subset(self, mask: np.ndarray) -> Sections:
+        """The sections where ``mask`` is true, as a new :class:`Sections`."""
+        mask = np.asarray(mask, dtype=bool)
+        idx = np.flatnonzero(mask)
+        kw = {name: getattr(self, name)[mask] for name in self._ARRAYS}
+        return Sections(
+            **kw,
+            polygons=tuple(self.polygons[i] for i in idx),
+            deadrise_method=self.deadrise_method,
+            draft=self.draft,
+            wetted_length=self.wetted_length,
+        )
+
+    def as_dict(self) -> dict[str, np.ndarray]:
+        """The per-station arrays by name (deadrise also in degrees as ``deadrise_deg``)."""
+        d = {name: getattr(self, name) for name in self._ARRAYS}
+        d["deadrise_deg"] = self.deadrise_deg
+        return d
+
+
+# -- deadrise estimators ----------------------------------------------------------------------
+
+
+def _deadrise_wedge(penetration: np.ndarray, half_beam: np.ndarray) -> np.ndarray:
+    """Equivalent wedge: ``tan(beta) = p / c`` (exact for a wedge), in rad."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        beta = np.arctan2(penetration, half_beam)
+    return np.where((penetration > 0.0) & (half_beam > 0.0), beta, np.nan)
+
+
+#: Deadrise estimators by name: ``f(penetration, half_beam) -> deadrise`` in rad.
+DEADRISE_ESTIMATORS: dict[str, Callable[[np.ndarray, np.ndarray], np.ndarray]] = {
+    "wedge": _deadrise_wedge,
+}
+
+
+# -- cutting ----------------------------------------------------------------------------------
+
+
+def wetted_extent(hull: Hull, waterline: float) -> tuple[float, float]:
+    """The ``x`` range of the part of a level hull below a waterline.
+
+    Parameters
+    ----------
+    hull : Hull
+    waterline : float
+        Height of the water surface in the body frame, m.
+
+    Returns
+    -------
+    (xmin, xmax) : tuple of float
+        In m; equal values when nothing is below the waterline.
+    """
+    v = hull.vertices
+    below = v[:, 2] < waterline
+    if not below.any():
+        lowest = float(v[np.argmin(v[:, 2]), 0])
+        return lowest, lowest
+    xs = [v[below, 0]]
+    a, b = hull.edges.T
+    cross = below[a] != below[b]
+    if cross.any():
+        va, vb = v[a[cross]], v[b[cross]]
+        t = (waterline - va[:, 2]) / (vb[:, 2] - va[:, 2])
+        xs.append(va[:, 0] + t * (vb[:, 0] - va[:, 0]))
+    allx = np.concatenate(xs)
+    return float(allx.min()), float(allx.max())
+
+
+def _as_pose(pose: Pose | float) -> Pose:
+    return pose if isinstance(pose, Pose) else Pose(draft=pose)
+
+
+def _slice_counts(slices: int) -> int:
+    if isinstance(slices, bool) or not isinstance(slices, int | np.integer):
+        raise InputError(f"slice count {slices!r} is not a whole number: give n >= 1")
+    if slices < 1:
+        raise InputError(f"slice count {slices!r} is not positive: give n >= 1 (e.g. 32)")
+    return int(slices)
+
+
+def cut(
+    hull: Hull,
+    pose: Pose | float,
+    slices: int = 32,
+    *,
+    deadrise: str = "wedge",
+    stations: Sequence[float] | None = None,
+) -> Sections:
+    """Cut a level hull at a pose into the slices of the 2D+t method.
+
+    Parameters
+    ----------
+    hull : Hull
+        The body.
+    pose : Pose or float
+        The pose, or the draft in m (depth of the lowest point below the water).
+    slices : int
+        Number of slices ``n`` over the wetted length (default 32); ignored when
+        ``stations`` is given.
+    deadrise : str
+        Deadrise estimator, a key of :data:`DEADRISE_ESTIMATORS` (default ``"wedge"``).
+    stations : sequence of float, optional
+        Explicit station positions along ``x`` in m, instead of the mid-stations of ``n``
+        equal slices; each station then stands for a slice reaching halfway to its
+        neighbours (clipped to the wetted length).
+
+    Returns
+    -------
+    Sections
+    """
+    pose = _as_pose(pose)
+    if deadrise not in DEADRISE_ESTIMATORS:
+        raise InputError(
+            f"deadrise estimator {deadrise!r} is unknown; choose one of "
+            f"{', '.join(DEADRISE_ESTIMATORS)}"
+        )
+    zmin, zmax = hull.bounds[0, 2], hull.bounds[1, 2]
+    height = zmax - zmin
+    tol = TOL.coordinate * hull.size
+    if pose.draft > height + tol:
+        raise InputError(
+            f"draft {pose.draft:g} m is deeper than the body's height {height:.6g} m: the body "
+            "would be under water; give a draft between 0 and the height"
+        )
+    waterline = zmin + pose.draft  # body-frame height of the water surface
+    x0, x1 = wetted_extent(hull, waterline)
+    length = x1 - x0
+    if stations is None:
+        n = _slice_counts(slices)
+        if length > 0.0:
+            d = length / n
+            x = x0 + (np.arange(n) + 0.5) * d
+            dx = np.full(n, d)
+        else:
+            x, dx = np.empty(0), np.empty(0)
+    else:
+        x = np.asarray(stations, dtype=np.float64).ravel()
+        if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0):
+            raise InputError("stations must be finite and strictly increasing (in m)")
+        edges = np.concatenate([[x0], 0.5 * (x[1:] + x[:-1]), [x1]])
+        edges = np.clip(edges, x0, x1)
+        dx = np.diff(edges)
+    return _sections_at(hull, x, dx, waterline, deadrise, pose.draft, length)
+
+
+def _cut_polygons(hull: Hull, x: np.ndarray, waterline: float) -> list[Polygons]:
+    """Cross-section contours at stations ``x`` in the earth frame (y, z), z = 0 the water."""
+    slicer, c = hull._slicer
+    out = []
+    shift = np.array([c[1], c[2] - waterline])
+    for xi in x:
+        contours = slicer.slice(float(xi - c[0])).to_polygons()
+        out.append(tuple(np.asarray(p, dtype=np.float64) + shift for p in contours))
+    return out
+
+
+def _sections_at(
+    hull: Hull,
+    x: np.ndarray,
+    dx: np.ndarray,
+    waterline: float,
+    deadrise: str,
+    draft: float,
+    wetted_length: float,
+) -> Sections:
+    polys = _cut_polygons(hull, x, waterline)
+    props = polygon_properties(polys, tol=TOL.coordinate * hull.size)
+    p = np.maximum(-props["zmin"], 0.0)
+    if hull.mass is None:
+        mpm = np.full(len(x), np.nan)
+    else:
+        mpm = hull.mass * props["area"] / hull.volume
+    c = props["half_beam"]
+    return Sections(
+        x=x,
+        dx=dx,
+        penetration=p,
+        half_beam=c,
+        deadrise=DEADRISE_ESTIMATORS[deadrise](p, c),
+        area=props["area"],
+        mass_per_metre=mpm,
+        chine_wetted=props["chine_wetted"] & (p > 0.0),
+        polygons=tuple(polys),
+        deadrise_method=deadrise,
+        draft=draft,
+        wetted_length=wetted_length,
+    )
+
+
+def polygon_properties(polygons: Sequence[Polygons], tol: float) -> dict[str, np.ndarray]:
+    """Properties of cross-sections in the earth frame, all stations at once.
+
+    Parameters
+    ----------
+    polygons : (n,) sequence of sequences of (k, 2) float
+        Contours of each section in ``(y, z)``, m, waterline at ``z = 0``.
+    tol : float
+        Coordinate tolerance in m: points closer than this to a level count as on it.
+
+    Returns
+    -------
+    dict of (n,) arrays
+        ``area`` (m^2), ``zmin`` (m, lowest point; ``+inf`` for an empty section),
+        ``half_beam`` (m, half the width of the wetted section at the waterline, or of
+        the whole section when it is under water), ``chine_wetted`` (bool, the waterline
+        is at or above the section's widest point on either side).
+    """
+    n = len(polygons)
+    counts = [sum(len(c) for c in secs) for secs in polygons]
+    area = np.zeros(n)
+    zmin = np.full(n, np.inf)
+    half_beam = np.zeros(n)
+    chine = np.zeros(n, dtype=bool)
+    if sum(counts) == 0:
+        return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}
+    a = np.concatenate([c for secs in polygons for c in secs])
+    b = np.concatenate([np.roll(c, -1, axis=0) for secs in polygons for c in secs])
+    station = np.repeat(np.arange(n), counts)
+    nonempty = np.asarray(counts) > 0
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])[nonempty]
+
+    ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+    area = np.bincount(station, weights=0.5 * (ya * zb - yb * za), minlength=n)
+    zmin[nonempty] = np.minimum.reduceat(za, starts)
+    ymax = np.full(n, -np.inf)
+    ymin = np.full(n, np.inf)
+    ymax[nonempty] = np.maximum.reduceat(ya, starts)
+    ymin[nonempty] = np.minimum.reduceat(ya, starts)
+
+    # widest point on each side: the lowest vertex at the extreme y (a vertical side's
+    # lower corner is the chine)
+    z_port = np.full(n, np.inf)
+    z_stbd = np.full(n, np.inf)
+    at_port = ya >= ymax[station] - tol
+    at_stbd = ya <= ymin[station] + tol
+    np.minimum.at(z_port, station[at_port], za[at_port])
+    np.minimum.at(z_stbd, station[at_stbd], za[at_stbd])
+    chine = (z_port <= tol) | (z_stbd <= tol)
+
+    # waterline crossings, half-open rule so that a vertex on the waterline counts once
+    below_a, below_b = za < 0.0, zb < 0.0
+    cross = below_a != below_b
+    yc = ya[cross] + (0.0 - za[cross]) * (yb[cross] - ya[cross]) / (zb[cross] - za[cross])
+    sc = station[cross]
+    cmax = np.full(n, -np.inf)
+    cmin = np.full(n, np.inf)
+    np.maximum.at(cmax, sc, yc)
+    np.minimum.at(cmin, sc, yc)
+    crossed = np.isfinite(cmax)
+    half_beam = np.where(crossed, 0.5 * (cmax - cmin), 0.0)
+    submerged = ~crossed & (zmin < 0.0)
+    half_beam[submerged] = 0.5 * (ymax - ymin)[submerged]
+    return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}

@@ -1,0 +1,116 @@
+"""The interface every 2D solver implements, and the loads it returns."""
+
+from __future__ import annotations
+
+import abc
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..errors import InputError
+from ..sections import Sections
+from ..state import Fluid
+
+__all__ = ["SectionLoads", "Solver"]
+
+
+@dataclass(frozen=True, eq=False)
+class SectionLoads:
+    """What a 2D solver returns for a set of sections.
+
+    Attributes
+    ----------
+    force_per_metre : (n,) float
+        Vertical hydrodynamic force per metre of body length on each section, in N/m,
+        positive upward.
+    valid : (n,) bool
+        True where the section is inside the solver's range of validity.
+    reason : (n,) str
+        Why a section is not valid (``""`` where it is).
+    diagnostics : mapping of str to (n,) float
+        Named intermediate arrays, for reports and checks.
+    """
+
+    force_per_metre: np.ndarray
+    valid: np.ndarray
+    reason: np.ndarray
+    diagnostics: Mapping[str, np.ndarray] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        f = np.asarray(self.force_per_metre, dtype=np.float64)
+        v = np.asarray(self.valid, dtype=bool)
+        r = np.asarray(self.reason, dtype=object)
+        for a in (f, v, r):
+            a.flags.writeable = False
+        object.__setattr__(self, "force_per_metre", f)
+        object.__setattr__(self, "valid", v)
+        object.__setattr__(self, "reason", r)
+        diags = {}
+        for k, a in dict(self.diagnostics).items():
+            arr = np.array(a, dtype=np.float64)
+            arr.flags.writeable = False
+            diags[str(k)] = arr
+        object.__setattr__(self, "diagnostics", diags)
+
+    def __len__(self) -> int:
+        return len(self.force_per_metre)
+
+
+class Solver(abc.ABC):
+    """A 2D water-entry solver: sections and their velocities in, force per metre out.
+
+    Subclasses set the class variables :attr:`name` (the registry key, as in the entry
+    point) and :attr:`description` (one line for ``hullslice solvers``), and implement
+    :meth:`section_loads`. Options are keyword arguments of the constructor; the base
+    constructor refuses any it does not know (list them in :attr:`options`).
+
+    A solver is registered in the entry-point group ``hullslice.solvers`` of its
+    distribution::
+
+        [project.entry-points."hullslice.solvers"]
+        my-solver = "my_package.module:MySolver"
+    """
+
+    #: Registry name, e.g. ``"extended-von-karman"``.
+    name: ClassVar[str] = ""
+    #: One-line description for listings.
+    description: ClassVar[str] = ""
+    #: Accepted options with their defaults (keyword arguments of the constructor).
+    options: ClassVar[Mapping[str, Any]] = {}
+
+    def __init__(self, **options: Any) -> None:
+        unknown = sorted(set(options) - set(self.options))
+        if unknown:
+            known = ", ".join(self.options) or "none"
+            raise InputError(
+                f"solver {self.name!r} has no option {', '.join(map(repr, unknown))}; "
+                f"its options: {known}"
+            )
+        self.settings = {**self.options, **options}
+
+    @abc.abstractmethod
+    def section_loads(
+        self, sections: Sections, velocity: np.ndarray, fluid: Fluid
+    ) -> SectionLoads:
+        """Loads on wetted sections.
+
+        Parameters
+        ----------
+        sections : Sections
+            The wetted sections (every penetration is positive).
+        velocity : (n,) float
+            Penetration velocity of each section in m/s, negative downward.
+        fluid : Fluid
+            Water density (kg/m^3) and gravity (m/s^2).
+
+        Returns
+        -------
+        SectionLoads
+            Arrays of the same length as ``sections``.
+        """
+
+    def __repr__(self) -> str:
+        opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
+        return f"{type(self).__name__}({opts})"

@@ -1,0 +1,243 @@
+"""Discovery of 2D solvers through the entry-point group ``hullslice.solvers``.
+
+Every solver, the default one included, is found through installed distributions'
+entry points. Discovery reads metadata only; a plugin's module is imported when the solver
+is first asked for by name or when all solvers are listed. A plugin that fails to import
+or is not a :class:`~hullslice.solvers.base.Solver` is reported as broken (a warning naming
+it and its distribution) and the others keep working. When two distributions register the
+same name, the one from hullslice itself wins, otherwise the first by distribution name, and
+a warning names both. Setting the environment variable ``HULLSLICE_NO_PLUGINS=1`` loads only
+the solvers registered by hullslice itself.
+"""
+
+from __future__ import annotations
+
+import functools
+import os
+import warnings
+from dataclasses import dataclass
+from importlib.metadata import EntryPoint, entry_points
+from typing import NoReturn
+
+from ..errors import PluginError, PluginWarning, UnknownSolverError
+from .base import Solver
+
+__all__ = [
+    "DEFAULT_SOLVER",
+    "ENTRY_POINT_GROUP",
+    "SolverInfo",
+    "get_solver",
+    "list_solvers",
+    "refresh",
+    "solver_names",
+]
+
+ENTRY_POINT_GROUP = "hullslice.solvers"
+DEFAULT_SOLVER = "extended-von-karman"
+NO_PLUGINS_ENV = "HULLSLICE_NO_PLUGINS"
+_OWN_DIST = "hullslice"
+
+
+@dataclass(frozen=True)
+class SolverInfo:
+    """One registered solver, as ``hullslice solvers`` lists it.
+
+    Attributes
+    ----------
+    name : str
+        Registry name (the entry point's name).
+    value : str
+        The entry point's target, ``module:Class``.
+    distribution : str
+        Name of the installed distribution that registers it.
+    version : str
+        That distribution's version.
+    status : str
+        ``"ok"``, ``"broken"`` (fails to load), ``"shadowed"`` (another distribution
+        registers the same name and wins) or ``"not loaded"`` (not imported yet).
+    description : str
+        The solver's one-line description (empty until loaded).
+    error : str
+        Why it is broken or shadowed.
+    """
+
+    name: str
+    value: str
+    distribution: str
+    version: str
+    status: str = "not loaded"
+    description: str = ""
+    error: str = ""
+
+
+def _dist_of(ep: EntryPoint) -> tuple[str, str]:
+    dist = getattr(ep, "dist", None)
+    if dist is None:
+        return "(unknown)", ""
+    return str(dist.metadata["Name"] or "(unknown)"), str(dist.version or "")
+
+
+def _plugins_disabled() -> bool:
+    return os.environ.get(NO_PLUGINS_ENV, "").strip().lower() not in ("", "0", "false", "no")
+
+
+class _Registry:
+    """Entry points by name, and the solver classes loaded from them."""
+
+    def __init__(self, eps: list[EntryPoint]) -> None:
+        self.winners: dict[str, EntryPoint] = {}
+        self.shadowed: list[tuple[EntryPoint, EntryPoint]] = []
+        self.classes: dict[str, type[Solver]] = {}
+        self.broken: dict[str, str] = {}
+        by_name: dict[str, list[EntryPoint]] = {}
+        for ep in eps:
+            if _plugins_disabled() and _dist_of(ep)[0] != _OWN_DIST:
+                continue
+            by_name.setdefault(ep.name, []).append(ep)
+        for name, group in sorted(by_name.items()):
+            # the same entry point seen twice (a path listed twice) is one registration
+            unique = {(_dist_of(ep)[0], ep.value): ep for ep in group}
+            ordered = sorted(
+                unique.values(), key=lambda e: (_dist_of(e)[0] != _OWN_DIST, _dist_of(e)[0])
+            )
+            self.winners[name] = ordered[0]
+            for loser in ordered[1:]:
+                self.shadowed.append((loser, ordered[0]))
+                warnings.warn(
+                    f"two solvers are registered as {name!r}: {_describe(ordered[0])} is used, "
+                    f"{_describe(loser)} is ignored; uninstall one of them",
+                    PluginWarning,
+                    stacklevel=4,
+                )
+
+    def load(self, name: str) -> type[Solver]:
+        if name in self.classes:
+            return self.classes[name]
+        if name in self.broken:
+            raise PluginError(self.broken[name])
+        ep = self.winners[name]
+        try:
+            obj = ep.load()
+        except Exception as exc:
+            msg = f"solver plugin {_describe(ep)} failed to load: {type(exc).__name__}: {exc}"
+            return self._broken(name, msg)
+        if not (isinstance(obj, type) and issubclass(obj, Solver)):
+            msg = (
+                f"solver plugin {_describe(ep)} does not implement the solver interface: "
+                f"{ep.value} is not a subclass of hullslice.Solver"
+            )
+            return self._broken(name, msg)
+        if getattr(obj, "__abstractmethods__", None):
+            missing = ", ".join(sorted(obj.__abstractmethods__))
+            msg = f"solver plugin {_describe(ep)} does not implement {missing}"
+            return self._broken(name, msg)
+        self.classes[name] = obj
+        return obj
+
+    def _broken(self, name: str, msg: str) -> NoReturn:
+        self.broken[name] = msg
+        warnings.warn(msg, PluginWarning, stacklevel=4)
+        raise PluginError(msg)
+
+    def distribution(self, name: str) -> str:
+        """``name (dist version)`` of the plugin registered as ``name``, for messages."""
+        ep = self.winners.get(name)
+        return _describe(ep) if ep is not None else repr(name)
+
+
+def _describe(ep: EntryPoint) -> str:
+    dist, version = _dist_of(ep)
+    return f"{ep.name!r} ({ep.value}, distribution {dist} {version})".replace(" )", ")")
+
+
+@functools.cache
+def _registry() -> _Registry:
+    return _Registry(list(entry_points(group=ENTRY_POINT_GROUP)))
+
+
+def refresh() -> None:
+    """Forget what was discovered, so that newly installed plugins are found."""
+    _registry.cache_clear()
+
+
+def list_solvers() -> list[SolverInfo]:
+    """Every registered solver, loaded so that its status is known, sorted by name."""
+    reg = _registry()
+    out = []
+    for name, ep in reg.winners.items():
+        dist, version = _dist_of(ep)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", PluginWarning)
+                cls = reg.load(name)
+        except PluginError as exc:
+            out.append(SolverInfo(name, ep.value, dist, version, "broken", "", str(exc)))
+            continue
+        out.append(SolverInfo(name, ep.value, dist, version, "ok", cls.description))
+    for loser, winner in reg.shadowed:
+        dist, version = _dist_of(loser)
+        out.append(
+            SolverInfo(
+                loser.name,
+                loser.value,
+                dist,
+                version,
+                "shadowed",
+                "",
+                f"the same name is registered by {_describe(winner)}, which is used",
+            )
+        )
+    return sorted(out, key=lambda s: (s.name, s.status != "ok"))
+
+
+def solver_names() -> list[str]:
+    """Names of the registered solvers (without loading them)."""
+    return sorted(_registry().winners)
+
+
+def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> Solver:
+    """A solver instance from a registered name, a Solver subclass, or an instance.
+
+    Parameters
+    ----------
+    solver : str, Solver subclass, Solver instance or None
+        ``None`` means the default, ``"extended-von-karman"``.
+    **options
+        Options passed to the solver's constructor (not allowed with an instance).
+
+    Raises
+    ------
+    UnknownSolverError
+        No installed solver has that name; the message lists the installed ones.
+    PluginError
+        The plugin registered under that name cannot be loaded.
+    """
+    if solver is None:
+        solver = DEFAULT_SOLVER
+    if isinstance(solver, Solver):
+        if options:
+            raise TypeError("options cannot be given with a solver instance")
+        return solver
+    if isinstance(solver, type) and issubclass(solver, Solver):
+        return solver(**options)
+    if not isinstance(solver, str):
+        raise TypeError(f"solver must be a name, a Solver subclass or instance, not {solver!r}")
+    reg = _registry()
+    if solver not in reg.winners:
+        installed = ", ".join(sorted(reg.winners)) or "none"
+        hint = ""
+        if _plugins_disabled():
+            hint = f" (plugins are off: {NO_PLUGINS_ENV} is set)"
+        raise UnknownSolverError(
+            f"no solver named {solver!r} is installed{hint}; installed solvers: {installed}"
+        )
+    return reg.load(solver)(**options)
+
+
+def describe(solver: Solver) -> str:
+    """Name and distribution of a solver instance, for error messages."""
+    reg = _registry()
+    name = getattr(solver, "name", "") or type(solver).__name__
+    if name in reg.winners and reg.classes.get(name) is type(solver):
+        return reg.distribution(name)
+    return f"{name!r} ({type(solver).__module__}.{type(solver).__qualname__})"

@@ -1,0 +1,90 @@
+"""Where the body is (:class:`Pose`), how it moves (:class:`Motion`) and the water (:class:`Fluid`).
+
+Signs follow the earth frame: ``z`` up, calm water at ``z = 0``; a vertical velocity is
+negative when the body moves down into the water; forces and accelerations are positive up.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from .constants import RHO_WATER, G
+from .errors import InputError
+
+__all__ = ["Fluid", "Motion", "Pose"]
+
+
+def _finite(value, what: str, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} {value!r} is not a number (in {unit})") from None
+    if not math.isfinite(v):
+        raise InputError(f"{what} {value!r} is not finite (in {unit})")
+    return v
+
+
+@dataclass(frozen=True)
+class Pose:
+    """The position of the body relative to the calm water.
+
+    Parameters
+    ----------
+    draft : float
+        Depth of the body's lowest point below the calm water, in m (``>= 0``; ``0`` is
+        first contact).
+    """
+
+    draft: float
+
+    def __post_init__(self) -> None:
+        d = _finite(self.draft, "draft", "m")
+        if d < 0.0:
+            raise InputError(
+                f"draft {self.draft!r} m is negative: the draft is the depth of the body's "
+                "lowest point below the water, 0 at first contact"
+            )
+        object.__setattr__(self, "draft", d)
+
+
+@dataclass(frozen=True)
+class Motion:
+    """The velocity of the body.
+
+    Parameters
+    ----------
+    velocity : float
+        Vertical velocity in m/s, negative downward (into the water).
+    """
+
+    velocity: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "velocity", _finite(self.velocity, "velocity", "m/s"))
+
+
+@dataclass(frozen=True)
+class Fluid:
+    """The water and gravity.
+
+    Parameters
+    ----------
+    rho : float
+        Water density in kg/m^3 (default 1000.0, fresh water as in the paper).
+    g : float
+        Gravitational acceleration in m/s^2 (default 9.81, the paper's value).
+    """
+
+    rho: float = RHO_WATER
+    g: float = G
+
+    def __post_init__(self) -> None:
+        rho = _finite(self.rho, "water density", "kg/m^3")
+        g = _finite(self.g, "gravity", "m/s^2")
+        if rho <= 0.0:
+            raise InputError(f"water density {self.rho!r} kg/m^3 is not positive (try 1000)")
+        if g < 0.0:
+            raise InputError(f"gravity {self.g!r} m/s^2 is negative (try 9.81)")
+        object.__setattr__(self, "rho", rho)
+        object.__setattr__(self, "g", g)

@@ -1,0 +1,63 @@
+"""Shared fixtures: the paper's data and the bundled sample hulls."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.solvers import registry
+
+ROOT = Path(__file__).resolve().parents[1]
+DATA = Path(__file__).resolve().parent / "data"
+MESHES = ROOT / "meshes"
+
+
+@pytest.fixture(scope="session")
+def paper() -> dict:
+    """The paper's constants and reference values (tests/data/paper.json names the source)."""
+    return json.loads((DATA / "paper.json").read_text())
+
+
+@pytest.fixture(scope="session")
+def paper_hull() -> hs.Hull:
+    """The bundled paper prism, 1 kg."""
+    return hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+
+
+@pytest.fixture(scope="session")
+def wedge_hull() -> hs.Hull:
+    """A 1 m prism of uniform 30-degree wedge section, 0.2 m beam, 10 kg."""
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    return hs.Hull.from_arrays(v, f, mass=10.0, name="wedge")
+
+
+@pytest.fixture
+def fake_entry_points(monkeypatch):
+    """Replace the installed entry points of ``hullslice.solvers`` by a given list."""
+
+    def install(eps):
+        monkeypatch.setattr(registry, "entry_points", lambda group: list(eps))
+        registry.refresh()
+
+    yield install
+    registry.refresh()
+
+
+def exact_prism_section(x: np.ndarray, draft: float) -> dict[str, np.ndarray]:
+    """The paper prism's section at stations ``x`` from its definition (METHOD section 4)."""
+    p = shapes.PAPER_PRISM
+    h = p["h_start"] + (p["h_end"] - p["h_start"]) * x / p["length"]
+    half = p["width"] / 2
+    pen = h - (p["h_start"] - draft)  # the deck is h_start - draft above the water
+    return {
+        "h": h,
+        "penetration": pen,
+        "half_beam": half * pen / h,
+        "tan_beta": h / half,
+        "area": half * h,
+    }
