@@ -1,0 +1,5 @@
+"""``python -m hullslice``: the command line."""
+
+from .cli import run
+
+run()
