@@ -161,8 +161,7 @@ def _check_loads(solver: Solver, loads: object, n: int) -> None:
     for k, arr in loads.diagnostics.items():
         if np.shape(arr) != (n,):
             raise SolverError(
-                f"solver {who} returned diagnostic {k!r} of shape {np.shape(arr)} "
-                f"for {n} sections"
+                f"solver {who} returned diagnostic {k!r} of shape {np.shape(arr)} for {n} sections"
             )
     bad = ~np.isfinite(loads.force_per_metre)
     if bad.any():
@@ -268,9 +267,7 @@ def convergence(
     counts = tuple(sorted({int(n) for n in _counts(slices)}))
     solver = get_solver(solver)
     results = tuple(
-        compute_force(
-            hull, pose, motion, slices=n, solver=solver, fluid=fluid, deadrise=deadrise
-        )
+        compute_force(hull, pose, motion, slices=n, solver=solver, fluid=fluid, deadrise=deadrise)
         for n in counts
     )
     rich = richardson(counts, [r.total for r in results]) if len(counts) >= 3 else None

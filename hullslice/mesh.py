@@ -75,9 +75,7 @@ def _unit_scale(units: str) -> float:
     try:
         return LENGTH_UNITS[str(units).strip().lower()]
     except KeyError:
-        raise InputError(
-            f"length unit {units!r} is not one of {', '.join(LENGTH_UNITS)}"
-        ) from None
+        raise InputError(f"length unit {units!r} is not one of {', '.join(LENGTH_UNITS)}") from None
 
 
 def _check_mass(mass: float | None) -> float | None:
@@ -513,9 +511,7 @@ def _checked_mesh(vertices, faces, name: str):
     except (TypeError, ValueError) as exc:
         raise MeshError(f"mesh {name!r}: faces are not an (m, 3) integer array") from exc
     if f.ndim != 2 or f.shape[1] != 3:
-        raise MeshError(
-            f"mesh {name!r}: faces have shape {f.shape}, expected (m, 3) triangles"
-        )
+        raise MeshError(f"mesh {name!r}: faces have shape {f.shape}, expected (m, 3) triangles")
     if len(v) == 0 or len(f) == 0:
         raise MeshError(f"mesh {name!r} is empty ({len(v)} vertices, {len(f)} faces)")
     if not np.issubdtype(f.dtype, np.integer):
@@ -587,20 +583,7 @@ def _checked_mesh(vertices, faces, name: str):
     # each edge used by two faces must be used once in each direction
     misoriented = int((n_forward != 1).sum())
     if misoriented:
-        import trimesh
-
-        tm = trimesh.Trimesh(v, f, process=False)
-        trimesh.repair.fix_winding(tm)
-        f2 = np.asarray(tm.faces, dtype=np.int64)
-        _, nf2 = _edge_use(f2)
-        if (nf2 != 1).any():
-            raise MeshError(
-                f"mesh {name!r}: the faces cannot be oriented consistently "
-                "(a non-orientable surface); remesh the hull"
-            )
-        flipped = int((f2 != f).any(axis=1).sum())
-        flipped = min(flipped, len(f) - flipped)
-        f = f2
+        f, flipped = _orient_consistently(f, name)
         repaired(f"re-oriented {flipped} faces whose winding disagreed with their neighbours")
 
     manifold = _to_manifold(v, f, name)
@@ -650,6 +633,58 @@ def _to_manifold(v: np.ndarray, f: np.ndarray, name: str):
             "consistently oriented 2-manifold; repair it in your CAD tool"
         )
     return man
+
+
+def _orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
+    """Flip the fewest faces so that neighbours traverse every shared edge in opposite ways.
+
+    Faces are the nodes of a graph whose edges are the mesh's edges (each shared by two
+    faces, checked before); an edge says whether its two faces agree. A breadth-first tree
+    of each connected part gives every face its parity to the root, found for all faces at
+    once by pointer jumping. In each part, the parity seen by fewer faces is flipped.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import breadth_first_order, connected_components
+
+    m = len(faces)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    owner = np.repeat(np.arange(m), 3)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    order = np.argsort(lo * (int(faces.max()) + 1) + hi, kind="stable")
+    a, b = order[0::2], order[1::2]  # the two uses of each edge, side by side
+    fa, fb = owner[a], owner[b]
+    disagree = (directed[a, 0] == directed[b, 0]).astype(np.int8)  # same direction
+    # weights 1 (agree) and 3 (disagree) stay apart when two faces share two edges
+    graph = coo_matrix((1 + 2 * disagree, (fa, fb)), shape=(m, m)).tocsr()
+    graph = (graph + graph.T).tocsr()
+    ncomp, labels = connected_components(graph, directed=False)
+    pred = np.arange(m)
+    for c in range(ncomp):
+        root = int(np.flatnonzero(labels == c)[0])
+        _, p = breadth_first_order(graph, root, directed=False, return_predecessors=True)
+        members = p >= 0
+        pred[members] = p[members]
+    # parity of each face relative to its tree parent
+    parity = (np.asarray(graph[np.arange(m), pred]).ravel() % 3 == 0).astype(np.int8)
+    parity[pred == np.arange(m)] = 0
+    jump = pred.copy()
+    while np.any(jump != jump[jump]):  # pointer jumping: XOR of parities up to the root
+        parity ^= parity[jump]
+        jump = jump[jump]
+    parity ^= parity[jump]
+    flip = parity.astype(bool)
+    if np.any(disagree.astype(bool) ^ flip[fa] ^ flip[fb]):
+        raise MeshError(
+            f"mesh {name!r}: the faces cannot be oriented consistently "
+            "(a non-orientable surface); remesh the hull"
+        )
+    counts = np.bincount(labels, minlength=ncomp)
+    flipped_per = np.bincount(labels, weights=flip, minlength=ncomp)
+    swap = flipped_per > counts / 2  # flip the other set in this part: fewer faces
+    flip ^= swap[labels]
+    out = faces.copy()
+    out[flip] = out[flip][:, ::-1]
+    return out, int(flip.sum())
 
 
 def _flipped(manifold):

@@ -69,9 +69,7 @@ def table_text(columns: Sequence[Column], rows: Sequence[Mapping[str, Any]]) -> 
         max([len(h), len(u), *(len(row[i]) for row in cells)])
         for i, (h, u) in enumerate(zip(heads, units, strict=True))
     ]
-    numeric = [
-        all(_is_number(r.get(c.key)) for r in rows) if rows else True for c in columns
-    ]
+    numeric = [all(_is_number(r.get(c.key)) for r in rows) if rows else True for c in columns]
 
     def line(items: Sequence[str]) -> str:
         parts = [

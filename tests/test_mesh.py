@@ -161,6 +161,28 @@ def test_one_flipped_face_is_reoriented():
     assert hull.volume == pytest.approx(1.0)
 
 
+def test_many_flipped_faces_are_reoriented():
+    sphere = trimesh.creation.icosphere(subdivisions=4)
+    f = np.asarray(sphere.faces).copy()
+    rng = np.random.default_rng(3)
+    bad = rng.random(len(f)) < 0.3
+    f[bad] = f[bad][:, ::-1]
+    with pytest.warns(hs.MeshRepairWarning, match=f"re-oriented {bad.sum()} faces"):
+        hull = hs.Hull.from_arrays(sphere.vertices, f)
+    assert hull.volume == pytest.approx(sphere.volume, rel=1e-12)
+
+    # the same triangles, each facing outward as in the sphere: compare centroids and normals
+    def oriented(v, f):
+        tri = np.asarray(v)[np.asarray(f)]
+        n = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+        rows = np.hstack([tri.mean(axis=1), n]).round(9)
+        return rows[np.lexsort(rows.T[::-1])]
+
+    np.testing.assert_allclose(
+        oriented(hull.vertices, hull.faces), oriented(sphere.vertices, sphere.faces), atol=1e-9
+    )
+
+
 def test_overlapping_shells_become_their_union():
     v1, f1 = box(extents=(2, 1, 1), center=(0, 0, 0))
     v2, f2 = box(extents=(2, 1, 1), center=(1, 0, 0))  # overlaps the first by half

@@ -83,8 +83,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         except OSError as exc:
             if debug:
                 raise
-            print(f"hullslice: error: {exc.strerror or exc}: {exc.filename or ''}".rstrip(": "),
-                  file=sys.stderr)
+            print(
+                f"hullslice: error: {exc.strerror or exc}: {exc.filename or ''}".rstrip(": "),
+                file=sys.stderr,
+            )
             return 2
         except Exception as exc:
             if debug:

@@ -112,9 +112,7 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
 
 
 def load(args: argparse.Namespace) -> Hull:
-    return load_hull(
-        args.mesh, units=args.units, forward=args.forward, up=args.up, mass=args.mass
-    )
+    return load_hull(args.mesh, units=args.units, forward=args.forward, up=args.up, mass=args.mass)
 
 
 def fluid(args: argparse.Namespace) -> Fluid:

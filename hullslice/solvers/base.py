@@ -91,9 +91,7 @@ class Solver(abc.ABC):
         self.settings = {**self.options, **options}
 
     @abc.abstractmethod
-    def section_loads(
-        self, sections: Sections, velocity: np.ndarray, fluid: Fluid
-    ) -> SectionLoads:
+    def section_loads(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> SectionLoads:
         """Loads on wetted sections.
 
         Parameters

@@ -191,7 +191,10 @@ def peak_values(
     tb = np.tan(deadrise)
     root = np.sqrt(2.0 * mass_per_metre / (5.0 * np.pi * rho * gamma**2))
     return {
-        "a_max": v_z0**2 * (5.0 / 6.0) ** 3 * gamma / tb
+        "a_max": v_z0**2
+        * (5.0 / 6.0) ** 3
+        * gamma
+        / tb
         * np.sqrt(2.0 * np.pi * rho / (5.0 * mass_per_metre)),
         "z_star": root * tb,
         "v_star": 5.0 / 6.0 * v_z0,
@@ -212,9 +215,7 @@ class CurveSolver(Solver):
         """Pile-up coefficient for deadrise angles in rad."""
         return dobrovolskaya_pile_up(deadrise)
 
-    def section_loads(
-        self, sections: Sections, velocity: np.ndarray, fluid: Fluid
-    ) -> SectionLoads:
+    def section_loads(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> SectionLoads:
         curves = self.curves
         M = sections.mass_per_metre
         beta = sections.deadrise
