@@ -6,7 +6,8 @@ solvers through plugins), and the 2D forces are summed along the body.
 
     >>> import hullslice as hs
     >>> hull = hs.load_hull("meshes/paper_prism.stl", mass=1.0)
-    >>> study = hs.convergence(hull, draft=0.0383, velocity=-3.4943, slices=(16, 32, 64))
+    >>> study = hs.convergence(hull, 0.0383, -3.4943, slices=(16, 32, 64))  # draft, velocity
+    >>> history = hs.simulate(hull, -4.0, 0.03, dt=1e-4)  # free fall from -4 m/s
 
 All quantities are SI: m, kg, s, N; angles in rad inside the library.
 """
@@ -30,6 +31,7 @@ from .errors import (
 )
 from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
 from .mesh import Hull, load_hull
+from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
     CharacteristicCurves,
@@ -49,14 +51,17 @@ except PackageNotFoundError:  # running from a source tree that is not installed
 __all__ = [
     "DEADRISE_ESTIMATORS",
     "RHO_WATER",
+    "STOP_RULES",
     "TOL",
     "CaseError",
     "CharacteristicCurves",
     "ConvergenceStudy",
     "CurveSolver",
     "Fluid",
+    "ForceModel",
     "ForceResult",
     "G",
+    "History",
     "Hull",
     "HullsliceError",
     "HullsliceWarning",
@@ -81,5 +86,8 @@ __all__ = [
     "get_solver",
     "list_solvers",
     "load_hull",
+    "prescribed",
+    "read_kinematics",
     "richardson",
+    "simulate",
 ]

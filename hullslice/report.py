@@ -224,3 +224,41 @@ def convergence_summary(study) -> dict[str, Any]:
             convergence_behaviour=rich.behaviour,
         )
     return out
+
+
+#: Columns of a time history (terminal view).
+HISTORY_COLUMNS = (
+    Column("t", "t", "s", ".5f"),
+    Column("penetration", "draft", "m", ".5f"),
+    Column("velocity", "v", "m/s", ".4f"),
+    Column("acceleration", "a", "m/s^2", ".3f"),
+    Column("force", "F", "N", ".3f"),
+    Column("wetted_length", "wetted L", "m", ".4f"),
+    Column("slices", "slices", ""),
+    Column("valid", "valid", ""),
+    Column("reason", "reason", ""),
+)
+
+
+def history_records(history, every: int = 1) -> list[dict[str, Any]]:
+    """One dict per instant of a :class:`~hullslice.motion.History` (every ``every``-th,
+    always with the last)."""
+    cols = history.columns()
+    n = len(history)
+    idx = list(range(0, n, max(1, every)))
+    if n and idx[-1] != n - 1:
+        idx.append(n - 1)
+    return [{k: v[i] for k, v in cols.items()} for i in idx]
+
+
+def history_summary(history) -> dict[str, Any]:
+    """The run's inputs, its peak, why it ended and when each limit was first crossed."""
+    return {
+        "mode": history.mode,
+        "settings": dict(history.settings),
+        "steps": len(history),
+        "peak": history.peak if len(history) else None,
+        "stop_reason": history.stop_reason,
+        "first_crossed": dict(history.first_crossed),
+        "valid": bool(np.all(history.valid)),
+    }

@@ -184,12 +184,21 @@ def _as_pose(pose: Pose | float) -> Pose:
     return pose if isinstance(pose, Pose) else Pose(draft=pose)
 
 
-def _slice_counts(slices: int) -> int:
+def _slice_count(slices: int) -> int:
     if isinstance(slices, bool) or not isinstance(slices, int | np.integer):
         raise InputError(f"slice count {slices!r} is not a whole number: give n >= 1")
     if slices < 1:
         raise InputError(f"slice count {slices!r} is not positive: give n >= 1 (e.g. 32)")
     return int(slices)
+
+
+def _check_deadrise(deadrise: str) -> str:
+    if deadrise not in DEADRISE_ESTIMATORS:
+        raise InputError(
+            f"deadrise estimator {deadrise!r} is unknown; choose one of "
+            f"{', '.join(DEADRISE_ESTIMATORS)}"
+        )
+    return deadrise
 
 
 def cut(
@@ -223,38 +232,37 @@ def cut(
     Sections
     """
     pose = _as_pose(pose)
-    if deadrise not in DEADRISE_ESTIMATORS:
-        raise InputError(
-            f"deadrise estimator {deadrise!r} is unknown; choose one of "
-            f"{', '.join(DEADRISE_ESTIMATORS)}"
-        )
-    zmin, zmax = hull.bounds[0, 2], hull.bounds[1, 2]
-    height = zmax - zmin
-    tol = TOL.coordinate * hull.size
-    if pose.draft > height + tol:
+    _check_deadrise(deadrise)
+    height = hull.extents[2]
+    if pose.draft > height + TOL.coordinate * hull.size:
         raise InputError(
             f"draft {pose.draft:g} m is deeper than the body's height {height:.6g} m: the body "
             "would be under water; give a draft between 0 and the height"
         )
-    waterline = zmin + pose.draft  # body-frame height of the water surface
+    if stations is None:
+        return _level_sections(hull, pose.draft, _slice_count(slices), deadrise)
+    waterline = hull.bounds[0, 2] + pose.draft
+    x0, x1 = wetted_extent(hull, waterline)
+    x = np.asarray(stations, dtype=np.float64).ravel()
+    if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0):
+        raise InputError("stations must be finite and strictly increasing (in m)")
+    edges = np.concatenate([[x0], 0.5 * (x[1:] + x[:-1]), [x1]])
+    dx = np.diff(np.clip(edges, x0, x1))
+    return _sections_at(hull, x, dx, waterline, deadrise, pose.draft, x1 - x0)
+
+
+def _level_sections(hull: Hull, draft: float, n: int, deadrise: str) -> Sections:
+    """The mid-stations of ``n`` equal slices over the wetted length (inputs checked)."""
+    waterline = hull.bounds[0, 2] + draft  # body-frame height of the water surface
     x0, x1 = wetted_extent(hull, waterline)
     length = x1 - x0
-    if stations is None:
-        n = _slice_counts(slices)
-        if length > 0.0:
-            d = length / n
-            x = x0 + (np.arange(n) + 0.5) * d
-            dx = np.full(n, d)
-        else:
-            x, dx = np.empty(0), np.empty(0)
+    if length > 0.0:
+        d = length / n
+        x = x0 + (np.arange(n) + 0.5) * d
+        dx = np.full(n, d)
     else:
-        x = np.asarray(stations, dtype=np.float64).ravel()
-        if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0):
-            raise InputError("stations must be finite and strictly increasing (in m)")
-        edges = np.concatenate([[x0], 0.5 * (x[1:] + x[:-1]), [x1]])
-        edges = np.clip(edges, x0, x1)
-        dx = np.diff(edges)
-    return _sections_at(hull, x, dx, waterline, deadrise, pose.draft, length)
+        x, dx = np.empty(0), np.empty(0)
+    return _sections_at(hull, x, dx, waterline, deadrise, draft, length)
 
 
 def _cut_polygons(hull: Hull, x: np.ndarray, waterline: float) -> list[Polygons]:

@@ -15,15 +15,12 @@ import warnings
 from collections.abc import Sequence
 
 from ..errors import HullsliceError
-from . import cmd_force, cmd_sections, cmd_solvers
+from . import cmd_force, cmd_sections, cmd_simulate, cmd_solvers
+from .common import UsageError
 
 __all__ = ["main", "run"]
 
-COMMANDS = (cmd_solvers, cmd_sections, cmd_force)
-
-
-class UsageError(Exception):
-    """A command-line usage error (one line, exit status 2)."""
+COMMANDS = (cmd_solvers, cmd_sections, cmd_force, cmd_simulate)
 
 
 class Parser(argparse.ArgumentParser):

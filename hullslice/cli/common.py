@@ -14,6 +14,10 @@ from ..state import Fluid
 FORMATS = ("table", "json", "csv")
 
 
+class UsageError(Exception):
+    """A command-line usage error (one line, exit status 2)."""
+
+
 def positive_int(text: str) -> int:
     try:
         n = int(text)

@@ -1,0 +1,197 @@
+"""``hullslice simulate``: a time history, free fall or along prescribed kinematics."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from ..motion import STOP_RULES, prescribed, read_kinematics, simulate
+from ..report import (
+    HISTORY_COLUMNS,
+    csv_text,
+    history_records,
+    history_summary,
+    json_text,
+    table_text,
+)
+from ..sections import DEADRISE_ESTIMATORS
+from ..solvers.registry import DEFAULT_SOLVER
+from .common import (
+    UsageError,
+    add_fluid_options,
+    add_mesh_options,
+    add_output_options,
+    emit,
+    fluid,
+    load,
+    number,
+    positive_int,
+)
+
+TABLE_ROWS = 40
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "simulate",
+        help="time history of a free fall, or of the force along prescribed kinematics",
+        description="Free fall: integrate the body's vertical motion m dw/dt = F - m g from "
+        "first contact (or --draft) with the 2D+t force. Prescribed: compute the force along "
+        "a table of t, penetration, velocity (--kinematics). The run stops early when the "
+        "body stops sinking, the water reaches a chine, or a slice leaves the solver's range "
+        "(--continue-invalid goes on with flagged values).",
+    )
+    add_mesh_options(p, mass_required=True)
+    g = p.add_argument_group("motion")
+    g.add_argument(
+        "--velocity",
+        type=number("m/s"),
+        metavar="M/S",
+        help="initial vertical velocity in m/s, negative downward (free fall)",
+    )
+    g.add_argument(
+        "--t-end", type=number("s"), metavar="S", help="duration of the run in s (free fall)"
+    )
+    g.add_argument(
+        "--dt",
+        type=number("s"),
+        metavar="S",
+        help="time step in s (default: t-end / 1000)",
+    )
+    g.add_argument(
+        "--draft",
+        type=number("m"),
+        default=0.0,
+        metavar="M",
+        help="initial draft of the lowest point in m (default: 0, first contact)",
+    )
+    g.add_argument(
+        "--kinematics",
+        metavar="CSV",
+        help="prescribed motion: CSV with columns t (s), penetration (m, positive), "
+        "velocity (m/s, negative down)",
+    )
+    g.add_argument(
+        "--continue-invalid",
+        action="store_true",
+        help="go on to the end when a stop rule is met, with flagged values "
+        f"(rules: {', '.join(STOP_RULES)})",
+    )
+    m = p.add_argument_group("method")
+    m.add_argument(
+        "--slices",
+        type=positive_int,
+        default=32,
+        metavar="N",
+        help="slices over the wetted length at each instant (default: 32)",
+    )
+    m.add_argument(
+        "--solver",
+        default=DEFAULT_SOLVER,
+        metavar="NAME",
+        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
+    )
+    m.add_argument(
+        "--deadrise",
+        choices=list(DEADRISE_ESTIMATORS),
+        default="wedge",
+        help="local deadrise estimator (default: wedge)",
+    )
+    add_fluid_options(p)
+    add_output_options(p)
+    p.set_defaults(func=run)
+
+
+class Progress:
+    """A one-line progress display on a terminal's stderr."""
+
+    def __init__(self) -> None:
+        self.shown = -1
+
+    def __call__(self, t: float, t_end: float) -> None:
+        pct = int(100 * t / t_end) if t_end > 0 else 100
+        if pct != self.shown:
+            self.shown = pct
+            sys.stderr.write(f"\rsimulating: t = {t:.5f} s of {t_end:g} s ({pct:3d} %)")
+            sys.stderr.flush()
+
+    def done(self) -> None:
+        if self.shown >= 0:
+            sys.stderr.write("\r" + " " * 60 + "\r")
+            sys.stderr.flush()
+
+
+def run(args: argparse.Namespace) -> int:
+    if args.kinematics is None:
+        missing = [
+            o for o, v in (("--velocity", args.velocity), ("--t-end", args.t_end)) if v is None
+        ]
+        if missing:
+            raise UsageError(
+                f"hullslice simulate: error: a free fall needs {' and '.join(missing)} "
+                "(or give --kinematics CSV for a prescribed motion)"
+            )
+    elif args.velocity is not None or args.t_end is not None:
+        raise UsageError(
+            "hullslice simulate: error: --kinematics gives the motion; leave out --velocity "
+            "and --t-end"
+        )
+    hull = load(args)
+    progress = Progress() if sys.stderr.isatty() else None
+    common = {
+        "slices": args.slices,
+        "solver": args.solver,
+        "fluid": fluid(args),
+        "deadrise": args.deadrise,
+        "progress": progress,
+    }
+    try:
+        if args.kinematics is None:
+            stop_on = () if args.continue_invalid else tuple(STOP_RULES)
+            history = simulate(
+                hull,
+                args.velocity,
+                args.t_end,
+                dt=args.dt,
+                draft=args.draft,
+                stop_on=stop_on,
+                **common,
+            )
+        else:
+            # a prescribed motion is evaluated over the whole table, limits flagged
+            history = prescribed(hull, read_kinematics(args.kinematics), **common)
+    finally:
+        if progress is not None:
+            progress.done()
+    summary = history_summary(history)
+    if args.format == "json":
+        emit(args, json_text({"mesh": args.mesh, **summary, "history": history.columns()}))
+    elif args.format == "csv":
+        emit(args, csv_text(list(history.COLUMNS), history_records(history)))
+    else:
+        emit(args, _table(hull, history, summary))
+    return 0
+
+
+def _table(hull, history, summary) -> str:
+    s = history.settings
+    every = max(1, -(-len(history) // TABLE_ROWS))
+    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {s['solver']}, " + (
+        f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
+    )
+    lines = [head, "", table_text(HISTORY_COLUMNS, history_records(history, every))]
+    if every > 1:
+        lines.append(f"(one instant in {every} of {len(history)} shown; --format csv for all)")
+    lines.append("")
+    if summary["peak"] is not None:
+        pk = summary["peak"]
+        lines.append(
+            f"peak force {pk['force']:.3f} N at t = {pk['t']:.5f} s (draft {pk['penetration']:.5f} "
+            f"m, velocity {pk['velocity']:.4f} m/s, acceleration {pk['acceleration']:.3f} m/s^2)"
+        )
+    reason = history.stop_reason
+    lines.append(f"ended: {STOP_RULES.get(reason, reason)}")
+    for rule, t in history.first_crossed.items():
+        if t is not None:
+            lines.append(f"limit '{rule}' first crossed at t = {t:.5f} s: {STOP_RULES[rule]}")
+    return "\n".join(lines)
