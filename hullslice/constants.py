@@ -51,15 +51,24 @@ class Tolerances:
     coordinate : float
         Two coordinates closer than this are the same point. manifold3d returns its cross
         sections in single precision (about 1.2e-7 relative), so this must be larger.
-    merge : float
-        Distance below which vertices of a mesh file are merged on loading (STL triangle soup).
+    merge, merge_max : float
+        Distances, relative to the mesh's largest coordinate or size, over which the
+        vertices of an open mesh are merged on loading to close it (an STL is a triangle
+        soup whose copies of one vertex may differ by rounding): ``merge`` first, then ten
+        times more up to ``merge_max``, until the surface closes. An ASCII STL written with
+        6 significant digits rounds two copies of a vertex up to 1e-5 apart (relative).
     volume : float
         Relative difference of volumes treated as equal (overlapping-shell detection).
+    flat : float
+        A closed mesh enclosing less than this times the cube of its size is flat (a
+        zero-thickness surface), not a body.
     """
 
     coordinate: float = 1e-6
     merge: float = 1e-9
+    merge_max: float = 1e-4
     volume: float = 1e-6
+    flat: float = 1e-12
 
 
 #: The tolerances in use.

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import os
+import re
 import warnings
 from pathlib import Path
 
@@ -30,6 +31,15 @@ MAX_FILE_BYTES = 4 * 1024**3
 # Densities outside this range (kg/m^3) are not a plausible body for a water-impact study:
 # lighter than air means a mesh in mm read as metres, denser than osmium the reverse.
 _PLAUSIBLE_DENSITY = (1.0, 25000.0)
+
+# the length units by name, the most common in hull and CAD files first
+_UNIT_NAMES = {
+    "m": "metres",
+    "mm": "millimetres",
+    "cm": "centimetres",
+    "in": "inches",
+    "ft": "feet",
+}
 
 
 def _readonly(a: np.ndarray) -> np.ndarray:
@@ -171,6 +181,7 @@ class Hull:
         v = np.asarray(vertices, dtype=np.float64)
         if v.ndim != 2 or v.shape[1] != 3:
             raise MeshError(f"mesh {name!r}: vertices have shape {v.shape}, expected (n, 3)")
+        _check_finite(v, name)  # before the transform spreads a NaN to a vertex's 3 values
         f = np.asarray(faces)
         if len(v) and np.isfinite(v).all() and f.ndim == 2 and np.issubdtype(f.dtype, np.integer):
             # exact duplicates first (every STL is a triangle soup): fewer rows to transform
@@ -255,19 +266,23 @@ class Hull:
 
     @functools.cached_property
     def _slicer(self):
-        # The hull moved so that its bounding-box centre is the origin, with axes permuted
-        # cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at constant Z, so a slice at
-        # Z = x - xc is the body's station x, in (y - yc, z - zc). Centring keeps
-        # manifold3d's single-precision cross sections accurate for any placement.
+        # The hull moved so that its bounding-box centre is the origin, scaled to a unit
+        # diagonal, with axes permuted cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at
+        # constant Z, so a slice at Z = (x - xc) * scale is the body's station x, in
+        # ((y - yc) * scale, (z - zc) * scale). manifold3d computes its cross sections in
+        # single precision and rounds them to a fixed grid of 1e-8 units (Clipper2), so a
+        # body of any size and placement gets the same relative accuracy only when centred
+        # and scaled. Returns the moved manifold, the centre (3,) in m and the scale in 1/m.
         c = self.bounds.mean(axis=0)
+        k = 1.0 / self.size
         m = np.array(
             [
-                [0.0, 1.0, 0.0, -c[1]],
-                [0.0, 0.0, 1.0, -c[2]],
-                [1.0, 0.0, 0.0, -c[0]],
+                [0.0, k, 0.0, -k * c[1]],
+                [0.0, 0.0, k, -k * c[2]],
+                [k, 0.0, 0.0, -k * c[0]],
             ]
         )
-        return self._manifold.transform(m), c
+        return self._manifold.transform(m), c, k
 
     def __repr__(self) -> str:
         mass = "no mass" if self.mass is None else f"{self.mass:g} kg"
@@ -281,20 +296,38 @@ class Hull:
 def _check_density(hull: Hull) -> None:
     rho = hull.density
     lo, hi = _PLAUSIBLE_DENSITY
-    if rho is not None and not (lo <= rho <= hi):
-        units = hull.source.get("units", "m")
+    if rho is None or lo <= rho <= hi:
+        return
+    units = str(hull.source.get("units", "m")).strip().lower()
+    scale = LENGTH_UNITS.get(units, 1.0)
+    # the density the same mass would have if the file were in each of the other units;
+    # the plausible ones are named, the most common unit first
+    plausible = {
+        u: rho * (scale / LENGTH_UNITS[u]) ** 3
+        for u in _UNIT_NAMES
+        if u != units and lo <= rho * (scale / LENGTH_UNITS[u]) ** 3 <= hi
+    }
+    if plausible:
+        u, *others = plausible
         hint = (
-            "the mesh may be in mm or cm while read as metres: pass units='mm'"
-            if rho < lo
-            else "the mesh may be in metres while read as mm or cm: pass units='m'"
+            f"if the mesh is in {_UNIT_NAMES[u]}, give its units (units={u!r}, --units {u}): "
+            f"the density is then {plausible[u]:.4g} kg/m^3"
         )
-        warnings.warn(
-            f"hull {hull.name!r}: mass {hull.mass:g} kg in a volume of {hull.volume:.6g} m^3 "
-            f"(units {units!r}) is a density of {rho:.4g} kg/m^3, implausible for a body; "
-            f"{hint}",
-            UnitsWarning,
-            stacklevel=3,
-        )
+        if others:
+            hint += (
+                " (in "
+                + ", ".join(f"{_UNIT_NAMES[o]} {plausible[o]:.4g} kg/m^3" for o in others)
+                + ")"
+            )
+    else:
+        hint = "check the mass and the mesh's units"
+    warnings.warn(
+        f"hull {hull.name!r}: mass {hull.mass:g} kg in a volume of {hull.volume:.6g} m^3 "
+        f"(units {units!r}) is a density of {rho:.4g} kg/m^3, implausible for a body; "
+        f"{hint}",
+        UnitsWarning,
+        stacklevel=3,
+    )
 
 
 # -- reading files ---------------------------------------------------------------------------
@@ -344,18 +377,28 @@ def load_hull(
 def read_mesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
     """Read the vertices and faces of a mesh file as they are in the file.
 
-    Only mesh formats are read (no scene, no script, no external references); the file size
-    is bounded by :data:`MAX_FILE_BYTES`.
+    Only the geometry of the two mesh formats is read, by hullslice's own parsers: nothing
+    in a file is executed, no other file is opened (an OBJ's ``mtllib`` materials and
+    textures are ignored), and memory stays in proportion to the file's size, which is
+    bounded by :data:`MAX_FILE_BYTES` (a binary STL whose header claims more triangles than
+    the file holds is refused before anything is allocated).
 
     Returns
     -------
     vertices : (n, 3) float
     faces : (m, 3) int
+        Triangles; an OBJ's polygons are split into fans of triangles.
+
+    Raises
+    ------
+    MeshError
+        The file is missing, not a file, of another format, empty, too large, malformed,
+        or holds no triangles; the message says which and, for text formats, on what line.
     """
     if not path.exists():
         raise MeshError(f"mesh file {str(path)!r} does not exist")
     if not path.is_file():
-        raise MeshError(f"mesh path {str(path)!r} is not a file")
+        raise MeshError(f"mesh path {str(path)!r} is not a file: give the path of an STL or OBJ")
     ext = path.suffix.lower().lstrip(".")
     if ext not in SUPPORTED_FORMATS:
         raise MeshError(
@@ -371,13 +414,18 @@ def read_mesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
             f"{MAX_FILE_BYTES / 1024**3:.0f} GiB hullslice reads: decimate the mesh"
         )
     try:
-        v, f = _READERS[ext](path)
-    except MeshError:
-        raise
-    except Exception as exc:  # the parsers raise many types on malformed files
+        with open(path, "rb") as fh:
+            v, f = _READERS[ext](fh, size)
+    except _FormatError as exc:
         raise MeshError(
-            f"mesh file {str(path)!r} could not be read as {ext.upper()}: {exc}"
-        ) from exc
+            f"mesh file {str(path)!r} is not a valid {ext.upper()} file: {exc}"
+        ) from None
+    except OSError as exc:
+        raise MeshError(f"mesh file {str(path)!r} cannot be read: {exc.strerror or exc}") from None
+    except MemoryError:
+        raise MeshError(
+            f"mesh file {str(path)!r} needs more memory than this machine has: decimate the mesh"
+        ) from None
     if len(v) == 0 or len(f) == 0:
         raise MeshError(
             f"mesh file {str(path)!r} holds no triangles: is it a valid {ext.upper()} file?"
@@ -385,33 +433,130 @@ def read_mesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
     return v, f
 
 
-def _read_stl(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    from trimesh.exchange.stl import load_stl  # heavy: imported only when a file is read
-
-    with open(path, "rb") as fh:
-        data = load_stl(fh)
-    return np.asarray(data["vertices"], dtype=np.float64), np.asarray(data["faces"])
+class _FormatError(ValueError):
+    """A mesh file does not follow its format (the reason, without the file name)."""
 
 
-def _read_obj(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    from trimesh.exchange.obj import load_obj
+#: Binary STL: an 80-byte header, a little-endian uint32 triangle count, then 50 bytes per
+#: triangle (normal, three corners as float32, a 2-byte attribute).
+_STL_HEAD = 84
+_STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
 
-    with open(path, encoding="utf-8", errors="replace") as fh:
-        data = load_obj(fh, maintain_order=True)
-    # an OBJ may hold several objects or groups: together they are the body
-    parts = data.get("geometry", {"": data}).values()
-    vs, fs, offset = [], [], 0
-    for part in parts:
-        pv = np.asarray(part.get("vertices", np.empty((0, 3))), dtype=np.float64)
-        pf = np.asarray(part.get("faces", np.empty((0, 3), dtype=np.int64)))
-        if pf.ndim != 2 or pf.shape[1] != 3:
+#: Largest vertex index an OBJ face may hold (more vertices than any file can hold).
+_MAX_INDEX = 2**40
+
+_STL_VERTEX = re.compile(rb"\bvertex\s+(\S+)\s+(\S+)\s+(\S+)")
+
+
+def _read_stl(fh, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """Binary or ASCII STL: a binary file's size must be exactly 84 + 50 n bytes."""
+    head = fh.read(_STL_HEAD)
+    claimed = int.from_bytes(head[80:84], "little") if len(head) == _STL_HEAD else None
+    if claimed is not None and size == _STL_HEAD + _STL_RECORD.itemsize * claimed:
+        data = np.frombuffer(fh.read(), dtype=_STL_RECORD, count=claimed)
+        v = data["corners"].reshape(-1, 3).astype(np.float64)
+        return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3)
+    binary = (
+        f"as a binary STL its header claims {claimed} triangles "
+        f"({_STL_HEAD + _STL_RECORD.itemsize * claimed} bytes) but the file has {size} bytes"
+        if claimed is not None
+        else f"at {size} bytes it is shorter than a binary STL's 84-byte header"
+    )
+    if not head.lstrip()[:5].lower() == b"solid":
+        raise _FormatError(
+            f"{binary}, and it does not start with 'solid' as an ASCII STL does "
+            "(a truncated file, or another format)"
+        )
+    raw = head + fh.read()
+    if b"\0" in raw:
+        raise _FormatError(
+            f"it starts with 'solid' but holds binary data; {binary} (a truncated file?)"
+        )
+    return _parse_ascii_stl(raw.lower())
+
+
+def _parse_ascii_stl(raw: bytes) -> tuple[np.ndarray, np.ndarray]:
+    corners = _STL_VERTEX.findall(raw)
+    loops = raw.count(b"endloop")
+    if len(corners) != 3 * loops:
+        raise _FormatError(
+            f"ASCII STL with {len(corners)} vertex lines in {loops} facets: every facet "
+            "needs exactly three (a truncated or hand-edited file?)"
+        )
+    try:
+        v = np.array(corners, dtype=np.float64) if corners else np.empty((0, 3))
+    except ValueError:
+        bad = next(t for c in corners for t in c if not _is_float(t))
+        raise _FormatError(f"vertex coordinate {bad.decode('latin-1')!r} is not a number") from None
+    return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3)
+
+
+def _is_float(token: bytes) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+def _read_obj(fh, size: int) -> tuple[np.ndarray, np.ndarray]:
+    """Wavefront OBJ: the ``v`` and ``f`` statements; everything else is ignored.
+
+    Polygons are split into fans of triangles; indices count from 1, negative ones back
+    from the last vertex read so far (the OBJ rules). ``mtllib``, ``usemtl``, normals,
+    texture coordinates, groups and objects are skipped: all faces form the one body.
+    """
+    raw = fh.read()
+    if b"\0" in raw:
+        raise _FormatError("it holds binary data; an OBJ is a text file")
+    text = raw.decode("utf-8", errors="replace").replace("\\\n", " ")
+    verts: list[tuple[float, float, float]] = []
+    tris: list[tuple[int, int, int]] = []
+    tri_lines: list[int] = []
+    for lineno, line in enumerate(text.splitlines(), start=1):
+        parts = line.split("#", 1)[0].split()
+        if not parts:
             continue
-        vs.append(pv)
-        fs.append(pf.astype(np.int64) + offset)
-        offset += len(pv)
-    if not vs:
-        return np.empty((0, 3)), np.empty((0, 3), dtype=np.int64)
-    return np.concatenate(vs), np.concatenate(fs)
+        key = parts[0]
+        if key == "v":
+            try:
+                x, y, z = (float(t) for t in parts[1:4])
+            except ValueError:
+                raise _FormatError(
+                    f"line {lineno}: {line.strip()[:60]!r} is not a vertex 'v x y z'"
+                ) from None
+            verts.append((x, y, z))
+        elif key == "f":
+            if len(parts) < 4:
+                raise _FormatError(
+                    f"line {lineno}: {line.strip()[:60]!r} has fewer than three corners"
+                )
+            idx = []
+            for token in parts[1:]:
+                try:
+                    i = int(token.split("/", 1)[0])
+                except ValueError:
+                    raise _FormatError(
+                        f"line {lineno}: face corner {token[:30]!r} is not a vertex index"
+                    ) from None
+                if i == 0 or abs(i) > _MAX_INDEX:
+                    raise _FormatError(
+                        f"line {lineno}: face index {i} does not exist (OBJ counts vertices "
+                        "from 1); the file is corrupt"
+                    )
+                idx.append(i - 1 if i > 0 else len(verts) + i)
+            tris += [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
+            tri_lines += [lineno] * (len(idx) - 2)
+    v = np.array(verts, dtype=np.float64).reshape(-1, 3)
+    f = np.array(tris, dtype=np.int64).reshape(-1, 3)
+    bad = (f < 0) | (f >= len(v))
+    if bad.any():
+        k = int(np.flatnonzero(bad.any(axis=1))[0])
+        raise _FormatError(
+            f"line {tri_lines[k]}: a face refers to a vertex that does not exist (the file "
+            f"has {len(v)} vertices); the file is corrupt"
+        )
+    return v, f
 
 
 _READERS = {"stl": _read_stl, "obj": _read_obj}
@@ -518,13 +663,7 @@ def _checked_mesh(vertices, faces, name: str):
         if not np.all(np.isfinite(f)) or np.any(f != np.round(f)):
             raise MeshError(f"mesh {name!r}: face indices are not whole numbers")
     f = f.astype(np.int64)
-    bad = ~np.isfinite(v)
-    if bad.any():
-        rows = np.flatnonzero(bad.any(axis=1))
-        raise MeshError(
-            f"mesh {name!r}: {len(rows)} vertices have NaN or infinite coordinates "
-            f"(first: vertex {rows[0]} = {v[rows[0]].tolist()}); fix the export"
-        )
+    _check_finite(v, name)
     if f.min() < 0 or f.max() >= len(v):
         badf = np.flatnonzero((f < 0).any(axis=1) | (f >= len(v)).any(axis=1))
         raise MeshError(
@@ -554,20 +693,32 @@ def _checked_mesh(vertices, faces, name: str):
         if len(f) == 0:
             raise MeshError(f"mesh {name!r} has only degenerate faces")
 
+    # the same triangle written twice with the same winding: the copies add nothing
+    f, n_copies = _drop_repeated_faces(f)
+    if n_copies:
+        repaired(f"removed {n_copies} repeated faces (the same triangle written again)")
+
     counts, n_forward = _edge_use(f)
     if (counts == 1).any():
-        # perhaps vertices that should be shared differ by rounding: merge them
-        v2, f2, n_merged = _merge_close(v, f, TOL.merge * size)
-        if n_merged:
-            deg2 = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
-            f2 = f2[~deg2]
-            counts2, n_forward2 = _edge_use(f2)
-            if not (counts2 == 1).any():
-                v, f, counts, n_forward = v2, f2, counts2, n_forward2
-                repaired(
-                    f"merged {n_merged} vertices closer than {TOL.merge * size:.3g} m "
-                    "to close the surface"
-                )
+        # perhaps vertices that should be shared differ by rounding: merge them, over the
+        # smallest distance that closes the surface
+        scale = max(size, float(np.abs(v).max()))
+        tol = TOL.merge * scale
+        while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
+            v2, f2, n_merged = _merge_close(v, f, tol)
+            if n_merged:
+                deg2 = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
+                f2, _ = _drop_repeated_faces(f2[~deg2])
+                if len(f2):
+                    counts2, n_forward2 = _edge_use(f2)
+                    if np.all(counts2 == 2):
+                        v, f, counts, n_forward = v2, f2, counts2, n_forward2
+                        repaired(
+                            f"merged {n_merged} vertices closer than {tol:.3g} m to close the "
+                            "surface (copies of one vertex that differ by rounding)"
+                        )
+                        break
+            tol *= 10.0
     open_edges = int((counts == 1).sum())
     if open_edges:
         raise MeshError(
@@ -586,6 +737,12 @@ def _checked_mesh(vertices, faces, name: str):
         f, flipped = _orient_consistently(f, name)
         repaired(f"re-oriented {flipped} faces whose winding disagreed with their neighbours")
 
+    vol = _signed_volume(v, f)
+    if abs(vol) <= TOL.flat * size**3:
+        raise MeshError(
+            f"mesh {name!r} encloses no volume ({vol:.3g} m^3 in a box of diagonal "
+            f"{size:.6g} m): it is a flat or zero-thickness surface, not a body"
+        )
     manifold = _to_manifold(v, f, name)
     if manifold.volume() < 0.0:
         f = f[:, ::-1].copy()
@@ -616,6 +773,36 @@ def _checked_mesh(vertices, faces, name: str):
     if manifold.volume() <= 0.0:
         raise MeshError(f"mesh {name!r} encloses no volume")
     return v, f, manifold, repairs
+
+
+def _drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:
+    """Faces without repeats of the same triangle with the same winding, and how many went."""
+    # rotate each triangle so that its smallest index comes first: the winding is kept
+    r = np.argmin(f, axis=1)
+    rolled = f[np.arange(len(f))[:, None], (r[:, None] + np.arange(3)) % 3]
+    unique, inverse = _unique_rows(rolled.astype(np.float64))  # exact below 2^53 vertices
+    if len(unique) == len(f):
+        return f, 0
+    first = np.full(len(unique), len(f))
+    np.minimum.at(first, inverse, np.arange(len(f)))
+    return f[np.sort(first)], len(f) - len(unique)
+
+
+def _signed_volume(v: np.ndarray, f: np.ndarray) -> float:
+    """Volume enclosed by an oriented closed surface (divergence theorem), m^3."""
+    o = v.mean(axis=0)
+    a, b, c = v[f[:, 0]] - o, v[f[:, 1]] - o, v[f[:, 2]] - o
+    return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
+
+
+def _check_finite(v: np.ndarray, name: str) -> None:
+    bad = ~np.isfinite(v)
+    if bad.any():
+        rows = np.flatnonzero(bad.any(axis=1))
+        raise MeshError(
+            f"mesh {name!r}: {len(rows)} vertices have NaN or infinite coordinates "
+            f"(first: vertex {rows[0]} = {v[rows[0]].tolist()}); fix the export"
+        )
 
 
 def _to_manifold(v: np.ndarray, f: np.ndarray, name: str):

@@ -267,12 +267,12 @@ def _level_sections(hull: Hull, draft: float, n: int, deadrise: str) -> Sections
 
 def _cut_polygons(hull: Hull, x: np.ndarray, waterline: float) -> list[Polygons]:
     """Cross-section contours at stations ``x`` in the earth frame (y, z), z = 0 the water."""
-    slicer, c = hull._slicer
+    slicer, c, scale = hull._slicer
     out = []
     shift = np.array([c[1], c[2] - waterline])
     for xi in x:
-        contours = slicer.slice(float(xi - c[0])).to_polygons()
-        out.append(tuple(np.asarray(p, dtype=np.float64) + shift for p in contours))
+        contours = slicer.slice(float((xi - c[0]) * scale)).to_polygons()
+        out.append(tuple(np.asarray(p, dtype=np.float64) / scale + shift for p in contours))
     return out
 
 

@@ -68,7 +68,7 @@ def test_centroid_of_a_box():
         (b"", "empty.stl", "is empty"),
         (b"solid x\nendsolid x\n", "hull.step", "hullslice reads stl, obj"),
         (b"this is not a mesh\n", "text.obj", "holds no triangles"),
-        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "badindex.obj", "could not be read"),
+        (b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n", "badindex.obj", "vertex that does not exist"),
     ],
 )
 def test_unreadable_files(tmp_path, content, name, message):
@@ -240,3 +240,84 @@ def test_bundled_meshes_load_without_repairs():
         hull = hs.load_hull(path)
         assert hull.source["repairs"] == ()
         assert hull.volume > 0
+
+
+def test_repeated_faces_are_removed():
+    v, f = box()
+    f = np.vstack([f, f[[2, 7]]])  # two triangles written twice, same winding
+    with pytest.warns(hs.MeshRepairWarning, match="removed 2 repeated faces"):
+        hull = hs.Hull.from_arrays(v, f)
+    assert hull.volume == pytest.approx(1.0, rel=1e-12)
+    assert len(hull.faces) == 12
+
+
+def test_a_flat_surface_is_not_a_body():
+    v = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
+    with pytest.raises(hs.MeshError, match=r"encloses no volume .* flat or zero-thickness"):
+        hs.Hull.from_arrays(v, [[0, 1, 2], [0, 2, 1]])
+
+
+def test_a_single_tetrahedron_is_a_body():
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=float)
+    hull = hs.Hull.from_arrays(v, [[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    assert hull.volume == pytest.approx(1 / 6, rel=1e-12)
+    # its section at x is the triangle y, z >= 0, y + z <= 1 - x: area (1 - x)^2 / 2
+    s = hs.cut(hull, 1.0, 8)
+    assert s.area == pytest.approx(0.5 * (1 - s.x) ** 2, rel=1e-6)
+
+
+@pytest.mark.parametrize("scale", [1e-9, 1e-3, 1e9])
+def test_tiny_and_huge_bodies_are_cut_as_accurately_as_a_metre_sized_one(scale):
+    # manifold3d rounds cross sections to a fixed grid: the hull is scaled to unit size first
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    hull = hs.Hull.from_arrays(v * scale, f)
+    draft = 0.05 * scale
+    s = hs.cut(hull, draft, 4)
+    h = 0.1 * np.tan(np.radians(30.0))  # keel depth of the unit body
+    assert s.area == pytest.approx(0.1 * h * scale**2, rel=1e-6)
+    assert s.penetration == pytest.approx(draft, rel=1e-6)
+    assert s.half_beam == pytest.approx(draft / np.tan(np.radians(30.0)), rel=1e-6)
+    assert s.deadrise_deg == pytest.approx(30.0, abs=1e-4)
+
+
+def test_near_duplicate_vertices_of_a_6_digit_ascii_stl_are_merged(tmp_path):
+    # a CAD export: each triangle's corners computed apart (float32 noise, 3e-7), then
+    # written with 6 significant digits, so copies of a vertex may round 1e-6 apart
+    from .test_mesh_files import ascii_stl
+
+    v, f = shapes.paper_prism()
+    rng = np.random.default_rng(7)
+    tri = v[f] * (1.0 + rng.uniform(-3e-7, 3e-7, (len(f), 3, 3)))
+    soup = tri.reshape(-1, 3)
+    path = tmp_path / "prism6.stl"
+    path.write_text(ascii_stl({"hull": (soup, np.arange(len(soup)).reshape(-1, 3))}, ".6g"))
+    with pytest.warns(hs.MeshRepairWarning, match=r"merged \d+ vertices closer than"):
+        hull = hs.load_hull(path, mass=1.0)
+    assert hull.volume == pytest.approx(0.0020586, rel=5e-5)  # METHOD section 4
+    ref = hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+    r6 = hs.compute_force(hull, 0.0383, -3.4943, slices=32).total
+    assert r6 == pytest.approx(hs.compute_force(ref, 0.0383, -3.4943, slices=32).total, rel=1e-4)
+
+
+@pytest.mark.parametrize(
+    ("scale", "units", "hint"),
+    [
+        (1000.0, "m", "if the mesh is in millimetres, give its units (units='mm', --units mm): "
+         "the density is then 142.9 kg/m^3"),
+        (1.0, "mm", "if the mesh is in metres, give its units (units='m', --units m): the "
+         "density is then 142.9 kg/m^3"),
+        (100.0, "m", "if the mesh is in centimetres, give its units (units='cm', --units cm)"),
+    ],
+)  # fmt: skip
+def test_the_units_warning_names_the_unit_that_fits(scale, units, hint):
+    # a 0.35 x 0.2 x 0.1 m box of 1 kg (142.9 kg/m^3) in a file of another unit
+    v, f = box(extents=(0.35 * scale, 0.2 * scale, 0.1 * scale))
+    with pytest.warns(hs.UnitsWarning) as record:
+        hs.Hull.from_arrays(v, f, mass=1.0, units=units)
+    assert hint in str(record[0].message)
+
+
+def test_the_units_warning_without_a_fitting_unit_asks_to_check():
+    v, f = box(extents=(0.35, 0.2, 0.1))
+    with pytest.warns(hs.UnitsWarning, match="check the mass and the mesh's units"):
+        hs.Hull.from_arrays(v, f, mass=1e-30)
