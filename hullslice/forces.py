@@ -22,6 +22,10 @@ from .state import Fluid, Motion, Pose
 __all__ = ["ConvergenceStudy", "ForceResult", "compute_force", "convergence", "evaluate"]
 
 CHINE_REASON = "water at or above the section's chine/widest point"
+SPANS_REASON = (
+    "the section meets the waterline in {n} separate spans (keels joined above the water): "
+    "one equivalent wedge does not describe it"
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -80,6 +84,7 @@ class ForceResult:
         s = self.sections
         cols = {
             "x": s.x,
+            "part": s.part,
             "dx": s.dx,
             "penetration": s.penetration,
             "velocity": self.velocity,
@@ -106,7 +111,8 @@ def evaluate(
     """Run a solver on the wetted sections and check what it returns.
 
     Dry sections get zero force. The result covers every section; its ``valid`` and
-    ``reason`` include the geometric check that the water is below each section's chine.
+    ``reason`` include the geometric checks that the water is below each section's chine
+    and meets each section in one span (see ``Sections.waterline_spans``).
 
     Raises
     ------
@@ -142,9 +148,15 @@ def evaluate(
             full[wet] = arr
             diagnostics[k] = full
     chine = sections.chine_wetted
-    if chine.any():
-        valid &= ~chine
-        reason[chine] = [f"{r}; {CHINE_REASON}" if r else CHINE_REASON for r in reason[chine]]
+    split = sections.waterline_spans > 1
+    for i in np.flatnonzero(chine | split):
+        why = [reason[i]] if reason[i] else []
+        if chine[i]:
+            why.append(CHINE_REASON)
+        if split[i]:
+            why.append(SPANS_REASON.format(n=int(sections.waterline_spans[i])))
+        reason[i] = "; ".join(why)
+    valid &= ~(chine | split)
     return SectionLoads(force, valid, reason, diagnostics)
 
 

@@ -113,7 +113,8 @@ class History:
     wetted_length : (k,) float
         Length of the wetted part, m.
     slices : (k,) int
-        Number of wetted slices.
+        Number of wetted slices (a slice with two wetted parts, a catamaran's floats,
+        counts once).
     valid : (k,) bool
         Every slice inside the validity range at that instant.
     chine_wetted : (k,) bool
@@ -222,7 +223,7 @@ class _Recorder:
                 r.total / mass - g,
                 r.total,
                 r.sections.wetted_length,
-                int(r.sections.wetted.sum()),
+                len(np.unique(r.sections.slice_index[r.sections.wetted])),
                 r.all_valid,
                 crossed["chine"],
                 "; ".join(reasons),

@@ -4,6 +4,13 @@ At a pose the wetted part of the hull (below ``z = 0``), of length ``DeltaL`` al
 cut into ``n`` slices of thickness ``d = DeltaL / n`` (paper, Eq. 7); each slice is
 represented by the hull's cross-section at its mid-station, cut by manifold3d. The result
 is a :class:`Sections`: one array per property, one entry per station.
+
+A cross-section in several separate parts (the two floats of a catamaran, any body made of
+disjoint shells) gives one entry per part at that station, each a 2D section of its own with
+its own penetration, half-beam, deadrise and mass per metre (the body's mass shared by
+area); their forces add. A single part that meets the waterline in several separate spans
+(twin keels joined above the water, a tunnel hull) is not one wedge: its entry reports the
+number of spans in ``waterline_spans`` and the force is flagged outside the method's range.
 """
 
 from __future__ import annotations
@@ -18,7 +25,7 @@ from .errors import InputError
 from .mesh import Hull
 from .state import Pose
 
-__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "wetted_extent"]
+__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "split_parts", "wetted_extent"]
 
 Polygons = tuple[np.ndarray, ...]
 
@@ -38,7 +45,7 @@ class Sections:
     x : (n,) float
         Station (mid-slice) positions along the body, in m (body frame ``x``).
     dx : (n,) float
-        Slice thicknesses in m; they add up to the wetted length.
+        Slice thicknesses in m; the slices' thicknesses add up to the wetted length.
     penetration : (n,) float
         Depth of each section's lowest point below the water, in m (``>= 0``).
     half_beam : (n,) float
@@ -56,6 +63,16 @@ class Sections:
     polygons : (n,) tuple of tuples of (k, 2) float
         The cross-section contours at each station in the earth frame ``(y, z)``, m; the
         waterline is ``z = 0``. Outer contours run counter-clockwise, holes clockwise.
+    part : (n,) int
+        Which separate part of the cross-section at its station the entry is: ``0`` for a
+        section in one piece; ``0, 1, ...`` from starboard to port for a section in
+        several (a catamaran's floats). Entries of one station are consecutive and share
+        ``x`` and ``dx``.
+    waterline_spans : (n,) int
+        Number of separate spans of the waterline inside the part's outer contour: ``1`` for
+        a wedge-like section, ``0`` when it is dry or under water, ``2`` or more for a part
+        that meets the water in several places (twin keels joined above the water), which
+        the equivalent wedge does not describe.
     deadrise_method : str
         Name of the deadrise estimator used (see :data:`DEADRISE_ESTIMATORS`).
     draft : float
@@ -76,6 +93,8 @@ class Sections:
     deadrise_method: str = "wedge"
     draft: float = 0.0
     wetted_length: float = 0.0
+    part: np.ndarray | None = None
+    waterline_spans: np.ndarray | None = None
 
     _ARRAYS = (
         "x",
@@ -86,10 +105,17 @@ class Sections:
         "area",
         "mass_per_metre",
         "chine_wetted",
+        "part",
+        "waterline_spans",
     )
 
     def __post_init__(self) -> None:
         n = len(self.x)
+        if self.part is None:  # one part per station
+            object.__setattr__(self, "part", np.zeros(n, dtype=np.int64))
+        if self.waterline_spans is None:  # a wedge-like section wherever it is wetted
+            spans = (np.asarray(self.penetration) > 0.0).astype(np.int64)
+            object.__setattr__(self, "waterline_spans", spans)
         for name in self._ARRAYS:
             arr = np.asarray(getattr(self, name))
             if arr.shape != (n,):
@@ -107,12 +133,31 @@ class Sections:
         return self.penetration > 0.0
 
     @property
+    def slice_index(self) -> np.ndarray:
+        """(n,) int: the slice (station) of each entry, ``0, 1, ...`` along ``x``.
+
+        The parts of one station are consecutive entries with the same ``x``.
+        """
+        new = np.ones(len(self.x), dtype=bool)
+        new[1:] = self.x[1:] != self.x[:-1]
+        return np.cumsum(new) - 1
+
+    @property
+    def slice_count(self) -> int:
+        """Number of slices (stations); ``len()`` counts the entries, one per part."""
+        return int(self.slice_index[-1]) + 1 if len(self.x) else 0
+
+    @property
     def deadrise_deg(self) -> np.ndarray:
         """(n,) float: deadrise angles in degrees."""
         return np.degrees(self.deadrise)
 
     def subset(self, mask: np.ndarray) -> Sections:
-        """The sections where ``mask`` is true, as a new :class:`Sections`."""
+        """The sections where ``mask`` is true, as a new :class:`Sections`.
+
+        Each entry keeps its ``part`` and its ``x``, so ``slice_index`` counts the stations
+        left in the subset.
+        """
         mask = np.asarray(mask, dtype=bool)
         idx = np.flatnonzero(mask)
         kw = {name: getattr(self, name)[mask] for name in self._ARRAYS}
@@ -125,7 +170,7 @@ class Sections:
         )
 
     def as_dict(self) -> dict[str, np.ndarray]:
-        """The per-station arrays by name (deadrise also in degrees as ``deadrise_deg``)."""
+        """The per-entry arrays by name (deadrise also in degrees as ``deadrise_deg``)."""
         d = {name: getattr(self, name) for name in self._ARRAYS}
         d["deadrise_deg"] = self.deadrise_deg
         return d
@@ -276,6 +321,53 @@ def _cut_polygons(hull: Hull, x: np.ndarray, waterline: float) -> list[Polygons]
     return out
 
 
+def _signed_area(contour: np.ndarray) -> float:
+    y, z = contour[:, 0], contour[:, 1]
+    return 0.5 * float(np.dot(y, np.roll(z, -1)) - np.dot(np.roll(y, -1), z))
+
+
+def _inside(point: np.ndarray, contour: np.ndarray) -> bool:
+    """Whether a point is inside a closed contour (even-odd rule)."""
+    y, z = contour[:, 0], contour[:, 1]
+    yn, zn = np.roll(y, -1), np.roll(z, -1)
+    straddle = (z > point[1]) != (zn > point[1])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        yc = y + (point[1] - z) * (yn - y) / (zn - z)
+    return bool(np.count_nonzero(straddle & (yc > point[0])) % 2)
+
+
+def split_parts(contours: Polygons) -> list[Polygons]:
+    """A cross-section's contours grouped into its separate parts, from starboard to port.
+
+    Parameters
+    ----------
+    contours : sequence of (k, 2) float
+        Outer contours (counter-clockwise) and holes (clockwise) of one section, ``(y, z)``.
+
+    Returns
+    -------
+    list of tuples of (k, 2) float
+        One entry per outer contour, with the holes inside it; a single entry (possibly
+        empty) for a section in one part or with no contour.
+    """
+    if len(contours) <= 1:
+        return [tuple(contours)]
+    areas = [_signed_area(c) for c in contours]
+    outers = [i for i, a in enumerate(areas) if a > 0.0]
+    if len(outers) <= 1:
+        return [tuple(contours)]
+    groups: dict[int, list[int]] = {o: [o] for o in outers}
+    for h, a in enumerate(areas):
+        if a > 0.0:
+            continue
+        # a hole belongs to the smallest outer contour around it
+        around = [o for o in outers if _inside(contours[h][0], contours[o])]
+        owner = min(around, key=lambda o: areas[o]) if around else outers[0]
+        groups[owner].append(h)
+    order = sorted(outers, key=lambda o: float(contours[o][:, 0].min()))
+    return [tuple(contours[i] for i in groups[o]) for o in order]
+
+
 def _sections_at(
     hull: Hull,
     x: np.ndarray,
@@ -285,17 +377,26 @@ def _sections_at(
     draft: float,
     wetted_length: float,
 ) -> Sections:
-    polys = _cut_polygons(hull, x, waterline)
+    station_polys = _cut_polygons(hull, x, waterline)
+    polys: list[Polygons] = []
+    station: list[int] = []
+    part: list[int] = []
+    for j, contours in enumerate(station_polys):
+        parts = split_parts(contours)
+        polys += parts
+        station += [j] * len(parts)
+        part += range(len(parts))
+    idx = np.asarray(station, dtype=np.int64)
     props = polygon_properties(polys, tol=TOL.coordinate * hull.size)
     p = np.maximum(-props["zmin"], 0.0)
     if hull.mass is None:
-        mpm = np.full(len(x), np.nan)
+        mpm = np.full(len(polys), np.nan)
     else:
         mpm = hull.mass * props["area"] / hull.volume
     c = props["half_beam"]
     return Sections(
-        x=x,
-        dx=dx,
+        x=np.asarray(x, dtype=np.float64)[idx],
+        dx=np.asarray(dx, dtype=np.float64)[idx],
         penetration=p,
         half_beam=c,
         deadrise=DEADRISE_ESTIMATORS[deadrise](p, c),
@@ -306,6 +407,8 @@ def _sections_at(
         deadrise_method=deadrise,
         draft=draft,
         wetted_length=wetted_length,
+        part=np.asarray(part, dtype=np.int64),
+        waterline_spans=np.where(p > 0.0, props["waterline_spans"], 0),
     )
 
 
@@ -325,7 +428,8 @@ def polygon_properties(polygons: Sequence[Polygons], tol: float) -> dict[str, np
         ``area`` (m^2), ``zmin`` (m, lowest point; ``+inf`` for an empty section),
         ``half_beam`` (m, half the width of the wetted section at the waterline, or of
         the whole section when it is under water), ``chine_wetted`` (bool, the waterline
-        is at or above the section's widest point on either side).
+        is at or above the section's widest point on either side), ``waterline_spans``
+        (int, how many separate spans of the waterline lie inside the outer contours).
     """
     n = len(polygons)
     counts = [sum(len(c) for c in secs) for secs in polygons]
@@ -333,16 +437,27 @@ def polygon_properties(polygons: Sequence[Polygons], tol: float) -> dict[str, np
     zmin = np.full(n, np.inf)
     half_beam = np.zeros(n)
     chine = np.zeros(n, dtype=bool)
+    spans = np.zeros(n, dtype=np.int64)
     if sum(counts) == 0:
-        return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}
-    a = np.concatenate([c for secs in polygons for c in secs])
-    b = np.concatenate([np.roll(c, -1, axis=0) for secs in polygons for c in secs])
+        return {
+            "area": area,
+            "zmin": zmin,
+            "half_beam": half_beam,
+            "chine_wetted": chine,
+            "waterline_spans": spans,
+        }
+    contours = [c for secs in polygons for c in secs]
+    a = np.concatenate(contours)
+    b = np.concatenate([np.roll(c, -1, axis=0) for c in contours])
     station = np.repeat(np.arange(n), counts)
+    contour = np.repeat(np.arange(len(contours)), [len(c) for c in contours])
     nonempty = np.asarray(counts) > 0
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]])[nonempty]
 
     ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
-    area = np.bincount(station, weights=0.5 * (ya * zb - yb * za), minlength=n)
+    twice = ya * zb - yb * za
+    area = np.bincount(station, weights=0.5 * twice, minlength=n)
+    outer = (np.bincount(contour, weights=twice) > 0.0)[contour]  # counter-clockwise
     zmin[nonempty] = np.minimum.reduceat(za, starts)
     ymax = np.full(n, -np.inf)
     ymin = np.full(n, np.inf)
@@ -372,4 +487,12 @@ def polygon_properties(polygons: Sequence[Polygons], tol: float) -> dict[str, np
     half_beam = np.where(crossed, 0.5 * (cmax - cmin), 0.0)
     submerged = ~crossed & (zmin < 0.0)
     half_beam[submerged] = 0.5 * (ymax - ymin)[submerged]
-    return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}
+    # each span of the waterline inside an outer contour enters and leaves it once
+    spans = np.bincount(station[cross & outer], minlength=n) // 2
+    return {
+        "area": area,
+        "zmin": zmin,
+        "half_beam": half_beam,
+        "chine_wetted": chine,
+        "waterline_spans": spans,
+    }

@@ -12,6 +12,7 @@ from ..report import (
     csv_text,
     force_records,
     json_text,
+    shown_columns,
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
@@ -134,7 +135,7 @@ def _table(hull, args, study, summary, records) -> str:
         table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
         "",
         f"slices at n = {study.counts[-1]}:",
-        table_text(SLICE_COLUMNS, records),
+        table_text(shown_columns(SLICE_COLUMNS, finest.sections), records),
         "",
         f"force {finest.total:.4f} N at {study.counts[-1]} slices",
     ]
@@ -148,9 +149,10 @@ def _table(hull, args, study, summary, records) -> str:
                 f"{rich.order:.2f}, GCI {100 * rich.gci:.4f} %, {rich.behaviour})"
             )
     invalid = int((~finest.valid).sum())
+    what = "slice parts" if finest.sections.part.any() else "slices"
     lines.append(
-        "all slices inside the method's validity range"
+        f"all {what} inside the method's validity range"
         if invalid == 0
-        else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
+        else f"{invalid} of {len(finest)} {what} outside the validity range (see 'reason')"
     )
     return "\n".join(lines)

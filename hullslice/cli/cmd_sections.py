@@ -4,7 +4,14 @@ from __future__ import annotations
 
 import argparse
 
-from ..report import SECTION_COLUMNS, csv_text, json_text, section_records, table_text
+from ..report import (
+    SECTION_COLUMNS,
+    csv_text,
+    json_text,
+    section_records,
+    shown_columns,
+    table_text,
+)
 from ..sections import DEADRISE_ESTIMATORS, cut
 from ..state import Pose
 from .common import add_mesh_options, add_output_options, emit, load, number, positive_int
@@ -66,8 +73,8 @@ def run(args: argparse.Namespace) -> int:
     else:
         head = (
             f"{hull.name}: draft {sections.draft:g} m, wetted length "
-            f"{sections.wetted_length:.5f} m, {len(sections)} slices, deadrise by "
+            f"{sections.wetted_length:.5f} m, {sections.slice_count} slices, deadrise by "
             f"{sections.deadrise_method}"
         )
-        emit(args, head + "\n" + table_text(SECTION_COLUMNS, records))
+        emit(args, head + "\n" + table_text(shown_columns(SECTION_COLUMNS, sections), records))
     return 0
