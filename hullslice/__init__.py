@@ -14,6 +14,7 @@ All quantities are SI: m, kg, s, N; angles in rad inside the library.
 
 from importlib.metadata import PackageNotFoundError, version
 
+from .case import load_case, validate_case
 from .constants import RHO_WATER, TOL, G
 from .convergence import Richardson, richardson
 from .errors import (
@@ -85,9 +86,11 @@ __all__ = [
     "cut",
     "get_solver",
     "list_solvers",
+    "load_case",
     "load_hull",
     "prescribed",
     "read_kinematics",
     "richardson",
     "simulate",
+    "validate_case",
 ]

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 __all__ = [
     "AXES",
     "LENGTH_UNITS",
+    "MAX_SLICES",
+    "MAX_STEPS",
     "RHO_WATER",
     "TOL",
     "G",
@@ -30,6 +32,13 @@ LENGTH_UNITS: dict[str, float] = {
     "in": 0.0254,
     "ft": 0.3048,
 }
+
+#: Most slices one cut may have: far finer than any mesh resolves (the paper converges with
+#: 64), and a bound on the run time of a mistyped count (each slice is one manifold3d cut).
+MAX_SLICES = 100_000
+
+#: Most time steps one free-fall run may take (each step cuts the hull four times).
+MAX_STEPS = 1_000_000
 
 #: Axis names accepted for the forward and up directions of a mesh, as unit vectors.
 AXES: dict[str, tuple[float, float, float]] = {

@@ -14,7 +14,7 @@ import numpy as np
 from .convergence import Richardson, richardson
 from .errors import HullsliceError, InputError, SolverError
 from .mesh import Hull
-from .sections import Sections, _as_pose, cut
+from .sections import Sections, _as_pose, _slice_count, cut
 from .solvers.base import SectionLoads, Solver
 from .solvers.registry import describe, get_solver
 from .state import Fluid, Motion, Pose
@@ -112,7 +112,8 @@ def evaluate(
 
     Dry sections get zero force. The result covers every section; its ``valid`` and
     ``reason`` include the geometric checks that the water is below each section's chine
-    and meets each section in one span (see ``Sections.waterline_spans``).
+    and meets each section in one span (see ``Sections.waterline_spans``). Floating-point
+    warnings inside the solver are silenced: what it returns is checked instead.
 
     Raises
     ------
@@ -132,14 +133,15 @@ def evaluate(
     if wet.any():
         sub = sections if wet.all() else sections.subset(wet)
         try:
-            loads = solver.section_loads(sub, velocity[wet], fluid)
+            with np.errstate(all="ignore"):
+                loads = solver.section_loads(sub, velocity[wet], fluid)
         except HullsliceError:
             raise
         except Exception as exc:
             raise SolverError(
                 f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}"
             ) from exc
-        _check_loads(solver, loads, len(sub))
+        _check_loads(solver, loads, sub, velocity[wet])
         force[wet] = loads.force_per_metre
         valid[wet] = loads.valid
         reason[wet] = loads.reason
@@ -160,8 +162,9 @@ def evaluate(
     return SectionLoads(force, valid, reason, diagnostics)
 
 
-def _check_loads(solver: Solver, loads: object, n: int) -> None:
+def _check_loads(solver: Solver, loads: object, sections: Sections, velocity) -> None:
     who = describe(solver)
+    n = len(sections)
     if not isinstance(loads, SectionLoads):
         raise SolverError(
             f"solver {who} returned {type(loads).__name__}, not hullslice.SectionLoads"
@@ -175,11 +178,18 @@ def _check_loads(solver: Solver, loads: object, n: int) -> None:
             raise SolverError(
                 f"solver {who} returned diagnostic {k!r} of shape {np.shape(arr)} for {n} sections"
             )
-    bad = ~np.isfinite(loads.force_per_metre)
+    try:
+        bad = ~np.isfinite(np.asarray(loads.force_per_metre, dtype=np.float64))
+    except (TypeError, ValueError):
+        raise SolverError(f"solver {who} returned a force per metre that is not numbers") from None
     if bad.any():
+        i = int(np.flatnonzero(bad)[0])
         raise SolverError(
             f"solver {who} returned a non-finite force per metre for {int(bad.sum())} of {n} "
-            "sections; the solver is faulty for these inputs"
+            f"sections (first: x = {sections.x[i]:.6g} m, penetration "
+            f"{sections.penetration[i]:.6g} m, deadrise {sections.deadrise_deg[i]:.4g} deg, "
+            f"mass per metre {sections.mass_per_metre[i]:.6g} kg/m, velocity "
+            f"{velocity[i]:.6g} m/s); check these inputs, or use another solver"
         )
 
 
@@ -293,7 +303,7 @@ def _counts(slices: Sequence[int] | int) -> list[int]:
     for n in slices:
         if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 1:
             raise InputError(f"slice count {n!r} is not a positive whole number (e.g. 32)")
-        out.append(int(n))
+        out.append(_slice_count(n))
     if not out:
         raise InputError("no slice count given: give one or more, e.g. 16, 32, 64")
     return out

@@ -24,6 +24,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .constants import MAX_STEPS
 from .errors import CaseError, InputError
 from .forces import ForceResult, _as_motion, evaluate
 from .mesh import Hull
@@ -330,7 +331,14 @@ def simulate(
         )
     m, g = hull.mass, model.fluid.g
     rec = _Recorder(stop_on)
-    steps = math.ceil(t_end / dt - 1e-9)
+    ratio = t_end / dt
+    if not ratio <= MAX_STEPS:  # also catches an overflow to inf
+        raise InputError(
+            f"time step {dt:g} s over {t_end:g} s is {ratio:.3g} steps, more than the "
+            f"{MAX_STEPS} hullslice allows: give a longer time step (an impact is resolved "
+            "with a few hundred)"
+        )
+    steps = math.ceil(ratio - 1e-9)
 
     def rate(d: float, w: float, r: ForceResult | None = None) -> tuple[float, float]:
         r = r or model(d, w)
@@ -474,10 +482,25 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
         ``t``, ``penetration``, ``velocity``.
     """
     p = Path(path)
-    if not p.is_file():
+    if not p.exists():
         raise CaseError(f"kinematics file {str(p)!r} does not exist")
-    with open(p, newline="", encoding="utf-8") as fh:
-        lines = [ln for ln in fh if ln.strip() and not ln.lstrip().startswith("#")]
+    if not p.is_file():
+        raise CaseError(f"kinematics path {str(p)!r} is not a file: give a CSV file")
+    try:
+        # utf-8-sig: a spreadsheet's CSV may start with a byte-order mark
+        text = p.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise CaseError(
+            f"kinematics file {str(p)!r} is not UTF-8 text (byte {exc.start}): give a CSV "
+            "file with the columns t, penetration, velocity"
+        ) from None
+    except OSError as exc:
+        raise CaseError(
+            f"kinematics file {str(p)!r} cannot be read: {exc.strerror or exc}"
+        ) from None
+    if "\0" in text:
+        raise CaseError(f"kinematics file {str(p)!r} holds binary data: give a CSV text file")
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     reader = csv.reader(lines)
     try:
         header = [h.strip().lower() for h in next(reader)]

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .constants import TOL
+from .constants import MAX_SLICES, TOL
 from .errors import InputError
 from .mesh import Hull
 from .state import Pose
@@ -234,6 +234,11 @@ def _slice_count(slices: int) -> int:
         raise InputError(f"slice count {slices!r} is not a whole number: give n >= 1")
     if slices < 1:
         raise InputError(f"slice count {slices!r} is not positive: give n >= 1 (e.g. 32)")
+    if slices > MAX_SLICES:
+        raise InputError(
+            f"slice count {slices!r} is more than the {MAX_SLICES} hullslice allows: the "
+            "force converges with far fewer (the paper uses 16 to 64)"
+        )
     return int(slices)
 
 

@@ -14,7 +14,7 @@ import sys
 import warnings
 from collections.abc import Sequence
 
-from ..errors import HullsliceError
+from ..errors import HullsliceError, HullsliceWarning
 from . import cmd_force, cmd_sections, cmd_simulate, cmd_solvers
 from .common import UsageError
 
@@ -59,6 +59,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     debug = os.environ.get("HULLSLICE_DEBUG", "") not in ("", "0")
     with warnings.catch_warnings():
         warnings.showwarning = _show_warning
+        # a repair or a doubtful unit is always shown, one line each, whatever the filters
+        warnings.filterwarnings("always", category=HullsliceWarning)
         try:
             args = build_parser().parse_args(argv)
             return int(args.func(args) or 0)

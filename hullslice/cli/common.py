@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from pathlib import Path
 
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
@@ -50,12 +51,18 @@ def number(unit: str):
     return parse
 
 
+def lower(text: str) -> str:
+    """A case-insensitive choice: ``MM`` is ``mm``."""
+    return text.strip().lower()
+
+
 def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) -> None:
     p.add_argument("mesh", metavar="MESH", help="hull mesh file, STL or OBJ")
     g = p.add_argument_group("mesh options")
     g.add_argument(
         "--units",
         default="m",
+        type=lower,
         choices=list(LENGTH_UNITS),
         help="length unit of the mesh file (default: m)",
     )
@@ -116,7 +123,31 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
 
 
 def load(args: argparse.Namespace) -> Hull:
+    """The hull of the command line's mesh options (the output path is checked first)."""
+    check_output(args)
     return load_hull(args.mesh, units=args.units, forward=args.forward, up=args.up, mass=args.mass)
+
+
+def check_output(args: argparse.Namespace) -> None:
+    """Refuse an ``--output`` that cannot be written, before any work is done."""
+    out = getattr(args, "output", None)
+    if not out:
+        return
+    target = Path(out)
+    if target.is_dir():
+        raise InputError(f"cannot write {out!r}: it is a folder; give a file name in it")
+    if not (target.parent if str(target.parent) else Path(".")).is_dir():
+        raise InputError(
+            f"cannot write {out!r}: the folder {str(target.parent)!r} does not exist; create it "
+            "first"
+        )
+    for option in ("mesh", "kinematics"):
+        source = getattr(args, option, None)
+        if source and target.exists() and Path(source).exists() and target.samefile(source):
+            raise InputError(
+                f"cannot write {out!r}: it is the input {option} file and would be overwritten; "
+                "give another output file"
+            )
 
 
 def fluid(args: argparse.Namespace) -> Fluid:
@@ -126,10 +157,11 @@ def fluid(args: argparse.Namespace) -> Fluid:
 def emit(args: argparse.Namespace, text: str) -> None:
     """Print the command's output, or write it to ``--output``."""
     if getattr(args, "output", None):
+        check_output(args)
         try:
             write_atomic(args.output, text)
-        except FileNotFoundError as exc:
-            raise InputError(f"cannot write {args.output!r}: {exc}") from None
+        except OSError as exc:
+            raise InputError(f"cannot write {args.output!r}: {exc.strerror or exc}") from None
         print(f"wrote {args.output}", file=sys.stderr)
     else:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")

@@ -1,0 +1,304 @@
+"""Case files: a study's inputs in a TOML file, checked against a declared schema.
+
+A case file holds what a command line would give, so that a study can be repeated exactly::
+
+    # paper.toml: the paper's prism at t = 0.01 s
+    mesh = "paper_prism.stl"      # STL or OBJ, relative to this file
+    units = "m"
+    mass = 1.0                    # kg
+    draft = 0.0383                # m
+    velocity = -3.4943            # m/s, negative down
+    slices = [16, 32, 64]
+
+:func:`load_case` reads one with the standard library's ``tomllib`` (a data format: nothing
+in the file is executed) and :func:`validate_case` checks every key against :data:`SCHEMA`:
+an unknown key, a value of the wrong type (a quoted number, a boolean for a number, a
+fractional slice count) or out of range (a negative mass, NaN) raises a
+:class:`~hullslice.errors.CaseError` that names the key, the expected type and unit, and
+the offending value. Keys are flat (no tables) except ``solver_options``, whose table is
+passed to the solver as it is.
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+import os
+import tomllib
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
+from .errors import CaseError
+
+__all__ = ["SCHEMA", "Key", "load_case", "validate_case"]
+
+#: Largest case file read, in bytes: a case is a few lines; anything larger is not one.
+MAX_CASE_BYTES = 1024**2
+
+
+@dataclass(frozen=True)
+class Key:
+    """One key of a case file.
+
+    Attributes
+    ----------
+    name : str
+        The key as written in the file.
+    kind : str
+        Its type: ``"text"``, ``"path"`` (text, a file relative to the case file),
+        ``"number"`` (a float; an integer is accepted), ``"count"`` (a whole number),
+        ``"counts"`` (a whole number or a list of them), ``"flag"`` (true or false) or
+        ``"table"``.
+    unit : str
+        SI unit of a number (``""`` for none).
+    help : str
+        What it is, for messages and documentation.
+    default : Any
+        Value taken when the key is absent (None: absent stays absent).
+    check : callable, optional
+        Further condition on the (converted) value: returns a reason when the value is
+        out of range, else None.
+    """
+
+    name: str
+    kind: str
+    unit: str
+    help: str
+    default: Any = None
+    check: Callable[[Any], str | None] | None = None
+
+
+def _positive(v: float) -> str | None:
+    return None if v > 0.0 else "must be positive"
+
+
+def _not_negative(v: float) -> str | None:
+    return None if v >= 0.0 else "must not be negative"
+
+
+def _one_of(choices) -> Callable[[Any], str | None]:
+    names = tuple(choices)
+
+    def check(v: str) -> str | None:
+        return None if v.strip().lower() in names else f"must be one of {', '.join(names)}"
+
+    return check
+
+
+def _axis(v: str) -> str | None:
+    key = v.strip().lower()
+    return None if key in AXES or "+" + key in AXES else f"must be one of {', '.join(AXES)}"
+
+
+def _slice_range(v: list[int]) -> str | None:
+    bad = [n for n in v if not 1 <= n <= MAX_SLICES]
+    if bad:
+        return f"must be from 1 to {MAX_SLICES} (got {bad[0]})"
+    if len(set(v)) != len(v):
+        return "must not repeat a count"
+    return None
+
+
+#: The keys a case file may hold, by name.
+SCHEMA: dict[str, Key] = {
+    k.name: k
+    for k in (
+        Key("title", "text", "", "a name for the study, for reports"),
+        Key("mesh", "path", "", "the hull mesh, STL or OBJ, relative to the case file"),
+        Key("units", "text", "", "length unit of the mesh", "m", _one_of(LENGTH_UNITS)),
+        Key("forward", "text", "", "mesh axis pointing forward", "+x", _axis),
+        Key("up", "text", "", "mesh axis pointing up", "+z", _axis),
+        Key("mass", "number", "kg", "mass of the body", check=_positive),
+        Key("rho", "number", "kg/m^3", "water density", RHO_WATER, _positive),
+        Key("g", "number", "m/s^2", "gravitational acceleration", G, _not_negative),
+        Key("solver", "text", "", "name of the 2D solver", "extended-von-karman"),
+        Key("solver_options", "table", "", "options passed to the 2D solver"),
+        Key("deadrise", "text", "", "local deadrise estimator", "wedge"),
+        Key("slices", "counts", "", "slice count(s) over the wetted length", check=_slice_range),
+        Key("draft", "number", "m", "depth of the lowest point below the water", None,
+            _not_negative),
+        Key("velocity", "number", "m/s", "vertical velocity, negative down"),
+        Key("t_end", "number", "s", "duration of a free fall", check=_positive),
+        Key("dt", "number", "s", "time step of a free fall", check=_positive),
+        Key("kinematics", "path", "", "CSV of t, penetration, velocity, relative to the case"),
+        Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
+    )
+}  # fmt: skip
+
+_KIND_WORDS = {
+    "text": "text in quotes",
+    "path": "a file path in quotes",
+    "number": "a number",
+    "count": "a whole number",
+    "counts": "a whole number or a list of whole numbers",
+    "flag": "true or false",
+    "table": "a table",
+}
+
+
+def _describe(value: Any) -> str:
+    kinds = {bool: "the boolean", str: "the text", int: "the integer", float: "the number"}
+    for t, word in kinds.items():
+        if type(value) is t:
+            return f"{word} {value!r}"
+    if isinstance(value, list):
+        return f"the list {value!r}"
+    if isinstance(value, dict):
+        return "a table"
+    return f"{type(value).__name__} {value!r}"
+
+
+def _convert(key: Key, value: Any, where: str) -> Any:
+    """The value of one key in its Python type, or a CaseError naming what is wrong."""
+    kind = key.kind
+    hint = ""
+    if kind in ("text", "path"):
+        ok = isinstance(value, str)
+        hint = " (put text in quotes)"
+    elif kind == "flag":
+        ok = isinstance(value, bool)
+        hint = " (write true or false without quotes)"
+    elif kind == "table":
+        ok = isinstance(value, dict)
+    elif kind == "number":
+        ok = isinstance(value, int | float) and not isinstance(value, bool)
+        if isinstance(value, str):
+            hint = " (write the number without quotes)"
+        elif ok and not math.isfinite(value):
+            ok, hint = False, " (a finite number is needed)"
+    else:  # count or counts
+        items = value if kind == "counts" and isinstance(value, list) else [value]
+        ok = bool(items) and all(isinstance(i, int) and not isinstance(i, bool) for i in items)
+        hint = ' (write e.g. 32, not 32.0 or "32")' if items else " (give at least one count)"
+    if not ok:
+        unit = f" in {key.unit}" if key.unit else ""
+        raise CaseError(
+            f"{where}key {key.name!r} must be {_KIND_WORDS[kind]}{unit} ({key.help}), "
+            f"not {_describe(value)}{hint}"
+        )
+    if kind == "number":
+        return float(value)
+    if kind == "table":
+        return dict(value)
+    if kind == "count":
+        return int(value)
+    if kind == "counts":
+        return [int(i) for i in items]
+    return value
+
+
+def validate_case(
+    case: Mapping[str, Any], *, base: str | os.PathLike | None = None, source: str = ""
+) -> dict[str, Any]:
+    """Check a case mapping (as ``tomllib`` gives it) against :data:`SCHEMA`.
+
+    Parameters
+    ----------
+    case : mapping
+        Key to value, as read from a case file.
+    base : path, optional
+        Folder that relative ``path`` keys (``mesh``, ``kinematics``) are resolved against
+        (the case file's folder); without it they are kept as written.
+    source : str
+        Name of the case file, for messages.
+
+    Returns
+    -------
+    dict
+        Every key of the case converted to its type (numbers as float, counts as int,
+        ``slices`` as a list of int, paths as :class:`~pathlib.Path`), and the defaults
+        of :data:`SCHEMA` for the keys that have one and are absent.
+
+    Raises
+    ------
+    CaseError
+        An unknown key, no ``mesh`` (the only key every case needs), a value of the wrong
+        type or out of range, a time step longer than the run, or ``forward`` and ``up``
+        along one axis; the message names the key, what it must be and the value found.
+    """
+    where = f"case file {source!r}: " if source else "case: "
+    if not isinstance(case, Mapping):
+        raise CaseError(f"{where}a case is a table of keys, not {_describe(case)}")
+    unknown = [k for k in case if k not in SCHEMA]
+    if unknown:
+        k = unknown[0]
+        close = difflib.get_close_matches(str(k), list(SCHEMA), n=1)
+        hint = f"did you mean {close[0]!r}? " if close else ""
+        raise CaseError(f"{where}unknown key {k!r}; {hint}the keys are {', '.join(SCHEMA)}")
+    out: dict[str, Any] = {}
+    for name, key in SCHEMA.items():
+        if name not in case:
+            if key.default is not None:
+                out[name] = key.default
+            continue
+        value = _convert(key, case[name], where)
+        if key.check is not None:
+            why = key.check(value)
+            if why:
+                unit = f" {key.unit}" if key.unit else ""
+                raise CaseError(f"{where}key {name!r} ({key.help}) {why}: {value!r}{unit}")
+        if key.kind == "path":
+            value = Path(base, value) if base is not None else Path(value)
+        elif key.kind == "text" and key.check is not None:
+            value = value.strip().lower()
+        out[name] = value
+    if "mesh" not in out:
+        raise CaseError(f"{where}key 'mesh' is missing: name the hull, e.g. mesh = \"hull.stl\"")
+    if "dt" in out and "t_end" in out and out["dt"] > out["t_end"]:
+        raise CaseError(
+            f"{where}key 'dt' ({out['dt']:g} s) is longer than the run, 't_end' "
+            f"({out['t_end']:g} s): shorten it"
+        )
+    if out["forward"].lstrip("+-") == out["up"].lstrip("+-"):
+        raise CaseError(
+            f"{where}keys 'forward' ({out['forward']!r}) and 'up' ({out['up']!r}) are the same "
+            "axis: choose two different mesh axes"
+        )
+    return out
+
+
+def load_case(path: str | os.PathLike) -> dict[str, Any]:
+    """Read and check a case file (TOML).
+
+    Parameters
+    ----------
+    path : path
+        The case file; ``mesh`` and ``kinematics`` in it are relative to its folder.
+
+    Returns
+    -------
+    dict
+        The checked case, see :func:`validate_case`.
+
+    Raises
+    ------
+    CaseError
+        The file is missing, not a file, larger than :data:`MAX_CASE_BYTES`, not UTF-8,
+        not valid TOML (the message gives the line), or its content fails
+        :func:`validate_case`.
+    """
+    p = Path(path)
+    name = str(p)
+    if not p.exists():
+        raise CaseError(f"case file {name!r} does not exist")
+    if not p.is_file():
+        raise CaseError(f"case path {name!r} is not a file: give a TOML case file")
+    if p.stat().st_size > MAX_CASE_BYTES:
+        raise CaseError(
+            f"case file {name!r} is larger than {MAX_CASE_BYTES // 1024} KiB: a case file is a "
+            "few lines of TOML"
+        )
+    try:
+        text = p.read_bytes().decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise CaseError(f"case file {name!r} is not UTF-8 text (byte {exc.start})") from None
+    except OSError as exc:
+        raise CaseError(f"case file {name!r} cannot be read: {exc.strerror or exc}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise CaseError(f"case file {name!r} is not valid TOML: {exc}") from None
+    return validate_case(data, base=p.parent, source=name)
