@@ -21,7 +21,7 @@ def _finite(value, what: str, unit: str) -> float:
     except (TypeError, ValueError):
         raise InputError(f"{what} {value!r} is not a number (in {unit})") from None
     if not math.isfinite(v):
-        raise InputError(f"{what} {value!r} is not finite (in {unit})")
+        raise InputError(f"{what} {value!r} is not a finite number: give one in {unit}")
     return v
 
 
