@@ -3,14 +3,31 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, settings
 
 import hullslice as hs
 from hullslice import shapes
 from hullslice.solvers import registry
+
+# Property tests: "ci" (the default) is derandomised, so every run draws the same examples,
+# and keeps the property tests of tests/test_properties.py well under a minute; "dev" looks
+# harder, with random examples (HYPOTHESIS_PROFILE=dev python -m pytest tests/test_properties.py).
+settings.register_profile(
+    "ci",
+    max_examples=100,
+    derandomize=True,
+    deadline=None,
+    database=None,
+    print_blob=True,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+)
+settings.register_profile("dev", max_examples=300, deadline=None)
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci"))
 
 ROOT = Path(__file__).resolve().parents[1]
 DATA = Path(__file__).resolve().parent / "data"
