@@ -50,6 +50,10 @@ STOP_RULES: dict[str, str] = {
 }
 
 
+#: Largest part of the body's height it may move in one time step of a free fall.
+MAX_STEP_TRAVEL = 0.1
+
+
 class ForceModel:
     """The 2D+t force on a level hull as a function of draft and vertical velocity.
 
@@ -296,7 +300,9 @@ def simulate(
     t_end : float
         Duration of the run in s.
     dt : float, optional
-        Time step in s (default ``t_end / 1000``).
+        Time step in s (default ``t_end / 1000``). A step in which the body could move
+        more than :data:`MAX_STEP_TRAVEL` of its height is refused: the run would step
+        through the impact.
     draft : float
         Initial draft of the lowest point in m (default 0: first contact).
     slices : int
@@ -324,6 +330,14 @@ def simulate(
     dt = t_end / 1000.0 if dt is None else _positive(dt, "time step", "s")
     if dt > t_end:
         raise InputError(f"time step {dt:g} s is longer than the run ({t_end:g} s): shorten it")
+    height = float(hull.extents[2])
+    travel = abs(w0) * dt  # the water slows the body down: its first step is its longest
+    if travel > MAX_STEP_TRAVEL * height:
+        raise InputError(
+            f"time step {dt:g} s at {w0:g} m/s moves the body {travel:.3g} m a step, more than "
+            f"{MAX_STEP_TRAVEL:g} of its height {height:.6g} m: the run would step through the "
+            f"impact; give a time step below {MAX_STEP_TRAVEL * height / abs(w0):.3g} s"
+        )
     d0 = Pose(draft).draft
     if d0 > hull.extents[2]:
         raise InputError(

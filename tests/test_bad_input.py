@@ -727,6 +727,24 @@ CATALOGUE: tuple[Bad, ...] = (
         ],
         error="is 1e+12 steps, more than the 1000000 hullslice allows",
     ),
+    Bad(
+        "step-through-the-impact",
+        "a time step in which the body moves more than a tenth of its height",
+        "error: time step ... moves the body D m a step, more than 0.1 of its height; give a "
+        "time step below ... s",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--velocity=-50",
+            "--t-end",
+            "0.01",
+            "--dt",
+            "0.001",
+        ],
+        error="moves the body 0.05 m a step, more than 0.1 of its height 0.057735 m",
+    ),
     # -- kinematics
     Bad(
         "kinematics-missing-columns",

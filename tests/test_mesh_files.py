@@ -223,3 +223,17 @@ def test_obj_that_is_not_utf8_loads(tmp_path):
     path = tmp_path / "latin1.obj"
     path.write_bytes(("# Rumpf aus Stahl, entworfen in K\xf6ln\n" + TETRA_OBJ).encode("latin-1"))
     assert hs.load_hull(path).volume == pytest.approx(1 / 6, rel=1e-12)
+
+
+def test_an_unreadable_file_is_an_error_not_a_crash(tmp_path, monkeypatch):
+    import hullslice.mesh as mesh_module
+
+    path = tmp_path / "locked.obj"
+    path.write_text(TETRA_OBJ)
+
+    def denied(*args, **kw):
+        raise PermissionError(13, "Permission denied", str(args[0]))
+
+    monkeypatch.setattr(mesh_module, "open", denied, raising=False)
+    with pytest.raises(hs.MeshError, match=r"locked.obj' cannot be read: Permission denied"):
+        hs.load_hull(path)
