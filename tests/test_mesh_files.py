@@ -207,7 +207,7 @@ def test_obj_polygons_are_split_into_triangles(tmp_path):
         ("v 0 0 0\nv 1 0 0\nv 0 1\nf 1 2 3\n", "line 3: 'v 0 1' is not a vertex 'v x y z'"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", "line 4: 'f 1 2' has fewer than three corners"),
         ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", "line 4: face corner 'x' is not a vertex index"),
-        ("v 0 0 0\nf 1 1 1\0\n", "it holds binary data; an OBJ is a text file"),
+        ("v 0 0 0\nf 1 1 1\0\n", "line 2 holds binary data; an OBJ is a text file"),
         ("v 0 0 0\nv 1 0 0\n", "holds no triangles"),
     ],
 )
