@@ -468,27 +468,45 @@ def _read_stl(fh, size: int) -> tuple[np.ndarray, np.ndarray]:
             f"{binary}, and it does not start with 'solid' as an ASCII STL does "
             "(a truncated file, or another format)"
         )
-    raw = head + fh.read()
-    if b"\0" in raw:
-        raise _FormatError(
-            f"it starts with 'solid' but holds binary data; {binary} (a truncated file?)"
-        )
-    return _parse_ascii_stl(raw.lower())
+    return _parse_ascii_stl(fh, head, binary)
 
 
-def _parse_ascii_stl(raw: bytes) -> tuple[np.ndarray, np.ndarray]:
-    corners = _STL_VERTEX.findall(raw)
-    loops = raw.count(b"endloop")
-    if len(corners) != 3 * loops:
+#: Bytes of an ASCII STL parsed at a time (cut at a line end): memory stays bounded.
+_STL_CHUNK = 16 * 1024**2
+
+
+def _parse_ascii_stl(fh, head: bytes, binary: str) -> tuple[np.ndarray, np.ndarray]:
+    coords = array("d")
+    loops = 0
+    rest = head
+    while True:
+        block = fh.read(_STL_CHUNK)
+        data = rest + block
+        if block:  # keep the last, perhaps partial, line for the next chunk
+            cut = data.rfind(b"\n") + 1
+            data, rest = data[:cut], data[cut:]
+        if b"\0" in data:
+            raise _FormatError(
+                f"it starts with 'solid' but holds binary data; {binary} (a truncated file?)"
+            )
+        data = data.lower()
+        corners = _STL_VERTEX.findall(data)
+        loops += data.count(b"endloop")
+        try:
+            coords.extend(np.array(corners, dtype=np.float64).ravel())
+        except ValueError:
+            bad = next(t for c in corners for t in c if not _is_float(t))
+            raise _FormatError(
+                f"vertex coordinate {bad.decode('latin-1')!r} is not a number"
+            ) from None
+        if not block:
+            break
+    v = np.frombuffer(coords, dtype=np.float64).reshape(-1, 3).copy()
+    if len(v) != 3 * loops:
         raise _FormatError(
-            f"ASCII STL with {len(corners)} vertex lines in {loops} facets: every facet "
-            "needs exactly three (a truncated or hand-edited file?)"
+            f"ASCII STL with {len(v)} vertex lines in {loops} facets: every facet needs "
+            "exactly three (a truncated or hand-edited file?)"
         )
-    try:
-        v = np.array(corners, dtype=np.float64) if corners else np.empty((0, 3))
-    except ValueError:
-        bad = next(t for c in corners for t in c if not _is_float(t))
-        raise _FormatError(f"vertex coordinate {bad.decode('latin-1')!r} is not a number") from None
     return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3)
 
 
