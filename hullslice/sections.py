@@ -1,29 +1,56 @@
 """Cutting a hull into cross-sections at a pose: the 2D+t slices and their properties.
 
-At a pose the wetted part of the hull (below ``z = 0``), of length ``DeltaL`` along ``x``, is
-cut into ``n`` slices of thickness ``d = DeltaL / n`` (paper, Eq. 7); each slice is
-represented by the hull's cross-section at its mid-station, cut by manifold3d. The result
-is a :class:`Sections`: one array per property, one entry per station.
+At a pose the wetted part of the hull (below ``Z = 0``), of length ``DeltaL`` along the
+earth's ``X``, is cut into ``n`` slices of thickness ``d = DeltaL / n`` (paper, Eq. 7); each
+slice is represented by the hull's cross-section at its mid-station, cut by manifold3d along
+the earth-fixed plane ``X = const`` (for a pitched body a tilted plane in its own frame).
+
+A section may have several wetted pieces (two floats, a catamaran): each piece is an
+**entry** of :class:`Sections` with its own keel, penetration and deadrise, and its share of
+the section's mass per metre. A section with one piece (the usual case) is one entry.
+
+Local deadrise estimators (each per side, port and starboard, of each piece):
+
+``wedge`` (default)
+    The equivalent wedge of the wetted piece: ``tan(beta) = p / c``, ``p`` the depth of its
+    keel below the water, ``c`` the horizontal distance from the keel to the waterline on
+    that side. Exact for a wedge.
+``waterline-slope``
+    The slope of the contour where it meets the water: ``tan(beta) = |dz/dy|`` there.
+``keel-fit``
+    A least-squares line through the keel fitted to the wetted contour of that side,
+    ``z - z_k = tan(beta) |y - y_k|``, integrated exactly over the contour's segments.
+
+The two sides combine into the section's deadrise by the harmonic mean of ``tan(beta)``
+(for ``wedge``: ``tan(beta) = p / c`` with ``c`` the half-width of the piece).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from .constants import TOL
 from .errors import InputError
+from .geometry import frame
 from .mesh import Hull
 from .state import Pose
 
-__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "wetted_extent"]
+__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "section_properties"]
 
 Polygons = tuple[np.ndarray, ...]
 
+#: Deadrise estimators by name, with a one-line description.
+DEADRISE_ESTIMATORS: dict[str, str] = {
+    "wedge": "equivalent wedge of the wetted piece, tan(beta) = p / c",
+    "waterline-slope": "slope of the contour where it meets the water",
+    "keel-fit": "least-squares line through the keel fitted to the wetted contour",
+}
 
-def _readonly(a: np.ndarray) -> np.ndarray:
+
+def _readonly(a) -> np.ndarray:
     a = np.ascontiguousarray(a)
     a.flags.writeable = False
     return a
@@ -31,61 +58,92 @@ def _readonly(a: np.ndarray) -> np.ndarray:
 
 @dataclass(frozen=True, eq=False)
 class Sections:
-    """Cross-sections of a hull at one pose, as arrays over stations.
+    """Cross-sections of a hull at one pose, as arrays over entries (wetted pieces).
+
+    Every array has one value per entry; ``station`` says which station (slice) an entry
+    belongs to. A dry station has one entry with zero penetration.
 
     Attributes
     ----------
+    station : (n,) int
+        Index of the entry's station, into ``polygons`` and the station arrays.
     x : (n,) float
-        Station (mid-slice) positions along the body, in m (body frame ``x``).
+        Station position along the earth's ``X`` in m (equal to the body's ``x`` when level).
     dx : (n,) float
-        Slice thicknesses in m; they add up to the wetted length.
+        Thickness of the entry's slice in m.
     penetration : (n,) float
-        Depth of each section's lowest point below the water, in m (``>= 0``).
+        Depth of the piece's lowest point below the water, m (``>= 0``).
     half_beam : (n,) float
-        Half the width of the wetted section at the waterline, in m.
+        Half the width of the wetted piece at the waterline, m.
+    half_beam_port, half_beam_stbd : (n,) float
+        Horizontal distance from the keel to the waterline on each side, m.
     deadrise : (n,) float
-        Local deadrise angle in rad, from the estimator named in ``deadrise_method``
-        (NaN where the section is dry).
+        Local deadrise in rad (both sides combined; NaN for a dry entry).
+    deadrise_port, deadrise_stbd : (n,) float
+        Deadrise of each side in rad.
     area : (n,) float
-        Area of the whole cross-section (not only its wetted part), in m^2.
+        Area of the station's whole cross-section (not only its wetted part), m^2.
     mass_per_metre : (n,) float
-        Mass per metre of body length at each station, in kg/m (NaN without a hull mass).
+        Mass per metre carried by the piece, kg/m (NaN without a hull mass).
     chine_wetted : (n,) bool
-        True where the water has reached the section's widest point (its chine or deck):
-        the wedge-entry model no longer describes the flow there.
-    polygons : (n,) tuple of tuples of (k, 2) float
-        The cross-section contours at each station in the earth frame ``(y, z)``, m; the
-        waterline is ``z = 0``. Outer contours run counter-clockwise, holes clockwise.
+        The water has reached the station's widest point (chine or deck) on either side.
+    keel_slope : (n,) float
+        Slope ``dZ/dX`` of the body's keel line (earth frame), its mean over the slice.
+    keel_z : (n,) float
+        Earth height of the station's lowest point, m.
+    y_keel : (n,) float
+        Lateral position ``y`` of the piece's keel, m.
+    polygons : tuple of tuples of (k, 2) float
+        Contours of each **station** in the earth ``(Y, Z)`` plane, m; the waterline is
+        ``Z = 0``; outer contours counter-clockwise.
     deadrise_method : str
-        Name of the deadrise estimator used (see :data:`DEADRISE_ESTIMATORS`).
-    draft : float
-        Depth of the body's lowest point below the water, m.
-    wetted_length : float
-        Length along ``x`` of the hull's part below the water, m.
+        The estimator used, a key of :data:`DEADRISE_ESTIMATORS`.
+    draft, pitch, wetted_length : float
+        The pose (m, rad) and the length of the wetted part along ``X`` (m).
+    z_cg : float
+        Earth height of the centre of gravity, m.
     """
 
+    station: np.ndarray
     x: np.ndarray
     dx: np.ndarray
     penetration: np.ndarray
     half_beam: np.ndarray
+    half_beam_port: np.ndarray
+    half_beam_stbd: np.ndarray
     deadrise: np.ndarray
+    deadrise_port: np.ndarray
+    deadrise_stbd: np.ndarray
     area: np.ndarray
     mass_per_metre: np.ndarray
     chine_wetted: np.ndarray
-    polygons: tuple[Polygons, ...] = field(repr=False)
+    keel_slope: np.ndarray
+    keel_z: np.ndarray
+    y_keel: np.ndarray
+    polygons: tuple[Polygons, ...] = field(repr=False, default=())
     deadrise_method: str = "wedge"
     draft: float = 0.0
+    pitch: float = 0.0
     wetted_length: float = 0.0
+    z_cg: float = 0.0
 
     _ARRAYS = (
+        "station",
         "x",
         "dx",
         "penetration",
         "half_beam",
+        "half_beam_port",
+        "half_beam_stbd",
         "deadrise",
+        "deadrise_port",
+        "deadrise_stbd",
         "area",
         "mass_per_metre",
         "chine_wetted",
+        "keel_slope",
+        "keel_z",
+        "y_keel",
     )
 
     def __post_init__(self) -> None:
@@ -95,15 +153,18 @@ class Sections:
             if arr.shape != (n,):
                 raise ValueError(f"Sections.{name} has shape {arr.shape}, expected ({n},)")
             object.__setattr__(self, name, _readonly(arr))
-        if len(self.polygons) != n:
-            raise ValueError(f"Sections.polygons has {len(self.polygons)} entries, expected {n}")
 
     def __len__(self) -> int:
         return len(self.x)
 
     @property
+    def n_stations(self) -> int:
+        """Number of stations (slices)."""
+        return len(self.polygons)
+
+    @property
     def wetted(self) -> np.ndarray:
-        """(n,) bool: sections with a positive penetration."""
+        """(n,) bool: entries with a positive penetration."""
         return self.penetration > 0.0
 
     @property
@@ -112,72 +173,29 @@ class Sections:
         return np.degrees(self.deadrise)
 
     def subset(self, mask: np.ndarray) -> Sections:
-        """The sections where ``mask`` is true, as a new :class:`Sections`."""
+        """The entries where ``mask`` is true, as a new :class:`Sections` (same stations)."""
         mask = np.asarray(mask, dtype=bool)
-        idx = np.flatnonzero(mask)
         kw = {name: getattr(self, name)[mask] for name in self._ARRAYS}
         return Sections(
             **kw,
-            polygons=tuple(self.polygons[i] for i in idx),
+            polygons=self.polygons,
             deadrise_method=self.deadrise_method,
             draft=self.draft,
+            pitch=self.pitch,
             wetted_length=self.wetted_length,
+            z_cg=self.z_cg,
         )
 
     def as_dict(self) -> dict[str, np.ndarray]:
-        """The per-station arrays by name (deadrise also in degrees as ``deadrise_deg``)."""
+        """The per-entry arrays by name, deadrise also in degrees (``*_deg``)."""
         d = {name: getattr(self, name) for name in self._ARRAYS}
         d["deadrise_deg"] = self.deadrise_deg
+        d["deadrise_port_deg"] = np.degrees(self.deadrise_port)
+        d["deadrise_stbd_deg"] = np.degrees(self.deadrise_stbd)
         return d
 
 
-# -- deadrise estimators ----------------------------------------------------------------------
-
-
-def _deadrise_wedge(penetration: np.ndarray, half_beam: np.ndarray) -> np.ndarray:
-    """Equivalent wedge: ``tan(beta) = p / c`` (exact for a wedge), in rad."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        beta = np.arctan2(penetration, half_beam)
-    return np.where((penetration > 0.0) & (half_beam > 0.0), beta, np.nan)
-
-
-#: Deadrise estimators by name: ``f(penetration, half_beam) -> deadrise`` in rad.
-DEADRISE_ESTIMATORS: dict[str, Callable[[np.ndarray, np.ndarray], np.ndarray]] = {
-    "wedge": _deadrise_wedge,
-}
-
-
-# -- cutting ----------------------------------------------------------------------------------
-
-
-def wetted_extent(hull: Hull, waterline: float) -> tuple[float, float]:
-    """The ``x`` range of the part of a level hull below a waterline.
-
-    Parameters
-    ----------
-    hull : Hull
-    waterline : float
-        Height of the water surface in the body frame, m.
-
-    Returns
-    -------
-    (xmin, xmax) : tuple of float
-        In m; equal values when nothing is below the waterline.
-    """
-    v = hull.vertices
-    below = v[:, 2] < waterline
-    if not below.any():
-        lowest = float(v[np.argmin(v[:, 2]), 0])
-        return lowest, lowest
-    xs = [v[below, 0]]
-    a, b = hull.edges.T
-    cross = below[a] != below[b]
-    if cross.any():
-        va, vb = v[a[cross]], v[b[cross]]
-        t = (waterline - va[:, 2]) / (vb[:, 2] - va[:, 2])
-        xs.append(va[:, 0] + t * (vb[:, 0] - va[:, 0]))
-    allx = np.concatenate(xs)
-    return float(allx.min()), float(allx.max())
+# -- inputs ------------------------------------------------------------------------------------
 
 
 def _as_pose(pose: Pose | float) -> Pose:
@@ -201,6 +219,16 @@ def _check_deadrise(deadrise: str) -> str:
     return deadrise
 
 
+def _height_at(hull: Hull, pitch: float) -> float:
+    """Vertical extent of the body at a pitch, m."""
+    c, s = np.cos(pitch), np.sin(pitch)
+    z = hull.vertices[:, 0] * s + hull.vertices[:, 2] * c
+    return float(z.max() - z.min())
+
+
+# -- cutting -----------------------------------------------------------------------------------
+
+
 def cut(
     hull: Hull,
     pose: Pose | float,
@@ -209,23 +237,23 @@ def cut(
     deadrise: str = "wedge",
     stations: Sequence[float] | None = None,
 ) -> Sections:
-    """Cut a level hull at a pose into the slices of the 2D+t method.
+    """Cut a hull at a pose into the slices of the 2D+t method.
 
     Parameters
     ----------
     hull : Hull
         The body.
     pose : Pose or float
-        The pose, or the draft in m (depth of the lowest point below the water).
+        The pose (draft in m, pitch in rad), or the draft alone (level body).
     slices : int
         Number of slices ``n`` over the wetted length (default 32); ignored when
         ``stations`` is given.
     deadrise : str
         Deadrise estimator, a key of :data:`DEADRISE_ESTIMATORS` (default ``"wedge"``).
     stations : sequence of float, optional
-        Explicit station positions along ``x`` in m, instead of the mid-stations of ``n``
-        equal slices; each station then stands for a slice reaching halfway to its
-        neighbours (clipped to the wetted length).
+        Explicit station positions along ``X`` in m, instead of the mid-stations of ``n``
+        equal slices; each then stands for a slice reaching halfway to its neighbours
+        (clipped to the wetted length).
 
     Returns
     -------
@@ -233,143 +261,309 @@ def cut(
     """
     pose = _as_pose(pose)
     _check_deadrise(deadrise)
-    height = hull.extents[2]
+    height = _height_at(hull, pose.pitch)
     if pose.draft > height + TOL.coordinate * hull.size:
         raise InputError(
             f"draft {pose.draft:g} m is deeper than the body's height {height:.6g} m: the body "
             "would be under water; give a draft between 0 and the height"
         )
     if stations is None:
-        return _level_sections(hull, pose.draft, _slice_count(slices), deadrise)
-    waterline = hull.bounds[0, 2] + pose.draft
-    x0, x1 = wetted_extent(hull, waterline)
+        return sections_at(hull, pose, _slice_count(slices), deadrise)
     x = np.asarray(stations, dtype=np.float64).ravel()
     if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0):
         raise InputError("stations must be finite and strictly increasing (in m)")
-    edges = np.concatenate([[x0], 0.5 * (x[1:] + x[:-1]), [x1]])
-    dx = np.diff(np.clip(edges, x0, x1))
-    return _sections_at(hull, x, dx, waterline, deadrise, pose.draft, x1 - x0)
+    return sections_at(hull, pose, len(x), deadrise, stations=x)
 
 
-def _level_sections(hull: Hull, draft: float, n: int, deadrise: str) -> Sections:
-    """The mid-stations of ``n`` equal slices over the wetted length (inputs checked)."""
-    waterline = hull.bounds[0, 2] + draft  # body-frame height of the water surface
-    x0, x1 = wetted_extent(hull, waterline)
-    length = x1 - x0
-    if length > 0.0:
-        d = length / n
-        x = x0 + (np.arange(n) + 0.5) * d
-        dx = np.full(n, d)
-    else:
-        x, dx = np.empty(0), np.empty(0)
-    return _sections_at(hull, x, dx, waterline, deadrise, draft, length)
-
-
-def _cut_polygons(hull: Hull, x: np.ndarray, waterline: float) -> list[Polygons]:
-    """Cross-section contours at stations ``x`` in the earth frame (y, z), z = 0 the water."""
-    slicer, c = hull._slicer
-    out = []
-    shift = np.array([c[1], c[2] - waterline])
-    for xi in x:
-        contours = slicer.slice(float(xi - c[0])).to_polygons()
-        out.append(tuple(np.asarray(p, dtype=np.float64) + shift for p in contours))
-    return out
-
-
-def _sections_at(
+def sections_at(
     hull: Hull,
-    x: np.ndarray,
-    dx: np.ndarray,
-    waterline: float,
+    pose: Pose,
+    n: int,
     deadrise: str,
-    draft: float,
-    wetted_length: float,
+    stations: np.ndarray | None = None,
 ) -> Sections:
-    polys = _cut_polygons(hull, x, waterline)
-    props = polygon_properties(polys, tol=TOL.coordinate * hull.size)
-    p = np.maximum(-props["zmin"], 0.0)
-    if hull.mass is None:
-        mpm = np.full(len(x), np.nan)
+    """The sections at a pose, inputs already checked (see :func:`cut`)."""
+    fr = frame(hull, pose.pitch)
+    xg = fr.cg[0]
+    level = fr.lowest + pose.draft  # the water surface, relative to the cg
+    extent = fr.keel.below(level)
+    z_cg = fr.z_cg(pose.draft)
+    if extent is None:
+        x0 = x1 = float(fr.keel.x[np.argmin(fr.keel.z)])
     else:
-        mpm = hull.mass * props["area"] / hull.volume
-    c = props["half_beam"]
+        x0, x1 = extent
+    length = x1 - x0
+    if stations is None:
+        if length > 0.0:
+            d = length / n
+            rel = x0 + (np.arange(n) + 0.5) * d
+            dx = np.full(n, d)
+        else:
+            rel, dx = np.empty(0), np.empty(0)
+    else:
+        rel = np.asarray(stations, dtype=np.float64) - xg
+        bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
+        dx = np.diff(np.clip(bounds, x0, x1))
+    polys = fr.cut(rel, z_cg)
+    keel_z, slope = fr.keel.at(rel, dx)
+    props = section_properties(polys, tol=TOL.coordinate * hull.size, deadrise=deadrise)
+    st = props["station"]
+    area = props["area"][st]
+    x_earth = rel + xg
+    if hull.mass is None:
+        m_station = np.full(len(rel), np.nan)
+    elif hull.mass_distribution is None:
+        m_station = hull.mass / hull.volume * props["area"]
+    else:
+        # a line density along the body's axis through the cg, crossed by the tilted plane
+        c = np.cos(pose.pitch)
+        m_station = hull.mass_per_metre_at(xg + rel / c) / c
     return Sections(
-        x=x,
-        dx=dx,
-        penetration=p,
-        half_beam=c,
-        deadrise=DEADRISE_ESTIMATORS[deadrise](p, c),
-        area=props["area"],
-        mass_per_metre=mpm,
-        chine_wetted=props["chine_wetted"] & (p > 0.0),
+        station=st,
+        x=x_earth[st],
+        dx=dx[st],
+        penetration=props["penetration"],
+        half_beam=props["half_beam"],
+        half_beam_port=props["half_beam_port"],
+        half_beam_stbd=props["half_beam_stbd"],
+        deadrise=props["deadrise"],
+        deadrise_port=props["deadrise_port"],
+        deadrise_stbd=props["deadrise_stbd"],
+        area=area,
+        mass_per_metre=m_station[st] * props["mass_share"],
+        chine_wetted=props["chine_wetted"],
+        keel_slope=slope[st],
+        keel_z=(keel_z + z_cg)[st],
+        y_keel=props["y_keel"],
         polygons=tuple(polys),
         deadrise_method=deadrise,
-        draft=draft,
-        wetted_length=wetted_length,
+        draft=pose.draft,
+        pitch=pose.pitch,
+        wetted_length=length,
+        z_cg=z_cg,
     )
 
 
-def polygon_properties(polygons: Sequence[Polygons], tol: float) -> dict[str, np.ndarray]:
-    """Properties of cross-sections in the earth frame, all stations at once.
+# -- properties of cross-sections ---------------------------------------------------------------
+
+
+def _segments(polygons: Sequence[Polygons]):
+    """All contour edges as arrays: station index, start (y, z), end (y, z), and whether
+    the edge belongs to an outer contour (counter-clockwise) rather than a hole."""
+    contours = [c for secs in polygons for c in secs]
+    if not contours:
+        e = np.empty((0, 2))
+        return np.empty(0, dtype=np.int64), e, e, np.empty(0, dtype=bool)
+    sizes = np.array([len(c) for c in contours])
+    per_station = [len(secs) for secs in polygons]
+    a = np.concatenate(contours)
+    b = np.concatenate([np.roll(c, -1, axis=0) for c in contours])
+    contour = np.repeat(np.arange(len(contours)), sizes)
+    station = np.repeat(np.repeat(np.arange(len(polygons)), per_station), sizes)
+    signed = np.bincount(contour, weights=a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1])
+    return station, a, b, signed[contour] > 0.0
+
+
+def _group_min(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, np.inf)
+    np.minimum.at(out, keys, values)
+    return out
+
+
+def _group_max(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
+    out = np.full(n, -np.inf)
+    np.maximum.at(out, keys, values)
+    return out
+
+
+def section_properties(
+    polygons: Sequence[Polygons], tol: float, deadrise: str = "wedge"
+) -> dict[str, np.ndarray]:
+    """Properties of cross-sections in the earth frame, all stations and pieces at once.
 
     Parameters
     ----------
-    polygons : (n,) sequence of sequences of (k, 2) float
-        Contours of each section in ``(y, z)``, m, waterline at ``z = 0``.
+    polygons : (s,) sequence of sequences of (k, 2) float
+        Contours of each station in ``(y, z)``, m, waterline at ``z = 0``; outer contours
+        counter-clockwise, holes clockwise.
     tol : float
-        Coordinate tolerance in m: points closer than this to a level count as on it.
+        Coordinate tolerance in m.
+    deadrise : str
+        Deadrise estimator (see :data:`DEADRISE_ESTIMATORS`).
 
     Returns
     -------
-    dict of (n,) arrays
-        ``area`` (m^2), ``zmin`` (m, lowest point; ``+inf`` for an empty section),
-        ``half_beam`` (m, half the width of the wetted section at the waterline, or of
-        the whole section when it is under water), ``chine_wetted`` (bool, the waterline
-        is at or above the section's widest point on either side).
+    dict of arrays
+        Per station: ``area`` (s,). Per entry (wetted piece, or one per dry station):
+        ``station``, ``penetration``, ``half_beam``, ``half_beam_port``,
+        ``half_beam_stbd``, ``deadrise``, ``deadrise_port``, ``deadrise_stbd`` (rad),
+        ``y_keel``, ``mass_share`` (the piece's share of its station's mass, by waterline
+        width), ``chine_wetted``.
     """
-    n = len(polygons)
-    counts = [sum(len(c) for c in secs) for secs in polygons]
-    area = np.zeros(n)
-    zmin = np.full(n, np.inf)
-    half_beam = np.zeros(n)
-    chine = np.zeros(n, dtype=bool)
-    if sum(counts) == 0:
-        return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}
-    a = np.concatenate([c for secs in polygons for c in secs])
-    b = np.concatenate([np.roll(c, -1, axis=0) for secs in polygons for c in secs])
-    station = np.repeat(np.arange(n), counts)
-    nonempty = np.asarray(counts) > 0
-    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])[nonempty]
-
+    s = len(polygons)
+    station, a, b, outer = _segments(polygons)
+    area = np.bincount(station, weights=0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]), minlength=s)
+    # the wetted geometry is that of the outer contours (holes are inside the body)
+    station, a, b = station[outer], a[outer], b[outer]
     ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
-    area = np.bincount(station, weights=0.5 * (ya * zb - yb * za), minlength=n)
-    zmin[nonempty] = np.minimum.reduceat(za, starts)
-    ymax = np.full(n, -np.inf)
-    ymin = np.full(n, np.inf)
-    ymax[nonempty] = np.maximum.reduceat(ya, starts)
-    ymin[nonempty] = np.minimum.reduceat(ya, starts)
-
-    # widest point on each side: the lowest vertex at the extreme y (a vertical side's
-    # lower corner is the chine)
-    z_port = np.full(n, np.inf)
-    z_stbd = np.full(n, np.inf)
+    zmin = _group_min(station, za, s)
+    ymax = _group_max(station, ya, s)
+    ymin = _group_min(station, ya, s)
+    # widest point on each side: the lowest vertex at the extreme y (a vertical side's lower
+    # corner is the chine)
     at_port = ya >= ymax[station] - tol
     at_stbd = ya <= ymin[station] + tol
-    np.minimum.at(z_port, station[at_port], za[at_port])
-    np.minimum.at(z_stbd, station[at_stbd], za[at_stbd])
-    chine = (z_port <= tol) | (z_stbd <= tol)
+    z_port = _group_min(station[at_port], za[at_port], s)
+    z_stbd = _group_min(station[at_stbd], za[at_stbd], s)
+    chine_station = (z_port <= tol) | (z_stbd <= tol)
 
-    # waterline crossings, half-open rule so that a vertex on the waterline counts once
-    below_a, below_b = za < 0.0, zb < 0.0
-    cross = below_a != below_b
-    yc = ya[cross] + (0.0 - za[cross]) * (yb[cross] - ya[cross]) / (zb[cross] - za[cross])
+    pieces = _wetted_pieces(station, a, b, s, zmin, ymin, ymax)
+    ps, yl, yr, tan_l, tan_r = pieces
+    m = len(ps)
+    # underwater parts of the segments, assigned to the piece above them
+    za_c, zb_c = np.minimum(za, 0.0), np.minimum(zb, 0.0)
+    under = (za < 0.0) | (zb < 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ya_c = np.where(za < 0.0, ya, ya + (0.0 - za) * (yb - ya) / (zb - za))
+        yb_c = np.where(zb < 0.0, yb, ya + (0.0 - za) * (yb - ya) / (zb - za))
+    seg_piece = _assign(station[under], 0.5 * (ya_c + yb_c)[under], ps, yl, yr)
+    sel = np.flatnonzero(under)[seg_piece >= 0]
+    seg_piece = seg_piece[seg_piece >= 0]
+    y1, z1, y2, z2 = ya_c[sel], za_c[sel], yb_c[sel], zb_c[sel]
+    # keel of each piece: its lowest underwater point
+    zk = _group_min(seg_piece, np.minimum(z1, z2), m) if m else np.empty(0)
+    pts_piece = np.concatenate([seg_piece, seg_piece])
+    pts_y = np.concatenate([y1, y2])
+    pts_z = np.concatenate([z1, z2])
+    order = np.lexsort((pts_z, pts_piece))
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = pts_piece[order][1:] != pts_piece[order][:-1]
+    yk = np.full(m, np.nan)
+    yk[pts_piece[order][first]] = pts_y[order][first]
+    p = np.maximum(-zk, 0.0)
+    c_port = yr - yk
+    c_stbd = yk - yl
+    if deadrise == "wedge":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t_port, t_stbd = p / c_port, p / c_stbd
+    elif deadrise == "waterline-slope":
+        t_port, t_stbd = tan_r, tan_l
+    else:  # keel-fit
+        t_port, t_stbd = _keel_fit(
+            seg_piece,
+            y1 - yk[seg_piece],
+            z1 - zk[seg_piece],
+            y2 - yk[seg_piece],
+            z2 - zk[seg_piece],
+            m,
+        )
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_mean = 2.0 / (1.0 / t_port + 1.0 / t_stbd)
+    width = yr - yl
+    share = width / np.bincount(ps, weights=width, minlength=s)[ps] if m else width
+
+    # one dry entry for each station without a wetted piece
+    dry = np.setdiff1d(np.arange(s), ps)
+    nd = len(dry)
+    entry_station = np.concatenate([ps, dry])
+    order = np.argsort(entry_station, kind="stable")
+    nan_d = np.full(nd, np.nan)
+
+    def col(wet, fill):
+        return np.concatenate([wet, np.full(nd, fill) if np.isscalar(fill) else fill])[order]
+
+    return {
+        "area": area,
+        "station": entry_station[order],
+        "penetration": col(p, 0.0),
+        "half_beam": col(0.5 * width, 0.0),
+        "half_beam_port": col(c_port, 0.0),
+        "half_beam_stbd": col(c_stbd, 0.0),
+        "deadrise": col(np.arctan(t_mean), nan_d),
+        "deadrise_port": col(np.arctan(t_port), nan_d),
+        "deadrise_stbd": col(np.arctan(t_stbd), nan_d),
+        "y_keel": col(yk, nan_d),
+        "mass_share": col(share, 1.0),
+        "chine_wetted": col(chine_station[ps], False).astype(bool),
+    }
+
+
+def _wetted_pieces(station, a, b, s, zmin, ymin, ymax):
+    """The wetted pieces of each station: the intervals of the waterline inside the body.
+
+    Along the waterline, a contour going down (into the water) opens an interval inside
+    the body to its right, one going up closes it (outer contours run counter-clockwise,
+    holes clockwise), so a running winding count finds the intervals. A station under
+    water altogether (no crossing) is one piece over its whole width.
+
+    Returns
+    -------
+    station, y_left, y_right, tan_left, tan_right : (m,) arrays
+        For each piece its station, the ends of its waterline interval (m) and the slope
+        ``|dz/dy|`` of the contour where it meets the water at each end.
+    """
+    ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+    down = (za >= 0.0) & (zb < 0.0)
+    up = (za < 0.0) & (zb >= 0.0)
+    cross = down | up
+    with np.errstate(divide="ignore", invalid="ignore"):
+        yc = ya[cross] + (0.0 - za[cross]) * (yb[cross] - ya[cross]) / (zb[cross] - za[cross])
+        slope = np.abs((zb - za) / (yb - ya))[cross]
     sc = station[cross]
-    cmax = np.full(n, -np.inf)
-    cmin = np.full(n, np.inf)
-    np.maximum.at(cmax, sc, yc)
-    np.minimum.at(cmin, sc, yc)
-    crossed = np.isfinite(cmax)
-    half_beam = np.where(crossed, 0.5 * (cmax - cmin), 0.0)
-    submerged = ~crossed & (zmin < 0.0)
-    half_beam[submerged] = 0.5 * (ymax - ymin)[submerged]
-    return {"area": area, "zmin": zmin, "half_beam": half_beam, "chine_wetted": chine}
+    step = np.where(down[cross], 1, -1)
+    order = np.lexsort((yc, sc))
+    sc, yc, step, slope = sc[order], yc[order], step[order], slope[order]
+    winding = np.cumsum(step)
+    # the count restarts at each station (every station's crossings add up to zero)
+    opens = (winding == 1) & (step == 1)
+    closes = (winding == 0) & (step == -1)
+    ps = sc[opens]
+    yl, yr = yc[opens], yc[closes]
+    tl, tr = slope[opens], slope[closes]
+    submerged = np.setdiff1d(np.flatnonzero(zmin < 0.0), sc)
+    if len(submerged):
+        ps = np.concatenate([ps, submerged])
+        yl = np.concatenate([yl, ymin[submerged]])
+        yr = np.concatenate([yr, ymax[submerged]])
+        tl = np.concatenate([tl, np.full(len(submerged), np.inf)])
+        tr = np.concatenate([tr, np.full(len(submerged), np.inf)])
+        o = np.lexsort((yl, ps))
+        ps, yl, yr, tl, tr = ps[o], yl[o], yr[o], tl[o], tr[o]
+    return ps, yl, yr, tl, tr
+
+
+def _assign(seg_station, seg_y, ps, yl, yr) -> np.ndarray:
+    """Index of the piece whose waterline interval holds each point, or -1."""
+    if len(ps) == 0:
+        return np.full(len(seg_y), -1)
+    # pieces are sorted by (station, y_left): search in a combined key
+    span = max(float(np.max(np.abs(np.concatenate([yl, yr, seg_y])))), 1.0) * 4.0
+    key_p = ps * span + yl
+    key_s = seg_station * span + seg_y
+    i = np.searchsorted(key_p, key_s, side="right") - 1
+    ok = (i >= 0) & (ps[np.clip(i, 0, None)] == seg_station) & (seg_y <= yr[np.clip(i, 0, None)])
+    return np.where(ok, i, -1)
+
+
+def _keel_fit(piece, y1, z1, y2, z2, m):
+    """Least-squares slopes through the keel, per side: integrals over the contour."""
+    # split each segment at the keel's y so that each part lies on one side
+    straddle = (y1 < 0.0) != (y2 < 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        zc = np.where(straddle, z1 + (0.0 - y1) * (z2 - z1) / (y2 - y1), 0.0)
+    parts = [
+        (piece[~straddle], y1[~straddle], z1[~straddle], y2[~straddle], z2[~straddle]),
+        (piece[straddle], y1[straddle], z1[straddle], np.zeros(straddle.sum()), zc[straddle]),
+        (piece[straddle], np.zeros(straddle.sum()), zc[straddle], y2[straddle], z2[straddle]),
+    ]
+    pc, a1, b1, a2, b2 = (np.concatenate(v) for v in zip(*parts, strict=True))
+    # exact for z linear in y along a segment: int y z dy and int y^2 dy
+    iyz = (a2 - a1) * (2 * a1 * b1 + a1 * b2 + a2 * b1 + 2 * a2 * b2) / 6.0
+    iyy = (a2**3 - a1**3) / 3.0
+    port = (a1 + a2) > 0.0
+    num_p = np.bincount(pc[port], weights=iyz[port], minlength=m)
+    den_p = np.bincount(pc[port], weights=iyy[port], minlength=m)
+    num_s = np.bincount(pc[~port], weights=iyz[~port], minlength=m)
+    den_s = np.bincount(pc[~port], weights=iyy[~port], minlength=m)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return num_p / den_p, -num_s / den_s

@@ -230,6 +230,9 @@ class CurveSolver(Solver):
             v0 = velocity / vt
         a = at * v0**2 / root_m * gam / tb  # Eq. 4
         force = M * (a + fluid.g)  # Eq. 12, per metre
+        # a section moving up is leaving the water (behind a transom or the lowest point of a
+        # hull moving forward): it is in no free fall, the flow separates, and it gets no force
+        force = np.where(velocity < 0.0, force, 0.0)
         peak = peak_values(v0, m_eq, beta, gam, curves.rho)
         with np.errstate(divide="ignore"):
             froude = np.abs(peak["v_star"]) / np.sqrt(fluid.g * peak["z_star"])
@@ -239,7 +242,7 @@ class CurveSolver(Solver):
         checks = [
             ((zt < lo) | (zt > hi), f"z~ outside the curves' range [{lo:.4g}, {hi:.4g}]"),
             (vt <= 0.0, "v~ <= 0 (past the end of the curves)"),
-            (velocity >= 0.0, "section not moving down into the water"),
+            (velocity >= 0.0, "section not moving down into the water (no force)"),
             (froude <= fr_min, f"Fr* <= {fr_min:g} (gravity not negligible)"),
         ]
         reason = _reasons(len(M), checks)

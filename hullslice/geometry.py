@@ -1,0 +1,199 @@
+"""Placing the hull in the earth frame at a pitch, and what depends only on the pitch.
+
+The body turns about its centre of gravity ``g``. A body point ``r = v - g`` (``x``, ``z``
+components; ``y`` is unchanged) is at
+
+    X = x_g + r_x cos(theta) - r_z sin(theta)
+    Z = Z_g + r_x sin(theta) + r_z cos(theta)
+
+with ``theta`` the pitch, positive nose up. ``Z_g`` follows from the draft: the lowest point
+of the body is ``draft`` below the water ``Z = 0``. Earth ``X`` is measured so that a level
+body has ``X = x``: stations are reported in a frame moving horizontally with the body.
+
+For one pitch, three things do not depend on the draft and are computed once
+(:class:`Frame`): the lowest point, the keel line (the lower edge of the body's side view,
+``Z_k(X)``, exact as a polyline) and the manifold3d object that cuts the body along earth
+planes ``X = const``.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Frame", "KeelLine", "frame"]
+
+
+@dataclass(frozen=True, eq=False)
+class KeelLine:
+    """The lower edge of the body's side view at one pitch: ``Z_k(X)`` as a polyline.
+
+    Coordinates are relative to the centre of gravity in the pitched frame (``X - x_g``,
+    ``Z - Z_g``), in m.
+
+    Attributes
+    ----------
+    x : (k,) float
+        Break points, increasing.
+    z : (k,) float
+        Height of the lowest point of the body's section at each break point.
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+
+    def at(self, x: np.ndarray, dx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Keel height at relative stations ``x`` and its mean slope ``dZ_k/dX`` over slices
+        of thickness ``dx`` centred on them (clipped to the body's length).
+
+        A mesh's keel is a polyline whose slope jumps from facet to facet; the mean over the
+        slice is the slice's own slope and tends to the local one as the slices get thinner.
+        """
+        x = np.asarray(x, dtype=np.float64)
+        z = np.interp(x, self.x, self.z)
+        lo = np.maximum(x - 0.5 * np.asarray(dx), self.x[0])
+        hi = np.minimum(x + 0.5 * np.asarray(dx), self.x[-1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean = (np.interp(hi, self.x, self.z) - np.interp(lo, self.x, self.z)) / (hi - lo)
+        i = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, len(self.x) - 2)
+        local = (self.z[i + 1] - self.z[i]) / (self.x[i + 1] - self.x[i])
+        return z, np.where(hi > lo, mean, local)
+
+    def below(self, level: float) -> tuple[float, float] | None:
+        """The ``x`` range where the keel is below ``level`` (relative), or None."""
+        x, z = self.x, self.z
+        under = z < level
+        xs = [x[under]]
+        cross = under[:-1] != under[1:]
+        if cross.any():
+            i = np.flatnonzero(cross)
+            t = (level - z[i]) / (z[i + 1] - z[i])
+            xs.append(x[i] + t * (x[i + 1] - x[i]))
+        allx = np.concatenate(xs)
+        if len(allx) == 0:
+            return None
+        return float(allx.min()), float(allx.max())
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """What depends on the pitch only: placement, keel line and the cutter.
+
+    Attributes
+    ----------
+    pitch : float
+        Pitch in rad, positive nose up.
+    cg : (3,) float
+        Centre of gravity in the body frame, m (the centre of rotation).
+    lowest : float
+        Height of the body's lowest point above the centre of gravity in the pitched
+        frame, m (negative).
+    keel : KeelLine
+        The keel line, relative to the centre of gravity.
+    """
+
+    pitch: float
+    cg: np.ndarray
+    lowest: float
+    keel: KeelLine
+    _slicer: object
+    _offset: np.ndarray  # (Y, Z, X) of the slicer's origin, relative to the cg
+
+    def z_cg(self, draft: float) -> float:
+        """Earth height of the centre of gravity for a draft (m)."""
+        return -self.lowest - draft
+
+    def cut(self, x_rel: np.ndarray, z_cg: float) -> list[tuple[np.ndarray, ...]]:
+        """Cross-sections at relative stations ``x_rel = X - x_g`` (m), in earth ``(Y, Z)``.
+
+        Returns one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise).
+        """
+        oy, oz, ox = self._offset
+        shift = np.array([oy, oz + z_cg])
+        out = []
+        for xi in np.asarray(x_rel, dtype=np.float64):
+            contours = self._slicer.slice(float(xi - ox)).to_polygons()
+            out.append(tuple(np.asarray(p, dtype=np.float64) + shift for p in contours))
+        return out
+
+    def body_to_earth(self, v: np.ndarray, z_cg: float) -> np.ndarray:
+        """Earth coordinates ``(X, Y, Z)`` (m) of body points ``v`` (n, 3)."""
+        c, s = np.cos(self.pitch), np.sin(self.pitch)
+        r = np.asarray(v, dtype=np.float64) - self.cg
+        X = self.cg[0] + r[:, 0] * c - r[:, 2] * s
+        Z = z_cg + r[:, 0] * s + r[:, 2] * c
+        return np.stack([X, r[:, 1] + self.cg[1], Z], axis=1)
+
+
+#: How many pitches' frames a hull keeps (each holds a transformed copy of the mesh).
+FRAME_CACHE = 4
+
+
+def frame(hull, pitch: float) -> Frame:
+    """The :class:`Frame` of a hull at a pitch (rad), kept on the hull for reuse."""
+    pitch = float(pitch)
+    cache: OrderedDict = hull.__dict__.setdefault("_frames", OrderedDict())
+    if pitch in cache:
+        cache.move_to_end(pitch)
+        return cache[pitch]
+    fr = _frame(hull, pitch)
+    cache[pitch] = fr
+    while len(cache) > FRAME_CACHE:
+        cache.popitem(last=False)
+    return fr
+
+
+def _frame(hull, pitch: float) -> Frame:
+    import manifold3d
+
+    g = np.asarray(hull.cg, dtype=np.float64)
+    c, s = np.cos(pitch), np.sin(pitch)
+    v = hull.vertices
+    zrel = (v[:, 0] - g[0]) * s + (v[:, 2] - g[2]) * c
+    lowest = float(zrel.min())
+    # centre the cutter's coordinates on the body (manifold3d's sections are single
+    # precision): the bounding-box centre, in the pitched frame relative to the cg
+    box = hull.bounds.mean(axis=0) - g
+    ox = box[0] * c - box[2] * s
+    oz = box[0] * s + box[2] * c
+    oy = box[1] + g[1]
+    # rows map a body point to (Y, Z, X) relative to that centre; manifold3d cuts at Z = X
+    cut_matrix = np.array(
+        [
+            [0.0, 1.0, 0.0, -oy],
+            [s, 0.0, c, -(s * g[0] + c * g[2]) - oz],
+            [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
+        ]
+    )
+    slicer = hull.manifold.transform(cut_matrix)
+    # side view: (X, Z, -Y) relative to the centre, projected on the (X, Z) plane
+    side_matrix = np.array([cut_matrix[2], cut_matrix[1], -cut_matrix[0]])
+    outline = hull.manifold.transform(side_matrix).project()
+    polys = manifold3d.CrossSection(outline.to_polygons(), manifold3d.FillRule.Positive)
+    keel = _lower_envelope(polys.to_polygons())
+    keel = KeelLine(keel.x + ox, keel.z + oz)
+    return Frame(pitch, g, lowest, keel, slicer, np.array([oy, oz, ox]))
+
+
+def _lower_envelope(polygons: list[np.ndarray]) -> KeelLine:
+    """The lower edge ``z(x)`` of a set of non-crossing polygons, as a polyline."""
+    a = np.concatenate(polygons)
+    b = np.concatenate([np.roll(p, -1, axis=0) for p in polygons])
+    xs = np.unique(a[:, 0])
+    lo = np.minimum(a[:, 0], b[:, 0])
+    hi = np.maximum(a[:, 0], b[:, 0])
+    i0 = np.searchsorted(xs, lo, side="left")
+    i1 = np.searchsorted(xs, hi, side="right")  # break points i0 .. i1-1 lie on the edge
+    count = i1 - i0
+    edge = np.repeat(np.arange(len(a)), count)
+    idx = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + i0[edge]
+    xa, za, xb, zb = a[edge, 0], a[edge, 1], b[edge, 0], b[edge, 1]
+    x = xs[idx]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(xb != xa, (x - xa) / (xb - xa), 0.0)
+    z_on = np.where(xb != xa, za + t * (zb - za), np.minimum(za, zb))
+    z = np.full(len(xs), np.inf)
+    np.minimum.at(z, idx, z_on)
+    return KeelLine(xs, z)
