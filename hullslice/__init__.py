@@ -30,6 +30,7 @@ from .errors import (
     UnknownSolverError,
 )
 from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
+from .mass import MassDistribution, read_mass_distribution
 from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
@@ -66,6 +67,7 @@ __all__ = [
     "HullsliceError",
     "HullsliceWarning",
     "InputError",
+    "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
     "Motion",
@@ -88,6 +90,7 @@ __all__ = [
     "load_hull",
     "prescribed",
     "read_kinematics",
+    "read_mass_distribution",
     "richardson",
     "simulate",
 ]
