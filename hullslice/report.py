@@ -240,6 +240,14 @@ HISTORY_COLUMNS = (
 )
 
 
+#: Extra columns of a history with pitch or forward speed (terminal view).
+HISTORY_PITCH_COLUMNS = (
+    Column("pitch_deg", "pitch", "deg", ".3f"),
+    Column("forward_speed", "u", "m/s", ".3f"),
+    Column("moment", "M", "N m", ".4g"),
+)
+
+
 def history_records(history, every: int = 1) -> list[dict[str, Any]]:
     """One dict per instant of a :class:`~hullslice.motion.History` (every ``every``-th,
     always with the last)."""

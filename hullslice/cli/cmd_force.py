@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..forces import convergence
 from ..report import (
@@ -21,6 +22,7 @@ from .common import (
     add_fluid_options,
     add_mesh_options,
     add_output_options,
+    add_pose_options,
     emit,
     fluid,
     load,
@@ -53,6 +55,7 @@ def add_parser(sub) -> None:
         metavar="M/S",
         help="vertical velocity in m/s, negative downward (e.g. --velocity=-3.5)",
     )
+    add_pose_options(g)
     g.add_argument(
         "--slices",
         type=slice_list,
@@ -89,8 +92,8 @@ def run(args: argparse.Namespace) -> int:
     hull = load(args)
     study = convergence(
         hull,
-        Pose(args.draft),
-        Motion(args.velocity),
+        Pose(args.draft, args.pitch),
+        Motion(args.velocity, args.forward_speed, args.pitch_rate),
         slices=args.slices,
         solver=args.solver,
         fluid=fluid(args),
@@ -105,6 +108,12 @@ def run(args: argparse.Namespace) -> int:
             "mass": hull.mass,
             "draft": args.draft,
             "velocity": args.velocity,
+            "pitch_deg": math.degrees(args.pitch),
+            "forward_speed": args.forward_speed,
+            "pitch_rate_deg_s": math.degrees(args.pitch_rate),
+            "cg": [float(hull.cg[0]), float(hull.cg[2])],
+            "force_x": finest.total_x,
+            "moment": finest.moment,
             "solver": finest.solver,
             "rho": finest.fluid.rho,
             "g": finest.fluid.g,

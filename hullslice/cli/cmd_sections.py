@@ -3,11 +3,20 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..report import SECTION_COLUMNS, csv_text, json_text, section_records, table_text
 from ..sections import DEADRISE_ESTIMATORS, cut
 from ..state import Pose
-from .common import add_mesh_options, add_output_options, emit, load, number, positive_int
+from .common import (
+    add_mesh_options,
+    add_output_options,
+    add_pose_options,
+    emit,
+    load,
+    number,
+    positive_int,
+)
 
 
 def add_parser(sub) -> None:
@@ -27,6 +36,7 @@ def add_parser(sub) -> None:
         metavar="M",
         help="depth of the body's lowest point below the calm water, in m",
     )
+    add_pose_options(g, pitch_rate=False, forward_speed=False)
     g.add_argument(
         "--slices",
         type=positive_int,
@@ -46,7 +56,7 @@ def add_parser(sub) -> None:
 
 def run(args: argparse.Namespace) -> int:
     hull = load(args)
-    sections = cut(hull, Pose(args.draft), args.slices, deadrise=args.deadrise)
+    sections = cut(hull, Pose(args.draft, args.pitch), args.slices, deadrise=args.deadrise)
     records = section_records(sections)
     if args.format == "json":
         emit(
@@ -55,6 +65,7 @@ def run(args: argparse.Namespace) -> int:
                 {
                     "mesh": args.mesh,
                     "draft": sections.draft,
+                    "pitch_deg": math.degrees(sections.pitch),
                     "wetted_length": sections.wetted_length,
                     "deadrise_method": sections.deadrise_method,
                     "sections": records,
@@ -65,7 +76,8 @@ def run(args: argparse.Namespace) -> int:
         emit(args, csv_text(["j", *sections.as_dict()], records))
     else:
         head = (
-            f"{hull.name}: draft {sections.draft:g} m, wetted length "
+            f"{hull.name}: draft {sections.draft:g} m, pitch {math.degrees(sections.pitch):g} deg, "
+            "wetted length "
             f"{sections.wetted_length:.5f} m, {len(sections)} slices, deadrise by "
             f"{sections.deadrise_method}"
         )

@@ -5,9 +5,12 @@ from __future__ import annotations
 import argparse
 import sys
 
+import numpy as np
+
 from ..motion import STOP_RULES, prescribed, read_kinematics, simulate
 from ..report import (
     HISTORY_COLUMNS,
+    HISTORY_PITCH_COLUMNS,
     csv_text,
     history_records,
     history_summary,
@@ -21,6 +24,7 @@ from .common import (
     add_fluid_options,
     add_mesh_options,
     add_output_options,
+    add_pose_options,
     emit,
     fluid,
     load,
@@ -64,6 +68,18 @@ def add_parser(sub) -> None:
         default=0.0,
         metavar="M",
         help="initial draft of the lowest point in m (default: 0, first contact)",
+    )
+    add_pose_options(g)
+    g.add_argument(
+        "--free-pitch",
+        action="store_true",
+        help="integrate the pitch from the moment about the centre of gravity (default: the "
+        "pitch changes at the constant --pitch-rate)",
+    )
+    g.add_argument(
+        "--free-surge",
+        action="store_true",
+        help="integrate the forward speed from the horizontal force (default: constant)",
     )
     g.add_argument(
         "--kinematics",
@@ -131,11 +147,28 @@ def run(args: argparse.Namespace) -> int:
                 f"hullslice simulate: error: a free fall needs {' and '.join(missing)} "
                 "(or give --kinematics CSV for a prescribed motion)"
             )
-    elif args.velocity is not None or args.t_end is not None:
-        raise UsageError(
-            "hullslice simulate: error: --kinematics gives the motion; leave out --velocity "
-            "and --t-end"
-        )
+    else:
+        given = [
+            opt
+            for opt, value, default in (
+                ("--velocity", args.velocity, None),
+                ("--t-end", args.t_end, None),
+                ("--dt", args.dt, None),
+                ("--draft", args.draft, 0.0),
+                ("--pitch", args.pitch, 0.0),
+                ("--forward-speed", args.forward_speed, 0.0),
+                ("--pitch-rate", args.pitch_rate, 0.0),
+                ("--free-pitch", args.free_pitch, False),
+                ("--free-surge", args.free_surge, False),
+            )
+            if value != default
+        ]
+        if given:
+            raise UsageError(
+                f"hullslice simulate: error: --kinematics gives the motion; leave out "
+                f"{', '.join(given)} (the table's columns t, penetration, velocity and "
+                "optionally pitch_deg, pitch_rate_deg_s, forward_speed give it)"
+            )
     hull = load(args)
     progress = Progress() if sys.stderr.isatty() else None
     common = {
@@ -154,6 +187,11 @@ def run(args: argparse.Namespace) -> int:
                 args.t_end,
                 dt=args.dt,
                 draft=args.draft,
+                pitch=args.pitch,
+                forward_speed=args.forward_speed,
+                pitch_rate=args.pitch_rate,
+                free_pitch=args.free_pitch,
+                free_surge=args.free_surge,
                 stop_on=stop_on,
                 **common,
             )
@@ -176,10 +214,13 @@ def run(args: argparse.Namespace) -> int:
 def _table(hull, history, summary) -> str:
     s = history.settings
     every = max(1, -(-len(history) // TABLE_ROWS))
+    columns = HISTORY_COLUMNS
+    if np.any(history.pitch != 0) or np.any(history.forward_speed != 0):
+        columns = (*HISTORY_COLUMNS[:5], *HISTORY_PITCH_COLUMNS, *HISTORY_COLUMNS[5:])
     head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {s['solver']}, " + (
         f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
     )
-    lines = [head, "", table_text(HISTORY_COLUMNS, history_records(history, every))]
+    lines = [head, "", table_text(columns, history_records(history, every))]
     if every > 1:
         lines.append(f"(one instant in {every} of {len(history)} shown; --format csv for all)")
     lines.append("")

@@ -3,10 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import math
 import sys
 
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
+from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
 from ..report import write_atomic
 from ..state import Fluid
@@ -72,13 +74,90 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         metavar="AXIS",
         help="mesh axis pointing up: x, y, z, or with a sign as --up=-y (default: +z)",
     )
-    g.add_argument(
+    m = p.add_argument_group("mass")
+    m.add_argument(
         "--mass",
         type=number("kg"),
         metavar="KG",
-        required=mass_required,
-        help="body mass in kg" + ("" if mass_required else " (needed for mass per metre)"),
+        help="body mass in kg"
+        + (" (or --mass-distribution)" if mass_required else " (for mass per metre)"),
     )
+    m.add_argument(
+        "--mass-distribution",
+        metavar="CSV",
+        help="mass along the body instead of a uniform density: CSV with columns "
+        "x,mass_per_metre (m, kg/m) or point masses x,z,mass[,length] (m, kg), body frame in "
+        "metres after --units and axes",
+    )
+    m.add_argument(
+        "--cg",
+        type=pair("m"),
+        metavar="X,Z",
+        help="centre of gravity x,z in m, body frame (default: from the mass distribution, "
+        "or the centre of volume)",
+    )
+    m.add_argument(
+        "--inertia",
+        type=number("kg*m^2"),
+        metavar="KG*M^2",
+        help="pitch moment of inertia about the centre of gravity in kg*m^2 (default: from "
+        "the mass distribution, or the mesh with uniform density)",
+    )
+    p.set_defaults(mass_required=mass_required)
+
+
+def pair(unit: str):
+    def parse(text: str) -> tuple[float, float]:
+        parts = text.split(",")
+        try:
+            if len(parts) != 2:
+                raise ValueError
+            return float(parts[0]), float(parts[1])
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not two numbers X,Z (in {unit}), e.g. 16.5,1.2"
+            ) from None
+
+    parse.__name__ = f"pair in {unit}"
+    return parse
+
+
+def angle(unit: str):
+    """Parse a number in degrees (``unit`` names deg or deg/s) and return it in radians."""
+    parse_number = number(unit)
+
+    def parse(text: str) -> float:
+        return math.radians(parse_number(text))
+
+    parse.__name__ = f"number in {unit}"
+    return parse
+
+
+def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> None:
+    """Pitch (and optionally forward speed and pitch rate) options, in degrees and m/s."""
+    g.add_argument(
+        "--pitch",
+        type=angle("deg"),
+        default=0.0,
+        metavar="DEG",
+        help="pitch angle in degrees, positive nose up, about the centre of gravity (default: 0)",
+    )
+    if forward_speed:
+        g.add_argument(
+            "--forward-speed",
+            type=number("m/s"),
+            default=0.0,
+            metavar="M/S",
+            help="horizontal speed along the body's forward direction in m/s (default: 0)",
+        )
+    if pitch_rate:
+        g.add_argument(
+            "--pitch-rate",
+            type=angle("deg/s"),
+            default=0.0,
+            metavar="DEG/S",
+            help="pitch rate in degrees per second, positive nose up (default: 0)",
+        )
 
 
 def add_fluid_options(p: argparse.ArgumentParser) -> None:
@@ -116,7 +195,25 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
 
 
 def load(args: argparse.Namespace) -> Hull:
-    return load_hull(args.mesh, units=args.units, forward=args.forward, up=args.up, mass=args.mass)
+    """The hull of the command's mesh and mass options."""
+    dist = None
+    if args.mass_distribution:
+        dist = read_mass_distribution(args.mass_distribution)
+    elif args.mass_required and args.mass is None:
+        raise UsageError(
+            f"hullslice {args.command}: error: give the body's mass, --mass KG or "
+            "--mass-distribution CSV"
+        )
+    return load_hull(
+        args.mesh,
+        units=args.units,
+        forward=args.forward,
+        up=args.up,
+        mass=args.mass,
+        mass_distribution=dist,
+        cg=args.cg,
+        inertia=args.inertia,
+    )
 
 
 def fluid(args: argparse.Namespace) -> Fluid:
