@@ -36,6 +36,7 @@ from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
     CharacteristicCurves,
     CurveSolver,
+    MomentumSolver,
     SectionLoads,
     Solver,
     get_solver,
@@ -68,6 +69,7 @@ __all__ = [
     "InputError",
     "MeshError",
     "MeshRepairWarning",
+    "MomentumSolver",
     "Motion",
     "PluginError",
     "PluginWarning",
