@@ -73,14 +73,14 @@ def test_peak_of_the_free_fall_is_eq_2():
     # a(p) along one free fall, maximised on a fine grid, against the paper's Eq. 2
     M, beta, rho, gam, v0 = 5.0, math.radians(25.0), 1000.0, 1.3, -6.0
     k = rho * math.pi * gam**2 / (2 * math.tan(beta) ** 2)
-    p = np.linspace(1e-5, 0.08, 80001)
+    p = np.linspace(0.005, 0.015, 20001)  # around z* = 9.05 mm, step 5e-7 m
     v = M * v0 / (M + k * p**2)
     loads = ConstantGamma().section_loads(wedge_sections(p, beta, M), v, hs.Fluid(rho, 9.81))
     a = loads.diagnostics["acceleration"]
     i = int(np.argmax(a))
     ref = peak_values(v0, M, beta, gam, rho)
     assert a[i] == pytest.approx(ref["a_max"], rel=1e-8)  # grid max: O(step^2) below
-    assert p[i] == pytest.approx(ref["z_star"], abs=2e-6)  # grid step 1e-6 m
+    assert p[i] == pytest.approx(ref["z_star"], abs=2e-6)  # a few grid steps
     # v changes by 184 m/s per m of p there: 2e-6 m off the peak is 7e-5 of v*
     assert v[i] == pytest.approx(ref["v_star"], rel=1e-4)
 
