@@ -321,6 +321,9 @@ FAULTY = """
             n = len(sections)
             return SectionLoads(np.zeros(n), np.ones(n, bool), np.full(n, "", object))
 
+    class Nameless(Base):
+        description = "no name"
+
     class Raising(Base):
         name = "raising"
         def section_loads(self, sections, velocity, fluid):
@@ -348,6 +351,7 @@ FAULTY_SOLVERS = {
     "broken-import": "faulty_import_mod:Solver",
     "not-a-solver": "faulty_mod:Plain",
     "abstract": "faulty_mod:Half",
+    "nameless": "faulty_mod:Nameless",
     "raising": "faulty_mod:Raising",
     "nan": "faulty_mod:NaNs",
     "wrong-shape": "faulty_mod:Short",
@@ -382,13 +386,14 @@ def test_broken_plugins_leave_the_others_working(install_plugin, paper_hull, cap
     before = {n: _paper_force(build(n)).total for n in installed_ok()}
     install_plugin("hullslice-faulty", FAULTY_SOLVERS, FAULTY_SOURCES)
     infos = {i.name: i for i in hs.list_solvers()}
-    for name in ("broken-import", "not-a-solver", "abstract"):
+    for name in ("broken-import", "not-a-solver", "abstract", "nameless"):
         assert infos[name].status == "broken"
         assert "hullslice-faulty 1.0" in infos[name].error
     assert "ImportError: needs libfoo" in infos["broken-import"].error
     assert "not a subclass of hullslice.Solver" in infos["not-a-solver"].error
     assert "does not implement pile_up" in infos["abstract"].error
-    for name in ("broken-import", "not-a-solver", "abstract"):
+    assert "does not set the class variable 'name'" in infos["nameless"].error
+    for name in ("broken-import", "not-a-solver", "abstract", "nameless"):
         with pytest.raises(hs.PluginError, match=f"'{name}'.*hullslice-faulty 1.0"):
             hs.get_solver(name)
     # every solver that worked before gives the same force as before

@@ -87,12 +87,11 @@ def add_solver_options(g: argparse._ArgumentGroup) -> None:
         default=[],
         metavar="KEY=VALUE",
         help="an option of the 2D solver (repeatable); VALUE is read as JSON when it parses "
-        "(numbers, [lists], true/false), else as text. Every solver of hullslice's own "
-        "kind takes froude_min (smallest peak Froude number, default 6.5); the curves "
-        "solver takes table=FILE.csv (columns z_tilde,a_tilde,v_tilde) or a_coeffs=[...] "
-        "and v_coeffs=[...] (ascending powers of z~), rho=KG/M3 (the density the curves "
-        "were made for, default 1000), pile_up=dobrovolskaya|wagner|von-karman|GAMMA. "
-        "'hullslice solvers --format json' lists each solver's options",
+        "(numbers, [lists], true/false), else as text; SI units, e.g. froude_min=8 "
+        "(smallest peak Froude number), or for --solver curves table=FILE.csv (columns "
+        "z_tilde,a_tilde,v_tilde), rho=1025 (kg/m^3, the density the curves were made for), "
+        "pile_up=wagner. 'hullslice solvers --format json' lists each solver's options and "
+        "their defaults",
     )
 
 

@@ -3,11 +3,12 @@
 Every solver, the default one included, is found through installed distributions'
 entry points. Discovery reads metadata only; a plugin's module is imported when the solver
 is first asked for by name or when all solvers are listed. A plugin that fails to import,
-is not a :class:`~hullslice.solvers.base.Solver` or leaves its abstract methods
-unimplemented is broken: asking for it raises a :class:`~hullslice.errors.PluginError`
-naming it and its distribution, :func:`list_solvers` lists it with the status ``"broken"``
-and the error, and the other solvers keep working. A solver that fails when it is built
-raises a :class:`~hullslice.errors.SolverError` naming it and its distribution. When two
+is not a :class:`~hullslice.solvers.base.Solver`, leaves its abstract methods
+unimplemented or has no ``name`` is broken: asking for it raises a
+:class:`~hullslice.errors.PluginError` naming it and its distribution,
+:func:`list_solvers` lists it with the status ``"broken"`` and the error, and the other
+solvers keep working. A solver that fails when it is built raises a
+:class:`~hullslice.errors.SolverError` naming it and its distribution. When two
 distributions register the same name, the one from hullslice itself wins, otherwise the
 first by distribution name, and a :class:`~hullslice.errors.PluginWarning` names both.
 Setting the environment variable ``HULLSLICE_NO_PLUGINS=1`` loads only the solvers
@@ -138,6 +139,12 @@ class _Registry:
         if getattr(obj, "__abstractmethods__", None):
             missing = ", ".join(sorted(obj.__abstractmethods__))
             msg = f"solver plugin {_describe(ep)} does not implement {missing}"
+            return self._broken(name, msg)
+        if not (isinstance(obj.name, str) and obj.name):
+            msg = (
+                f"solver plugin {_describe(ep)} does not set the class variable 'name' "
+                "(the name its results are reported under)"
+            )
             return self._broken(name, msg)
         self.classes[name] = obj
         return obj
