@@ -37,6 +37,7 @@ from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
     CharacteristicCurves,
     CurveSolver,
+    MomentumSolver,
     SectionLoads,
     Solver,
     get_solver,
@@ -70,6 +71,7 @@ __all__ = [
     "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
+    "MomentumSolver",
     "Motion",
     "PluginError",
     "PluginWarning",

@@ -16,18 +16,20 @@ from ..report import (
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
-from ..solvers.registry import DEFAULT_SOLVER
 from ..state import Motion, Pose
 from .common import (
     add_fluid_options,
     add_mesh_options,
     add_output_options,
     add_pose_options,
+    add_solver_options,
     emit,
     fluid,
     load,
     number,
     slice_list,
+    solver,
+    solver_label,
 )
 
 
@@ -64,12 +66,7 @@ def add_parser(sub) -> None:
         help="slice counts over the wetted length; three or more give the extrapolated "
         "force (default: 16,32,64)",
     )
-    g.add_argument(
-        "--solver",
-        default=DEFAULT_SOLVER,
-        metavar="NAME",
-        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
-    )
+    add_solver_options(g)
     g.add_argument(
         "--deadrise",
         choices=list(DEADRISE_ESTIMATORS),
@@ -90,12 +87,13 @@ CONVERGENCE_COLUMNS = (
 
 def run(args: argparse.Namespace) -> int:
     hull = load(args)
+    slv = solver(args)
     study = convergence(
         hull,
         Pose(args.draft, args.pitch),
         Motion(args.velocity, args.forward_speed, args.pitch_rate),
         slices=args.slices,
-        solver=args.solver,
+        solver=slv,
         fluid=fluid(args),
         deadrise=args.deadrise,
     )
@@ -115,6 +113,7 @@ def run(args: argparse.Namespace) -> int:
             "force_x": finest.total_x,
             "moment": finest.moment,
             "solver": finest.solver,
+            "solver_options": dict(slv.settings),
             "rho": finest.fluid.rho,
             "g": finest.fluid.g,
             "wetted_length": finest.sections.wetted_length,
@@ -137,8 +136,8 @@ def _table(hull, args, study, summary, records) -> str:
     lines = [
         f"{hull.name}: mass {hull.mass:g} kg, draft {args.draft:g} m, velocity "
         f"{args.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
-        f"solver {finest.solver}, water {finest.fluid.rho:g} kg/m^3, g {finest.fluid.g:g} m/s^2,"
-        f" deadrise by {finest.sections.deadrise_method}",
+        f"solver {solver_label(args)}, water {finest.fluid.rho:g} kg/m^3, "
+        f"g {finest.fluid.g:g} m/s^2, deadrise by {finest.sections.deadrise_method}",
         "",
         table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
         "",

@@ -18,18 +18,20 @@ from ..report import (
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
-from ..solvers.registry import DEFAULT_SOLVER
 from .common import (
     UsageError,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
     add_pose_options,
+    add_solver_options,
     emit,
     fluid,
     load,
     number,
     positive_int,
+    solver,
+    solver_label,
 )
 
 TABLE_ROWS = 40
@@ -101,12 +103,7 @@ def add_parser(sub) -> None:
         metavar="N",
         help="slices over the wetted length at each instant (default: 32)",
     )
-    m.add_argument(
-        "--solver",
-        default=DEFAULT_SOLVER,
-        metavar="NAME",
-        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
-    )
+    add_solver_options(m)
     m.add_argument(
         "--deadrise",
         choices=list(DEADRISE_ESTIMATORS),
@@ -173,7 +170,7 @@ def run(args: argparse.Namespace) -> int:
     progress = Progress() if sys.stderr.isatty() else None
     common = {
         "slices": args.slices,
-        "solver": args.solver,
+        "solver": solver(args),
         "fluid": fluid(args),
         "deadrise": args.deadrise,
         "progress": progress,
@@ -207,17 +204,17 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "csv":
         emit(args, csv_text(list(history.COLUMNS), history_records(history)))
     else:
-        emit(args, _table(hull, history, summary))
+        emit(args, _table(hull, history, summary, solver_label(args)))
     return 0
 
 
-def _table(hull, history, summary) -> str:
+def _table(hull, history, summary, solver_text) -> str:
     s = history.settings
     every = max(1, -(-len(history) // TABLE_ROWS))
     columns = HISTORY_COLUMNS
     if np.any(history.pitch != 0) or np.any(history.forward_speed != 0):
         columns = (*HISTORY_COLUMNS[:5], *HISTORY_PITCH_COLUMNS, *HISTORY_COLUMNS[5:])
-    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {s['solver']}, " + (
+    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {solver_text}, " + (
         f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
     )
     lines = [head, "", table_text(columns, history_records(history, every))]

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import argparse
+import json
 import math
 import sys
+from typing import Any
 
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
 from ..report import write_atomic
+from ..solvers.base import Solver
+from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
 
 FORMATS = ("table", "json", "csv")
@@ -50,6 +54,68 @@ def number(unit: str):
 
     parse.__name__ = f"number in {unit}"
     return parse
+
+
+def solver_option(text: str) -> tuple[str, Any]:
+    """``"KEY=VALUE"`` to ``(KEY, value)``, the value read as JSON when it parses, else text.
+
+    ``rho=1025`` gives the number 1025, ``a_coeffs=[0, -3000]`` a list, ``pile_up=wagner``
+    and ``table=curves.csv`` the text as it is.
+    """
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not KEY=VALUE (e.g. --solver-option pile_up=wagner)"
+        )
+    try:
+        return key, json.loads(value)
+    except json.JSONDecodeError:
+        return key, value
+
+
+def add_solver_options(g: argparse._ArgumentGroup) -> None:
+    """``--solver NAME`` and the repeatable ``--solver-option KEY=VALUE``."""
+    g.add_argument(
+        "--solver",
+        default=DEFAULT_SOLVER,
+        metavar="NAME",
+        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
+    )
+    g.add_argument(
+        "--solver-option",
+        type=solver_option,
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="an option of the 2D solver (repeatable); VALUE is read as JSON when it parses "
+        "(numbers, [lists], true/false), else as text; SI units, e.g. froude_min=8 "
+        "(smallest peak Froude number), or for --solver curves table=FILE.csv (columns "
+        "z_tilde,a_tilde,v_tilde), rho=1025 (kg/m^3, the density the curves were made for), "
+        "pile_up=wagner. 'hullslice solvers --format json' lists each solver's options and "
+        "their defaults",
+    )
+
+
+def solver(args: argparse.Namespace) -> Solver:
+    """The solver named by ``--solver``, built with the ``--solver-option`` values."""
+    options: dict[str, Any] = {}
+    for key, value in args.solver_option:
+        if key in options:
+            raise UsageError(
+                f"hullslice {args.command}: error: --solver-option {key} is given twice; "
+                "give each option once"
+            )
+        options[key] = value
+    return get_solver(args.solver, **options)
+
+
+def solver_label(args: argparse.Namespace) -> str:
+    """The solver's name with the options given on the command line, for table headers."""
+    if not args.solver_option:
+        return args.solver
+    opts = ", ".join(f"{k}={json.dumps(v)}" for k, v in args.solver_option)
+    return f"{args.solver} ({opts})"
 
 
 def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) -> None:
