@@ -257,6 +257,7 @@ def compute_force(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
 ) -> ForceResult:
     """The 2D+t force on a hull at one state.
 
@@ -277,6 +278,8 @@ def compute_force(
         Water density and gravity (default 1000 kg/m^3, 9.81 m/s^2).
     deadrise : str
         Deadrise estimator (default ``"wedge"``).
+    slicing : str
+        ``"wetted"`` (default) or ``"fixed"``, see :data:`~hullslice.sections.SLICINGS`.
 
     Returns
     -------
@@ -287,7 +290,7 @@ def compute_force(
     solver = get_solver(solver)
     if hull.mass is None:
         raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
-    sections = cut(hull, pose, slices, deadrise=deadrise)
+    sections = cut(hull, pose, slices, deadrise=deadrise, slicing=slicing)
     return force_on(sections, motion, solver, fluid, float(hull.cg[0]))
 
 
@@ -339,6 +342,7 @@ def convergence(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
 ) -> ConvergenceStudy:
     """Forces for several slice counts and their Richardson extrapolation (paper, Fig. 8).
 

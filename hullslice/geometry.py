@@ -19,7 +19,7 @@ planes ``X = const``.
 from __future__ import annotations
 
 from collections import OrderedDict
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -87,9 +87,9 @@ class Frame:
         Pitch in rad, positive nose up.
     cg : (3,) float
         Centre of gravity in the body frame, m (the centre of rotation).
-    lowest : float
-        Height of the body's lowest point above the centre of gravity in the pitched
-        frame, m (negative).
+    lowest, highest : float
+        Heights of the body's lowest and highest points above the centre of gravity in the
+        pitched frame, m.
     keel : KeelLine
         The keel line, relative to the centre of gravity.
     """
@@ -97,26 +97,45 @@ class Frame:
     pitch: float
     cg: np.ndarray
     lowest: float
+    highest: float
     keel: KeelLine
     _slicer: object
     _offset: np.ndarray  # (Y, Z, X) of the slicer's origin, relative to the cg
+    _fixed: dict = field(default_factory=dict, repr=False)
+
+    def fixed_stations(self, n: int) -> tuple[float, np.ndarray]:
+        """Thickness and mid-stations (relative to the cg) of ``n`` equal slices over the
+        body's length at this pitch."""
+        xa, xb = float(self.keel.x[0]), float(self.keel.x[-1])
+        d = (xb - xa) / n
+        return d, xa + (np.arange(n) + 0.5) * d
+
+    def fixed_outline(self, n: int, tol: float):
+        """The outline of ``n`` fixed stations over the body's length (mid-stations of
+        equal slices), cut once and kept: ``(Outline, polygons)`` relative to the cg."""
+        from .sections import Outline
+
+        key = (int(n), float(tol))
+        if key not in self._fixed:
+            polys = self.cut(self.fixed_stations(n)[1])
+            self._fixed[key] = (Outline.of(polys, tol, self.origin), polys)
+        return self._fixed[key]
 
     def z_cg(self, draft: float) -> float:
         """Earth height of the centre of gravity for a draft (m)."""
         return -self.lowest - draft
 
-    def cut(self, x_rel: np.ndarray, z_cg: float) -> list[tuple[np.ndarray, ...]]:
-        """Cross-sections at relative stations ``x_rel = X - x_g`` (m), in earth ``(Y, Z)``.
+    def cut(self, x_rel: np.ndarray) -> list[tuple[np.ndarray, ...]]:
+        """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
+        them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
+        in ``(Y, Z)`` less :attr:`origin` (add it, and ``Z_g``, for earth coordinates)."""
+        ox = self._offset[2]
+        return [tuple(self._slicer.slice(float(xi - ox)).to_polygons()) for xi in x_rel]
 
-        Returns one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise).
-        """
-        oy, oz, ox = self._offset
-        shift = np.array([oy, oz + z_cg])
-        out = []
-        for xi in np.asarray(x_rel, dtype=np.float64):
-            contours = self._slicer.slice(float(xi - ox)).to_polygons()
-            out.append(tuple(np.asarray(p, dtype=np.float64) + shift for p in contours))
-        return out
+    @property
+    def origin(self) -> tuple[float, float]:
+        """``(Y, Z - Z_g)`` of the origin of :meth:`cut`'s contours, m."""
+        return float(self._offset[0]), float(self._offset[1])
 
     def body_to_earth(self, v: np.ndarray, z_cg: float) -> np.ndarray:
         """Earth coordinates ``(X, Y, Z)`` (m) of body points ``v`` (n, 3)."""
@@ -146,13 +165,11 @@ def frame(hull, pitch: float) -> Frame:
 
 
 def _frame(hull, pitch: float) -> Frame:
-    import manifold3d
-
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     v = hull.vertices
     zrel = (v[:, 0] - g[0]) * s + (v[:, 2] - g[2]) * c
-    lowest = float(zrel.min())
+    lowest, highest = float(zrel.min()), float(zrel.max())
     # centre the cutter's coordinates on the body (manifold3d's sections are single
     # precision): the bounding-box centre, in the pitched frame relative to the cg
     box = hull.bounds.mean(axis=0) - g
@@ -168,32 +185,76 @@ def _frame(hull, pitch: float) -> Frame:
         ]
     )
     slicer = hull.manifold.transform(cut_matrix)
-    # side view: (X, Z, -Y) relative to the centre, projected on the (X, Z) plane
-    side_matrix = np.array([cut_matrix[2], cut_matrix[1], -cut_matrix[0]])
-    outline = hull.manifold.transform(side_matrix).project()
-    polys = manifold3d.CrossSection(outline.to_polygons(), manifold3d.FillRule.Positive)
-    keel = _lower_envelope(polys.to_polygons())
-    keel = KeelLine(keel.x + ox, keel.z + oz)
-    return Frame(pitch, g, lowest, keel, slicer, np.array([oy, oz, ox]))
+    # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg
+    a, b = silhouette_edges(hull)
+    keel = _lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
+    return Frame(pitch, g, lowest, highest, keel, slicer, np.array([oy, oz, ox]))
 
 
-def _lower_envelope(polygons: list[np.ndarray]) -> KeelLine:
-    """The lower edge ``z(x)`` of a set of non-crossing polygons, as a polyline."""
-    a = np.concatenate(polygons)
-    b = np.concatenate([np.roll(p, -1, axis=0) for p in polygons])
-    xs = np.unique(a[:, 0])
+def _turn(r: np.ndarray, c: float, s: float) -> np.ndarray:
+    """(X, Z) of body offsets ``r`` (n, 3) turned nose up by the pitch (cos, sin)."""
+    return np.stack([r[:, 0] * c - r[:, 2] * s, r[:, 0] * s + r[:, 2] * c], axis=1)
+
+
+def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
+    """The edges of the body's outline seen from the side, as end points (e, 3) in m.
+
+    An edge is on the outline seen along ``y`` when one of its two faces faces port and the
+    other starboard (or either is edge-on). Turning the body about ``y`` (its pitch) does not
+    change which faces face which way, so these edges serve every pitch: the keel line at
+    any pitch is the lower envelope of their side views. Kept on the hull.
+    """
+    cached = hull.__dict__.get("_silhouette")
+    if cached is not None:
+        return cached
+    v, f = hull.vertices, hull.faces
+    ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
+    directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    order = np.argsort(lo * len(v) + hi, kind="stable")
+    face = np.repeat(np.arange(len(f)), 3)[order]
+    # a closed manifold uses each edge twice: the two uses are neighbours once sorted
+    side = (np.sign(ny[face[0::2]]) * np.sign(ny[face[1::2]])) <= 0
+    ends = directed[order[0::2][side]]
+    out = (v[ends[:, 0]], v[ends[:, 1]])
+    hull.__dict__["_silhouette"] = out
+    return out
+
+
+def _lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
+    """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
+
+    Evaluated exactly at every end point; where two segments cross between end points the
+    envelope is refined at the middle of that interval (the crossing point itself is not
+    found, so there the line may lie a little high).
+    """
+    xs = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
+    z = _envelope_at(a, b, xs)
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    zm = _envelope_at(a, b, mid)
+    lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
+    if lower.any():
+        xs = np.concatenate([xs, mid[lower]])
+        z = np.concatenate([z, zm[lower]])
+        order = np.argsort(xs)
+        xs, z = xs[order], z[order]
+    return KeelLine(xs, z)
+
+
+def _envelope_at(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    """Lowest height of the segments over each of the sorted abscissae ``xs``."""
     lo = np.minimum(a[:, 0], b[:, 0])
     hi = np.maximum(a[:, 0], b[:, 0])
     i0 = np.searchsorted(xs, lo, side="left")
-    i1 = np.searchsorted(xs, hi, side="right")  # break points i0 .. i1-1 lie on the edge
+    i1 = np.searchsorted(xs, hi, side="right")  # abscissae i0 .. i1-1 lie on the segment
     count = i1 - i0
-    edge = np.repeat(np.arange(len(a)), count)
-    idx = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + i0[edge]
-    xa, za, xb, zb = a[edge, 0], a[edge, 1], b[edge, 0], b[edge, 1]
+    seg = np.repeat(np.arange(len(a)), count)
+    idx = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
+    xa, za, xb, zb = a[seg, 0], a[seg, 1], b[seg, 0], b[seg, 1]
     x = xs[idx]
     with np.errstate(divide="ignore", invalid="ignore"):
         t = np.where(xb != xa, (x - xa) / (xb - xa), 0.0)
     z_on = np.where(xb != xa, za + t * (zb - za), np.minimum(za, zb))
     z = np.full(len(xs), np.inf)
     np.minimum.at(z, idx, z_on)
-    return KeelLine(xs, z)
+    return z

@@ -34,7 +34,13 @@ from .errors import CaseError, InputError
 from .forces import ForceResult, force_on
 from .geometry import frame
 from .mesh import Hull
-from .sections import _check_deadrise, _height_at, _slice_count, sections_at
+from .sections import (
+    _check_deadrise,
+    _check_slicing,
+    _height_at,
+    _slice_count,
+    sections_at,
+)
 from .solvers.base import Solver
 from .solvers.registry import get_solver
 from .state import Fluid, Motion, Pose
@@ -71,6 +77,12 @@ class ForceModel:
         Water density and gravity.
     deadrise : str
         Deadrise estimator (default ``"wedge"``).
+    slicing : str
+        ``"wetted"`` (default) or ``"fixed"`` (cut once per pitch and reused), see
+        :data:`~hullslice.sections.SLICINGS`.
+    cache : bool
+        Reuse the fixed slicing's cut (default); False cuts afresh at every call, for
+        checking that both give the same numbers.
     """
 
     def __init__(
@@ -81,6 +93,8 @@ class ForceModel:
         solver: str | Solver | type[Solver] | None = None,
         fluid: Fluid | None = None,
         deadrise: str = "wedge",
+        slicing: str = "wetted",
+        cache: bool = True,
     ) -> None:
         if hull.mass is None:
             raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
@@ -89,13 +103,17 @@ class ForceModel:
         self.solver = get_solver(solver)
         self.fluid = fluid or Fluid()
         self.deadrise = _check_deadrise(deadrise)
+        self.slicing = _check_slicing(slicing)
+        self.cache = bool(cache)
 
     def __call__(self, pose: Pose, motion: Motion) -> ForceResult:
         """The force result at a pose (its draft clipped to the body's height) and motion."""
         height = _height_at(self.hull, pose.pitch)
         if pose.draft > height:
             pose = Pose(height, pose.pitch)
-        sections = sections_at(self.hull, pose, self.slices, self.deadrise)
+        sections = sections_at(
+            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache
+        )
         return force_on(sections, motion, self.solver, self.fluid, float(self.hull.cg[0]))
 
     def draft(self, z_cg: float, pitch: float) -> float:
@@ -370,6 +388,7 @@ def simulate(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
     stop_on: Iterable[str] = tuple(STOP_RULES),
     progress: Callable[[float, float], None] | None = None,
 ) -> History:
@@ -399,9 +418,11 @@ def simulate(
     free_surge : bool
         Integrate the forward speed from the horizontal force (default: constant).
     slices : int
-        Slices over the wetted length at each instant (default 32).
-    solver, fluid, deadrise
-        As for :func:`~hullslice.forces.compute_force`.
+        Slices over the wetted length at each instant (default 32), or over the body's
+        length with ``slicing="fixed"``.
+    solver, fluid, deadrise, slicing
+        As for :func:`~hullslice.forces.compute_force`; ``slicing="fixed"`` cuts the hull
+        once per pitch and is much faster on large meshes.
     stop_on : iterable of str
         Stop rules that end the run (default all of :data:`STOP_RULES`); pass ``()`` to go
         on to ``t_end`` with the flagged values (the crossings are still recorded).
@@ -412,7 +433,9 @@ def simulate(
     -------
     History
     """
-    model = ForceModel(hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise)
+    model = ForceModel(
+        hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
+    )
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
     if w0 >= 0.0:
         raise InputError(
@@ -482,6 +505,7 @@ def simulate(
         "rho": model.fluid.rho,
         "g": g,
         "deadrise": model.deadrise,
+        "slicing": model.slicing,
         "scheme": "classical Runge-Kutta, 4th order, fixed step",
         "stop_on": list(rec.stop_on),
     }
@@ -496,6 +520,7 @@ def prescribed(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
     stop_on: Iterable[str] = (),
     progress: Callable[[float, float], None] | None = None,
 ) -> History:
@@ -517,7 +542,9 @@ def prescribed(
     2D+t force implies, ``F / m - g``.
     """
     kin = _check_kinematics(kinematics, hull)
-    model = ForceModel(hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise)
+    model = ForceModel(
+        hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
+    )
     rec = _Recorder(stop_on)
     t_all = kin["t"]
     g = model.fluid.g
@@ -540,6 +567,7 @@ def prescribed(
         "rho": model.fluid.rho,
         "g": g,
         "deadrise": model.deadrise,
+        "slicing": model.slicing,
         "stop_on": list(rec.stop_on),
         "rows": len(t_all),
     }

@@ -38,7 +38,7 @@ from .geometry import frame
 from .mesh import Hull
 from .state import Pose
 
-__all__ = ["DEADRISE_ESTIMATORS", "Sections", "cut", "section_properties"]
+__all__ = ["DEADRISE_ESTIMATORS", "SLICINGS", "Outline", "Sections", "cut", "section_properties"]
 
 Polygons = tuple[np.ndarray, ...]
 
@@ -48,6 +48,30 @@ DEADRISE_ESTIMATORS: dict[str, str] = {
     "waterline-slope": "slope of the contour where it meets the water",
     "keel-fit": "least-squares line through the keel fitted to the wetted contour",
 }
+
+
+class ShiftedPolygons(Sequence):
+    """Station contours moved by a fixed offset when they are read (no copy until then).
+
+    Parameters
+    ----------
+    polygons : sequence of sequences of (k, 2) float
+        Contours per station.
+    shift : (float, float)
+        Offset added to every point, m.
+    """
+
+    def __init__(self, polygons: Sequence[Polygons], shift: tuple[float, float]) -> None:
+        self._polygons = polygons
+        self._shift = np.asarray(shift, dtype=np.float64)
+
+    def __len__(self) -> int:
+        return len(self._polygons)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        return tuple(c + self._shift for c in self._polygons[i])
 
 
 def _readonly(a) -> np.ndarray:
@@ -93,7 +117,7 @@ class Sections:
         Earth height of the station's lowest point, m.
     y_keel : (n,) float
         Lateral position ``y`` of the piece's keel, m.
-    polygons : tuple of tuples of (k, 2) float
+    polygons : sequence of tuples of (k, 2) float
         Contours of each **station** in the earth ``(Y, Z)`` plane, m; the waterline is
         ``Z = 0``; outer contours counter-clockwise.
     deadrise_method : str
@@ -120,7 +144,7 @@ class Sections:
     keel_slope: np.ndarray
     keel_z: np.ndarray
     y_keel: np.ndarray
-    polygons: tuple[Polygons, ...] = field(repr=False, default=())
+    polygons: Sequence[Polygons] = field(repr=False, default=())
     deadrise_method: str = "wedge"
     draft: float = 0.0
     pitch: float = 0.0
@@ -221,9 +245,8 @@ def _check_deadrise(deadrise: str) -> str:
 
 def _height_at(hull: Hull, pitch: float) -> float:
     """Vertical extent of the body at a pitch, m."""
-    c, s = np.cos(pitch), np.sin(pitch)
-    z = hull.vertices[:, 0] * s + hull.vertices[:, 2] * c
-    return float(z.max() - z.min())
+    fr = frame(hull, pitch)
+    return fr.highest - fr.lowest
 
 
 # -- cutting -----------------------------------------------------------------------------------
@@ -236,6 +259,7 @@ def cut(
     *,
     deadrise: str = "wedge",
     stations: Sequence[float] | None = None,
+    slicing: str = "wetted",
 ) -> Sections:
     """Cut a hull at a pose into the slices of the 2D+t method.
 
@@ -254,6 +278,10 @@ def cut(
         Explicit station positions along ``X`` in m, instead of the mid-stations of ``n``
         equal slices; each then stands for a slice reaching halfway to its neighbours
         (clipped to the wetted length).
+    slicing : str
+        ``"wetted"`` (default, the paper's: ``n`` slices over the wetted length) or
+        ``"fixed"`` (``n`` slices over the body's length, cut once per pitch), see
+        :data:`SLICINGS`.
 
     Returns
     -------
@@ -261,6 +289,7 @@ def cut(
     """
     pose = _as_pose(pose)
     _check_deadrise(deadrise)
+    _check_slicing(slicing)
     height = _height_at(hull, pose.pitch)
     if pose.draft > height + TOL.coordinate * hull.size:
         raise InputError(
@@ -268,11 +297,25 @@ def cut(
             "would be under water; give a draft between 0 and the height"
         )
     if stations is None:
-        return sections_at(hull, pose, _slice_count(slices), deadrise)
+        return sections_at(hull, pose, _slice_count(slices), deadrise, slicing=slicing)
     x = np.asarray(stations, dtype=np.float64).ravel()
     if not np.all(np.isfinite(x)) or np.any(np.diff(x) <= 0):
         raise InputError("stations must be finite and strictly increasing (in m)")
     return sections_at(hull, pose, len(x), deadrise, stations=x)
+
+
+#: How the slices are placed, by name.
+SLICINGS: dict[str, str] = {
+    "wetted": "n equal slices over the wetted length at each instant (the paper's)",
+    "fixed": "n equal slices over the body's length, cut once per pitch; the slices at the "
+    "ends of the wetted part count their wetted length only",
+}
+
+
+def _check_slicing(slicing: str) -> str:
+    if slicing not in SLICINGS:
+        raise InputError(f"slicing {slicing!r} is unknown; choose one of {', '.join(SLICINGS)}")
+    return slicing
 
 
 def sections_at(
@@ -281,13 +324,21 @@ def sections_at(
     n: int,
     deadrise: str,
     stations: np.ndarray | None = None,
+    slicing: str = "wetted",
+    cache: bool = True,
 ) -> Sections:
-    """The sections at a pose, inputs already checked (see :func:`cut`)."""
+    """The sections at a pose, inputs already checked (see :func:`cut`).
+
+    ``slicing="fixed"`` places the slices over the body's length (see :data:`SLICINGS`);
+    ``cache=False`` cuts its stations afresh instead of reusing the pitch's cut (the same
+    numbers, for checking).
+    """
     fr = frame(hull, pose.pitch)
-    xg = fr.cg[0]
     level = fr.lowest + pose.draft  # the water surface, relative to the cg
     extent = fr.keel.below(level)
-    z_cg = fr.z_cg(pose.draft)
+    tol = TOL.coordinate * hull.size
+    if slicing == "fixed" and stations is None:
+        return _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache)
     if extent is None:
         x0 = x1 = float(fr.keel.x[np.argmin(fr.keel.z)])
     else:
@@ -301,41 +352,51 @@ def sections_at(
         else:
             rel, dx = np.empty(0), np.empty(0)
     else:
-        rel = np.asarray(stations, dtype=np.float64) - xg
+        rel = np.asarray(stations, dtype=np.float64) - fr.cg[0]
         bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
         dx = np.diff(np.clip(bounds, x0, x1))
-    polys = fr.cut(rel, z_cg)
-    keel_z, slope = fr.keel.at(rel, dx)
-    props = section_properties(polys, tol=TOL.coordinate * hull.size, deadrise=deadrise)
-    st = props["station"]
-    area = props["area"][st]
-    x_earth = rel + xg
+    polys = fr.cut(rel)
+    props = wetted_properties(Outline.of(polys, tol, fr.origin), level, tol, deadrise)
+    return _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise)
+
+
+def _station_mass(hull: Hull, fr, area: np.ndarray, rel: np.ndarray) -> np.ndarray:
+    """Mass per metre of the stations at ``rel`` (relative X) with section ``area``."""
     if hull.mass is None:
-        m_station = np.full(len(rel), np.nan)
-    elif hull.mass_distribution is None:
-        m_station = hull.mass / hull.volume * props["area"]
-    else:
-        # a line density along the body's axis through the cg, crossed by the tilted plane
-        c = np.cos(pose.pitch)
-        m_station = hull.mass_per_metre_at(xg + rel / c) / c
+        return np.full(len(rel), np.nan)
+    if hull.mass_distribution is None:
+        return hull.mass / hull.volume * area
+    # a line density along the body's axis through the cg, crossed by the tilted plane
+    c = np.cos(fr.pitch)
+    return hull.mass_per_metre_at(fr.cg[0] + rel / c) / c
+
+
+def _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise, scale=None):
+    """:class:`Sections` from per-station positions and per-entry properties."""
+    st = props["station"]
+    r = np.ones(len(st)) if scale is None else scale[st]
+    keel_z, slope = fr.keel.at(rel, dx)
+    z_cg = -level
+    shift = (fr.origin[0], fr.origin[1] + z_cg)
+    m_station = _station_mass(hull, fr, props["area"], rel)
     return Sections(
         station=st,
-        x=x_earth[st],
+        x=(rel + fr.cg[0])[st],
         dx=dx[st],
-        penetration=props["penetration"],
-        half_beam=props["half_beam"],
-        half_beam_port=props["half_beam_port"],
-        half_beam_stbd=props["half_beam_stbd"],
+        penetration=props["penetration"] * r,
+        half_beam=props["half_beam"] * r,
+        half_beam_port=props["half_beam_port"] * r,
+        half_beam_stbd=props["half_beam_stbd"] * r,
         deadrise=props["deadrise"],
         deadrise_port=props["deadrise_port"],
         deadrise_stbd=props["deadrise_stbd"],
-        area=area,
+        area=props["area"][st],
         mass_per_metre=m_station[st] * props["mass_share"],
         chine_wetted=props["chine_wetted"],
         keel_slope=slope[st],
         keel_z=(keel_z + z_cg)[st],
         y_keel=props["y_keel"],
-        polygons=tuple(polys),
+        polygons=ShiftedPolygons(polys, shift),
         deadrise_method=deadrise,
         draft=pose.draft,
         pitch=pose.pitch,
@@ -344,24 +405,213 @@ def sections_at(
     )
 
 
+def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> Sections:
+    """Fixed slices over the body's length; the wetted ones at this waterline.
+
+    Interior slices use their mid-station's section. A slice only partly wetted counts its
+    wetted length and stands at that part's middle, with the section of its own
+    mid-station (or, when that is dry, of its wetted neighbour's) made similar to the
+    section there: penetration and half-beams scaled by the keel line's depth ratio, the
+    deadrise kept. Its force then grows from zero as the water reaches it.
+    """
+    xa = float(fr.keel.x[0])
+    d, mids = fr.fixed_stations(n)
+    outline, polys = fr.fixed_outline(n, tol) if cache else _outline_of(fr, mids, tol)
+    if extent is None:
+        return _assemble(
+            hull,
+            fr,
+            pose,
+            level,
+            0.0,
+            np.empty(0),
+            np.empty(0),
+            wetted_properties(Outline.of([], tol), level, tol, deadrise),
+            [],
+            deadrise,
+        )
+    x0, x1 = extent
+    k = np.arange(
+        int(np.clip((x0 - xa) // d, 0, n - 1)), int(np.clip((x1 - xa) // d, 0, n - 1)) + 1
+    )
+    lo = np.maximum(xa + k * d, x0)
+    hi = np.minimum(xa + (k + 1) * d, x1)
+    keep = hi > lo
+    k, lo, hi = k[keep], lo[keep], hi[keep]
+    props = wetted_properties(outline, level, tol, deadrise)
+    wet_mid = np.zeros(n, dtype=bool)
+    wet_mid[props["station"][props["penetration"] > 0]] = True
+    full = np.isclose(hi - lo, d, rtol=1e-12, atol=0.0)
+    x = np.where(full, mids[k], 0.5 * (lo + hi))
+    source = k.copy()
+    # a partial slice whose own mid-station is dry borrows its wetted neighbour's section
+    inward = np.where(k == k.min(), 1, -1)
+    borrow = ~full & ~wet_mid[k]
+    source[borrow] = np.clip(k[borrow] + inward[borrow], 0, n - 1)
+    fresh = ~full & ~wet_mid[source]
+    kz_x, _ = fr.keel.at(x, hi - lo)
+    kz_src, _ = fr.keel.at(mids[source], np.full(len(source), d))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(full, 1.0, (level - kz_x) / (level - kz_src))
+    # entries of the chosen sources, one slice after another (entries sorted by station)
+    first = np.searchsorted(props["station"], source, side="left")
+    count = np.searchsorted(props["station"], source, side="right") - first
+    take = _prefix_index(first, count)
+    slot = np.repeat(np.arange(len(source)), count)
+    sel = {key: val[take] for key, val in props.items() if key != "area"}
+    sel["station"] = slot
+    sel["area"] = props["area"][source]
+    slice_polys = [polys[src] for src in source]
+    if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
+        sel, slice_polys = _with_fresh(fr, sel, slice_polys, fresh, x, level, tol, deadrise)
+        ratio = np.where(fresh, 1.0, ratio)
+    return _assemble(
+        hull, fr, pose, level, x1 - x0, x, hi - lo, sel, slice_polys, deadrise, scale=ratio
+    )
+
+
+def _outline_of(fr, rel: np.ndarray, tol: float):
+    polys = fr.cut(rel)
+    return Outline.of(polys, tol, fr.origin), polys
+
+
+def _with_fresh(fr, sel, slice_polys, fresh, x, level, tol, deadrise):
+    """Replace the entries of the slices marked ``fresh`` by a cut at their position."""
+    idx = np.flatnonzero(fresh)
+    outline, polys = _outline_of(fr, x[idx], tol)
+    new = wetted_properties(outline, level, tol, deadrise)
+    keep = ~np.isin(sel["station"], idx)
+    out = {}
+    for key in sel:
+        if key == "area":
+            area = sel["area"].copy()
+            area[idx] = new["area"]
+            out["area"] = area
+        elif key == "station":
+            out["station"] = np.concatenate([sel["station"][keep], idx[new["station"]]])
+        else:
+            out[key] = np.concatenate([sel[key][keep], new[key]])
+    order = np.argsort(out["station"], kind="stable")
+    out = {key: (val if key == "area" else val[order]) for key, val in out.items()}
+    for j, i in enumerate(idx):
+        slice_polys[i] = polys[j]
+    return out, slice_polys
+
+
 # -- properties of cross-sections ---------------------------------------------------------------
 
 
-def _segments(polygons: Sequence[Polygons]):
-    """All contour edges as arrays: station index, start (y, z), end (y, z), and whether
-    the edge belongs to an outer contour (counter-clockwise) rather than a hole."""
-    contours = [c for secs in polygons for c in secs]
-    if not contours:
-        e = np.empty((0, 2))
-        return np.empty(0, dtype=np.int64), e, e, np.empty(0, dtype=bool)
-    sizes = np.array([len(c) for c in contours])
-    per_station = [len(secs) for secs in polygons]
-    a = np.concatenate(contours)
-    b = np.concatenate([np.roll(c, -1, axis=0) for c in contours])
-    contour = np.repeat(np.arange(len(contours)), sizes)
-    station = np.repeat(np.repeat(np.arange(len(polygons)), per_station), sizes)
-    signed = np.bincount(contour, weights=a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1])
-    return station, a, b, signed[contour] > 0.0
+@dataclass(frozen=True, eq=False)
+class Outline:
+    """The contour edges of a set of station sections, and what does not depend on the water.
+
+    Only the edges of outer contours (counter-clockwise) are kept: the wetted geometry is
+    theirs, holes being inside the body. Edges are sorted by station, then by their lower
+    end's height, so that those reaching below a waterline are a prefix of each station's.
+
+    Attributes
+    ----------
+    station : (e,) int
+        Station of each edge.
+    ya, za, yb, zb : (e,) float
+        Start and end of each edge, m.
+    zlo : (e,) float
+        Height of the edge's lower end.
+    start : (s + 1,) int
+        Each station's first edge (and the end).
+    area : (s,) float
+        Area of each station's whole section, holes deducted, m^2.
+    zmin, ymin, ymax : (s,) float
+        Lowest point and lateral extent of each section (``inf``/``-inf`` when empty).
+    z_chine : (s,) float
+        Height of the lower of the section's widest points on the two sides (the chine: the
+        lowest vertex at the extreme ``y``), m.
+    """
+
+    station: np.ndarray
+    ya: np.ndarray
+    za: np.ndarray
+    yb: np.ndarray
+    zb: np.ndarray
+    zlo: np.ndarray
+    start: np.ndarray
+    area: np.ndarray
+    zmin: np.ndarray
+    ymin: np.ndarray
+    ymax: np.ndarray
+    z_chine: np.ndarray
+
+    @property
+    def n_stations(self) -> int:
+        return len(self.area)
+
+    @classmethod
+    def of(
+        cls, polygons: Sequence[Polygons], tol: float, origin: tuple[float, float] = (0.0, 0.0)
+    ) -> Outline:
+        """The outline of station sections given as contours (see :func:`section_properties`),
+        each point moved by ``origin``."""
+        s = len(polygons)
+        contours = [c for secs in polygons for c in secs]
+        if contours:
+            sizes = np.array([len(c) for c in contours])
+            a = np.concatenate(contours)
+            if origin != (0.0, 0.0):
+                a = a + np.asarray(origin)
+            nxt = np.arange(len(a)) + 1
+            nxt[np.cumsum(sizes) - 1] = np.cumsum(sizes) - sizes  # each contour closes
+            b = a[nxt]
+            contour = np.repeat(np.arange(len(contours)), sizes)
+            station = np.repeat(np.repeat(np.arange(s), [len(secs) for secs in polygons]), sizes)
+        else:
+            a = b = np.empty((0, 2))
+            contour = station = np.empty(0, dtype=np.int64)
+        cross = a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]
+        area = np.bincount(station, weights=0.5 * cross, minlength=s)
+        outer = (np.bincount(contour, weights=cross) > 0.0)[contour] if len(a) else contour > 0
+        station, a, b = station[outer], a[outer], b[outer]
+        ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+        zlo = np.minimum(za, zb)
+        order = np.lexsort((zlo, station))
+        station, ya, za, yb, zb, zlo = (v[order] for v in (station, ya, za, yb, zb, zlo))
+        zmin = _group_min(station, za, s)
+        ymax = _group_max(station, ya, s)
+        ymin = _group_min(station, ya, s)
+        at_port = ya >= ymax[station] - tol
+        at_stbd = ya <= ymin[station] + tol
+        z_chine = np.minimum(
+            _group_min(station[at_port], za[at_port], s),
+            _group_min(station[at_stbd], za[at_stbd], s),
+        )
+        start = np.searchsorted(station, np.arange(s + 1))
+        return cls(station, ya, za, yb, zb, zlo, start, area, zmin, ymin, ymax, z_chine)
+
+    def below(self, level: float) -> tuple:
+        """The edges reaching below ``level`` (a prefix of each station's), with heights
+        measured from ``level``: ``station, ya, za, yb, zb``."""
+        idx = _prefix_index(self.start[:-1], _prefix_counts(self, level))
+        return (
+            self.station[idx],
+            self.ya[idx],
+            self.za[idx] - level,
+            self.yb[idx],
+            self.zb[idx] - level,
+        )
+
+
+def _prefix_counts(outline: Outline, level: float) -> np.ndarray:
+    """For each station, how many of its edges (sorted by lower end) reach below ``level``."""
+    cum = np.concatenate([[0], np.cumsum(outline.zlo < level)])
+    return cum[outline.start[1:]] - cum[outline.start[:-1]]
+
+
+def _prefix_index(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
+    """Indices ``starts[i] .. starts[i] + counts[i] - 1`` for all ``i``, concatenated."""
+    total = int(counts.sum())
+    if total == 0:
+        return np.empty(0, dtype=np.int64)
+    offsets = np.repeat(starts - (np.cumsum(counts) - counts), counts)
+    return np.arange(total) + offsets
 
 
 def _group_min(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
@@ -400,35 +650,35 @@ def section_properties(
         ``y_keel``, ``mass_share`` (the piece's share of its station's mass, by waterline
         width), ``chine_wetted``.
     """
-    s = len(polygons)
-    station, a, b, outer = _segments(polygons)
-    area = np.bincount(station, weights=0.5 * (a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]), minlength=s)
-    # the wetted geometry is that of the outer contours (holes are inside the body)
-    station, a, b = station[outer], a[outer], b[outer]
-    ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
-    zmin = _group_min(station, za, s)
-    ymax = _group_max(station, ya, s)
-    ymin = _group_min(station, ya, s)
-    # widest point on each side: the lowest vertex at the extreme y (a vertical side's lower
-    # corner is the chine)
-    at_port = ya >= ymax[station] - tol
-    at_stbd = ya <= ymin[station] + tol
-    z_port = _group_min(station[at_port], za[at_port], s)
-    z_stbd = _group_min(station[at_stbd], za[at_stbd], s)
-    chine_station = (z_port <= tol) | (z_stbd <= tol)
+    outline = Outline.of(polygons, tol)
+    return wetted_properties(outline, 0.0, tol, deadrise)
 
-    pieces = _wetted_pieces(station, a, b, s, zmin, ymin, ymax)
+
+def wetted_properties(
+    outline: Outline, level: float, tol: float, deadrise: str = "wedge"
+) -> dict[str, np.ndarray]:
+    """Properties of the sections of an :class:`Outline` with the water at height ``level``.
+
+    See :func:`section_properties` for the result.
+    """
+    s = outline.n_stations
+    station, ya, za, yb, zb = outline.below(level)
+    zmin = outline.zmin - level
+    ymin, ymax = outline.ymin, outline.ymax
+    chine_station = outline.z_chine - level <= tol
+
+    pieces = _wetted_pieces(station, ya, za, yb, zb, s, zmin, ymin, ymax)
     ps, yl, yr, tan_l, tan_r = pieces
     m = len(ps)
     # underwater parts of the segments, assigned to the piece above them
     za_c, zb_c = np.minimum(za, 0.0), np.minimum(zb, 0.0)
-    under = (za < 0.0) | (zb < 0.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        ya_c = np.where(za < 0.0, ya, ya + (0.0 - za) * (yb - ya) / (zb - za))
-        yb_c = np.where(zb < 0.0, yb, ya + (0.0 - za) * (yb - ya) / (zb - za))
-    seg_piece = _assign(station[under], 0.5 * (ya_c + yb_c)[under], ps, yl, yr)
-    sel = np.flatnonzero(under)[seg_piece >= 0]
-    seg_piece = seg_piece[seg_piece >= 0]
+        yc = ya + (0.0 - za) * (yb - ya) / (zb - za)
+        ya_c = np.where(za < 0.0, ya, yc)
+        yb_c = np.where(zb < 0.0, yb, yc)
+    seg_piece = _assign(station, 0.5 * (ya_c + yb_c), ps, yl, yr)
+    sel = np.flatnonzero(seg_piece >= 0)
+    seg_piece = seg_piece[sel]
     y1, z1, y2, z2 = ya_c[sel], za_c[sel], yb_c[sel], zb_c[sel]
     # keel of each piece: its lowest underwater point
     zk = _group_min(seg_piece, np.minimum(z1, z2), m) if m else np.empty(0)
@@ -463,7 +713,9 @@ def section_properties(
     share = width / np.bincount(ps, weights=width, minlength=s)[ps] if m else width
 
     # one dry entry for each station without a wetted piece
-    dry = np.setdiff1d(np.arange(s), ps)
+    has_piece = np.zeros(s, dtype=bool)
+    has_piece[ps] = True
+    dry = np.flatnonzero(~has_piece)
     nd = len(dry)
     entry_station = np.concatenate([ps, dry])
     order = np.argsort(entry_station, kind="stable")
@@ -473,7 +725,7 @@ def section_properties(
         return np.concatenate([wet, np.full(nd, fill) if np.isscalar(fill) else fill])[order]
 
     return {
-        "area": area,
+        "area": outline.area,
         "station": entry_station[order],
         "penetration": col(p, 0.0),
         "half_beam": col(0.5 * width, 0.0),
@@ -488,7 +740,7 @@ def section_properties(
     }
 
 
-def _wetted_pieces(station, a, b, s, zmin, ymin, ymax):
+def _wetted_pieces(station, ya, za, yb, zb, s, zmin, ymin, ymax):
     """The wetted pieces of each station: the intervals of the waterline inside the body.
 
     Along the waterline, a contour going down (into the water) opens an interval inside
@@ -502,7 +754,6 @@ def _wetted_pieces(station, a, b, s, zmin, ymin, ymax):
         For each piece its station, the ends of its waterline interval (m) and the slope
         ``|dz/dy|`` of the contour where it meets the water at each end.
     """
-    ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
     down = (za >= 0.0) & (zb < 0.0)
     up = (za < 0.0) & (zb >= 0.0)
     cross = down | up
@@ -520,7 +771,9 @@ def _wetted_pieces(station, a, b, s, zmin, ymin, ymax):
     ps = sc[opens]
     yl, yr = yc[opens], yc[closes]
     tl, tr = slope[opens], slope[closes]
-    submerged = np.setdiff1d(np.flatnonzero(zmin < 0.0), sc)
+    crossed = np.zeros(s, dtype=bool)
+    crossed[sc] = True
+    submerged = np.flatnonzero((zmin < 0.0) & ~crossed)
     if len(submerged):
         ps = np.concatenate([ps, submerged])
         yl = np.concatenate([yl, ymin[submerged]])

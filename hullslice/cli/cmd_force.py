@@ -22,6 +22,7 @@ from .common import (
     add_mesh_options,
     add_output_options,
     add_pose_options,
+    add_slicing_option,
     add_solver_options,
     emit,
     fluid,
@@ -73,6 +74,7 @@ def add_parser(sub) -> None:
         default="wedge",
         help="local deadrise estimator (default: wedge)",
     )
+    add_slicing_option(g)
     add_fluid_options(p)
     add_output_options(p)
     p.set_defaults(func=run)
@@ -96,6 +98,7 @@ def run(args: argparse.Namespace) -> int:
         solver=slv,
         fluid=fluid(args),
         deadrise=args.deadrise,
+        slicing=args.slicing,
     )
     finest = study.finest
     summary = convergence_summary(study)

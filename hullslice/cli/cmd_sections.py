@@ -12,6 +12,7 @@ from .common import (
     add_mesh_options,
     add_output_options,
     add_pose_options,
+    add_slicing_option,
     emit,
     load,
     number,
@@ -50,13 +51,20 @@ def add_parser(sub) -> None:
         default="wedge",
         help="local deadrise estimator (default: wedge, the equivalent wedge p / c)",
     )
+    add_slicing_option(g)
     add_output_options(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     hull = load(args)
-    sections = cut(hull, Pose(args.draft, args.pitch), args.slices, deadrise=args.deadrise)
+    sections = cut(
+        hull,
+        Pose(args.draft, args.pitch),
+        args.slices,
+        deadrise=args.deadrise,
+        slicing=args.slicing,
+    )
     records = section_records(sections)
     if args.format == "json":
         emit(

@@ -24,6 +24,7 @@ from .common import (
     add_mesh_options,
     add_output_options,
     add_pose_options,
+    add_slicing_option,
     add_solver_options,
     emit,
     fluid,
@@ -110,6 +111,7 @@ def add_parser(sub) -> None:
         default="wedge",
         help="local deadrise estimator (default: wedge)",
     )
+    add_slicing_option(m)
     add_fluid_options(p)
     add_output_options(p)
     p.set_defaults(func=run)
@@ -173,6 +175,7 @@ def run(args: argparse.Namespace) -> int:
         "solver": solver(args),
         "fluid": fluid(args),
         "deadrise": args.deadrise,
+        "slicing": args.slicing,
         "progress": progress,
     }
     try:

@@ -199,6 +199,20 @@ def angle(unit: str):
     return parse
 
 
+def add_slicing_option(g) -> None:
+    """``--slicing wetted|fixed``."""
+    from ..sections import SLICINGS
+
+    g.add_argument(
+        "--slicing",
+        choices=list(SLICINGS),
+        default="wetted",
+        help="wetted: the slices cover the wetted length at each instant (the paper's); "
+        "fixed: they cover the body's length and are cut once per pitch, much faster on "
+        "large meshes (default: wetted)",
+    )
+
+
 def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> None:
     """Pitch (and optionally forward speed and pitch rate) options, in degrees and m/s."""
     g.add_argument(
