@@ -62,8 +62,8 @@ def main() -> None:
     hs.cut(hull, draft, args.stations)  # warm the cached edges and slicer
 
     t_cut = median_time(lambda: hs.cut(hull, draft, args.stations), args.repeat)
-    slicer, _, scale = hull._slicer
-    xs = np.linspace(-4.9, 4.9, args.stations) * scale
+    slicer, _ = hull._slicer
+    xs = np.linspace(-4.9, 4.9, args.stations)
     t_raw = median_time(lambda: [slicer.slice(float(x)) for x in xs], args.repeat)
 
     print(f"mesh: {len(hull.faces)} faces, {len(hull.vertices)} vertices")

@@ -31,12 +31,14 @@ from .errors import (
     UnknownSolverError,
 )
 from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
+from .mass import MassDistribution, read_mass_distribution
 from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
     CharacteristicCurves,
     CurveSolver,
+    MomentumSolver,
     SectionLoads,
     Solver,
     get_solver,
@@ -67,8 +69,10 @@ __all__ = [
     "HullsliceError",
     "HullsliceWarning",
     "InputError",
+    "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
+    "MomentumSolver",
     "Motion",
     "PluginError",
     "PluginWarning",
@@ -90,6 +94,7 @@ __all__ = [
     "load_hull",
     "prescribed",
     "read_kinematics",
+    "read_mass_distribution",
     "richardson",
     "simulate",
     "validate_case",

@@ -2,6 +2,23 @@
 
 ``F_z = sum_j F^j``, ``F^j = f^j d^j`` with ``f^j`` the force per metre the 2D solver gives
 for slice ``j`` and ``d^j`` its thickness. Dry slices (zero penetration) carry no force.
+
+**Penetration velocity of a section.** The planes of the slices are fixed in the earth. A
+body point at ``r`` from the centre of gravity moves at ``dX/dt = u - q (Z - Z_g)``,
+``dZ/dt = w + q (X - X_g)`` (``u`` forward speed, ``w`` vertical velocity, ``q`` pitch rate,
+nose up positive). The keel height ``Z_k(X, t)`` at a fixed plane changes as the body point
+at the keel moves up or down and as the keel line slides through the plane:
+
+    v = dZ_k/dt |_X = w + q (X - X_g) - (u - q (Z_k - Z_g)) dZ_k/dX
+
+With no pitch rate and no forward speed, ``v = w``. A body moving forward with its keel
+rising towards the bow (``dZ_k/dX > 0``, nose up) pushes each plane's section down.
+
+**Horizontal force and pitch moment.** The slice force acts normal to the keel line (the
+pressure on the body's bottom), so it has a horizontal part ``F_x^j = -F^j dZ_k/dX`` (a
+drag when the keel rises forward). The pitch moment about the centre of gravity, nose up
+positive, is ``sum_j (X^j - X_g) F^j - (Z^j - Z_g) F_x^j``, each force applied at its
+station halfway between the keel and the waterline. Friction is not modelled.
 """
 
 from __future__ import annotations
@@ -19,13 +36,17 @@ from .solvers.base import SectionLoads, Solver
 from .solvers.registry import describe, get_solver
 from .state import Fluid, Motion, Pose
 
-__all__ = ["ConvergenceStudy", "ForceResult", "compute_force", "convergence", "evaluate"]
+__all__ = [
+    "ConvergenceStudy",
+    "ForceResult",
+    "compute_force",
+    "convergence",
+    "evaluate",
+    "force_on",
+    "section_velocity",
+]
 
 CHINE_REASON = "water at or above the section's chine/widest point"
-SPANS_REASON = (
-    "the section meets the waterline in {n} separate spans (keels joined above the water): "
-    "one equivalent wedge does not describe it"
-)
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,16 +76,41 @@ class ForceResult:
     fluid: Fluid
     pose: Pose
     motion: Motion
+    x_cg: float = 0.0
 
     @property
     def force(self) -> np.ndarray:
-        """(n,) float: force on each slice in N, positive up."""
+        """(n,) float: vertical force on each slice (entry) in N, positive up."""
         return self.loads.force_per_metre * self.sections.dx
+
+    @property
+    def force_x(self) -> np.ndarray:
+        """(n,) float: horizontal force on each slice in N, positive forward."""
+        return -self.force * self.sections.keel_slope
 
     @property
     def total(self) -> float:
         """Total vertical force in N, positive up (Eq. 12)."""
         return float(self.force.sum())
+
+    @property
+    def total_x(self) -> float:
+        """Total horizontal force in N, positive forward."""
+        return float(self.force_x.sum())
+
+    @property
+    def moment(self) -> float:
+        """Pitch moment about the centre of gravity in N m, positive nose up."""
+        s = self.sections
+        arm_x = s.x - self.x_cg
+        arm_z = 0.5 * s.keel_z - s.z_cg
+        return float((arm_x * self.force - arm_z * self.force_x).sum())
+
+    @property
+    def station_force(self) -> np.ndarray:
+        """(s,) float: vertical force on each station (its pieces added), N."""
+        s = self.sections
+        return np.bincount(s.station, weights=self.force, minlength=s.n_stations)
 
     @property
     def valid(self) -> np.ndarray:
@@ -83,17 +129,21 @@ class ForceResult:
         """Per-slice columns by name, SI units (deadrise in degrees)."""
         s = self.sections
         cols = {
+            "station": s.station,
             "x": s.x,
-            "part": s.part,
             "dx": s.dx,
             "penetration": s.penetration,
             "velocity": self.velocity,
             "half_beam": s.half_beam,
             "deadrise_deg": s.deadrise_deg,
+            "deadrise_port_deg": np.degrees(s.deadrise_port),
+            "deadrise_stbd_deg": np.degrees(s.deadrise_stbd),
+            "keel_slope": s.keel_slope,
             "area": s.area,
             "mass_per_metre": s.mass_per_metre,
             "force_per_metre": self.loads.force_per_metre,
             "force": self.force,
+            "force_x": self.force_x,
         }
         cols.update(self.loads.diagnostics)
         cols["valid"] = self.loads.valid
@@ -105,15 +155,32 @@ def _as_motion(motion: Motion | float) -> Motion:
     return motion if isinstance(motion, Motion) else Motion(velocity=motion)
 
 
+def section_velocity(sections: Sections, motion: Motion, x_cg: float) -> np.ndarray:
+    """Penetration velocity of each section in m/s, negative down (see the module notes).
+
+    Parameters
+    ----------
+    sections : Sections
+    motion : Motion
+        Vertical velocity and forward speed of the centre of gravity (m/s), pitch rate
+        (rad/s).
+    x_cg : float
+        Earth ``X`` of the centre of gravity, m.
+    """
+    q, u = motion.pitch_rate, motion.forward_speed
+    arm_x = sections.x - x_cg
+    arm_z = sections.keel_z - sections.z_cg
+    return motion.velocity + q * arm_x - (u - q * arm_z) * sections.keel_slope
+
+
 def evaluate(
     solver: Solver, sections: Sections, velocity: np.ndarray, fluid: Fluid
 ) -> SectionLoads:
     """Run a solver on the wetted sections and check what it returns.
 
     Dry sections get zero force. The result covers every section; its ``valid`` and
-    ``reason`` include the geometric checks that the water is below each section's chine
-    and meets each section in one span (see ``Sections.waterline_spans``). Floating-point
-    warnings inside the solver are silenced: what it returns is checked instead.
+    ``reason`` include the geometric check that the water is below each section's chine.
+    Floating-point warnings inside the solver are silenced: what it returns is checked.
 
     Raises
     ------
@@ -150,47 +217,44 @@ def evaluate(
             full[wet] = arr
             diagnostics[k] = full
     chine = sections.chine_wetted
-    split = sections.waterline_spans > 1
-    for i in np.flatnonzero(chine | split):
-        why = [reason[i]] if reason[i] else []
-        if chine[i]:
-            why.append(CHINE_REASON)
-        if split[i]:
-            why.append(SPANS_REASON.format(n=int(sections.waterline_spans[i])))
-        reason[i] = "; ".join(why)
-    valid &= ~(chine | split)
+    if chine.any():
+        valid &= ~chine
+        reason[chine] = [f"{r}; {CHINE_REASON}" if r else CHINE_REASON for r in reason[chine]]
     return SectionLoads(force, valid, reason, diagnostics)
 
 
 def _check_loads(solver: Solver, loads: object, sections: Sections, velocity) -> None:
-    who = describe(solver)
-    n = len(sections)
-    if not isinstance(loads, SectionLoads):
-        raise SolverError(
-            f"solver {who} returned {type(loads).__name__}, not hullslice.SectionLoads"
+    problem = _loads_problem(loads, len(sections))
+    if not problem and not np.all(np.isfinite(loads.force_per_metre)):
+        i = int(np.flatnonzero(~np.isfinite(loads.force_per_metre))[0])
+        problem = (
+            f"a non-finite force per metre for {int((~np.isfinite(loads.force_per_metre)).sum())}"
+            f" of {len(sections)} sections (first: x = {sections.x[i]:.6g} m, penetration "
+            f"{sections.penetration[i]:.6g} m, deadrise {sections.deadrise_deg[i]:.4g} deg, mass "
+            f"per metre {sections.mass_per_metre[i]:.6g} kg/m, velocity {velocity[i]:.6g} m/s); "
+            "check these inputs, or use another solver"
         )
+    if problem:
+        # naming the plugin reads its distribution's metadata: only when there is a fault
+        raise SolverError(f"solver {describe(solver)} returned {problem}")
+
+
+def _loads_problem(loads: object, n: int) -> str:
+    """What is wrong with a solver's output for ``n`` sections ("" when nothing is)."""
+    if not isinstance(loads, SectionLoads):
+        return f"{type(loads).__name__}, not hullslice.SectionLoads"
     for name in ("force_per_metre", "valid", "reason"):
         shape = np.shape(getattr(loads, name))
         if shape != (n,):
-            raise SolverError(f"solver {who} returned {name} of shape {shape} for {n} sections")
+            return f"{name} of shape {shape} for {n} sections"
     for k, arr in loads.diagnostics.items():
         if np.shape(arr) != (n,):
-            raise SolverError(
-                f"solver {who} returned diagnostic {k!r} of shape {np.shape(arr)} for {n} sections"
-            )
+            return f"diagnostic {k!r} of shape {np.shape(arr)} for {n} sections"
     try:
-        bad = ~np.isfinite(np.asarray(loads.force_per_metre, dtype=np.float64))
+        np.asarray(loads.force_per_metre, dtype=np.float64)
     except (TypeError, ValueError):
-        raise SolverError(f"solver {who} returned a force per metre that is not numbers") from None
-    if bad.any():
-        i = int(np.flatnonzero(bad)[0])
-        raise SolverError(
-            f"solver {who} returned a non-finite force per metre for {int(bad.sum())} of {n} "
-            f"sections (first: x = {sections.x[i]:.6g} m, penetration "
-            f"{sections.penetration[i]:.6g} m, deadrise {sections.deadrise_deg[i]:.4g} deg, "
-            f"mass per metre {sections.mass_per_metre[i]:.6g} kg/m, velocity "
-            f"{velocity[i]:.6g} m/s); check these inputs, or use another solver"
-        )
+        return "a force per metre that is not numbers"
+    return ""
 
 
 def compute_force(
@@ -202,17 +266,19 @@ def compute_force(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
 ) -> ForceResult:
-    """The 2D+t force on a level hull moving vertically.
+    """The 2D+t force on a hull at one state.
 
     Parameters
     ----------
     hull : Hull
         The body, with its mass.
     pose : Pose or float
-        The pose, or the draft in m (depth of the lowest point below the water).
+        The pose (draft in m, pitch in rad), or the draft alone (level body).
     motion : Motion or float
-        The motion, or the vertical velocity in m/s (negative down).
+        The motion (vertical velocity and forward speed in m/s, pitch rate in rad/s), or the
+        vertical velocity alone (m/s, negative down).
     slices : int
         Number of slices over the wetted length (default 64).
     solver : str, Solver or Solver subclass, optional
@@ -221,6 +287,8 @@ def compute_force(
         Water density and gravity (default 1000 kg/m^3, 9.81 m/s^2).
     deadrise : str
         Deadrise estimator (default ``"wedge"``).
+    slicing : str
+        ``"wetted"`` (default) or ``"fixed"``, see :data:`~hullslice.sections.SLICINGS`.
 
     Returns
     -------
@@ -231,10 +299,18 @@ def compute_force(
     solver = get_solver(solver)
     if hull.mass is None:
         raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
-    sections = cut(hull, pose, slices, deadrise=deadrise)
-    velocity = np.full(len(sections), motion.velocity)
+    sections = cut(hull, pose, slices, deadrise=deadrise, slicing=slicing)
+    return force_on(sections, motion, solver, fluid, float(hull.cg[0]))
+
+
+def force_on(
+    sections: Sections, motion: Motion, solver: Solver, fluid: Fluid, x_cg: float
+) -> ForceResult:
+    """The force on cut sections moving with ``motion`` (inputs already checked)."""
+    velocity = section_velocity(sections, motion, x_cg)
     loads = evaluate(solver, sections, velocity, fluid)
-    return ForceResult(sections, velocity, loads, solver.name, fluid, pose, motion)
+    pose = Pose(sections.draft, sections.pitch)
+    return ForceResult(sections, velocity, loads, solver.name, fluid, pose, motion, x_cg)
 
 
 @dataclass(frozen=True, eq=False)
@@ -275,6 +351,7 @@ def convergence(
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
+    slicing: str = "wetted",
 ) -> ConvergenceStudy:
     """Forces for several slice counts and their Richardson extrapolation (paper, Fig. 8).
 

@@ -14,12 +14,14 @@ import os
 import re
 import warnings
 from array import array
+from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
 
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
+from .mass import MassDistribution
 
 __all__ = ["SUPPORTED_FORMATS", "Hull", "axis_matrix", "load_hull"]
 
@@ -133,17 +135,48 @@ class Hull:
         mass: float | None = None,
         name: str = "hull",
         source: dict | None = None,
+        mass_distribution: MassDistribution | None = None,
+        cg: Sequence[float] | None = None,
+        inertia: float | None = None,
     ) -> None:
         v, f, manifold, repairs = _checked_mesh(vertices, faces, name)
         self._vertices = _readonly(v)
         self._faces = _readonly(f)
         self._manifold = manifold
-        self.mass = _check_mass(mass)
         self.name = str(name)
         src = dict(source or {})
         src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
         self.source = src
-        if self.mass is not None:
+        self._set_mass(mass, mass_distribution, cg, inertia)
+
+    def _set_mass(self, mass, distribution, cg, inertia) -> None:
+        mass = _check_mass(mass)
+        if distribution is not None:
+            if not isinstance(distribution, MassDistribution):
+                raise InputError("mass_distribution must be a hullslice.MassDistribution")
+            total = distribution.total
+            if mass is None:
+                mass = total
+            elif abs(total - mass) > 0.005 * mass:
+                raise InputError(
+                    f"the mass distribution adds up to {total:.6g} kg but the mass is given as "
+                    f"{mass:.6g} kg: give one of them, or make them agree within 0.5 %"
+                )
+        self.mass = mass
+        self.mass_distribution = distribution
+        if cg is not None:
+            c = np.asarray(cg, dtype=np.float64).ravel()
+            if c.shape != (2,) or not np.all(np.isfinite(c)):
+                raise InputError(f"cg {cg!r} is not two numbers x, z (m, body frame)")
+            cg = c
+        self._cg_given = cg
+        if inertia is not None:
+            i = float(inertia)
+            if not (np.isfinite(i) and i > 0):
+                raise InputError(f"pitch inertia {inertia!r} kg m^2 is not positive")
+            inertia = i
+        self._inertia_given = inertia
+        if self.mass is not None and distribution is None:
             _check_density(self)
 
     # -- construction -------------------------------------------------------------------
@@ -159,6 +192,9 @@ class Hull:
         up: str = "+z",
         mass: float | None = None,
         name: str = "hull",
+        mass_distribution: MassDistribution | None = None,
+        cg: Sequence[float] | None = None,
+        inertia: float | None = None,
     ) -> Hull:
         """Build a hull from mesh arrays given in any length unit and axis orientation.
 
@@ -176,6 +212,8 @@ class Hull:
             Body mass in kg.
         name : str
             Name for reports.
+        mass_distribution, cg, inertia
+            Mass properties, see :meth:`Hull.with_mass` (SI, body frame).
         """
         scale = _unit_scale(units)
         rot = axis_matrix(forward, up)
@@ -193,15 +231,43 @@ class Hull:
                 v = np.asarray(vertices, dtype=np.float64)
         v = (v * scale) @ rot.T
         src = {"units": str(units), "forward": str(forward), "up": str(up)}
-        return cls(v, faces, mass=mass, name=name, source=src)
+        return cls(
+            v,
+            faces,
+            mass=mass,
+            name=name,
+            source=src,
+            mass_distribution=mass_distribution,
+            cg=cg,
+            inertia=inertia,
+        )
 
-    def with_mass(self, mass: float | None) -> Hull:
-        """The same hull with another mass in kg (a new object; this one is unchanged)."""
+    def with_mass(
+        self,
+        mass: float | None = None,
+        *,
+        mass_distribution: MassDistribution | None = None,
+        cg: Sequence[float] | None = None,
+        inertia: float | None = None,
+    ) -> Hull:
+        """The same body with other mass properties (a new hull; this one is unchanged).
+
+        Parameters
+        ----------
+        mass : float, optional
+            Mass in kg (default: the distribution's total).
+        mass_distribution : MassDistribution, optional
+            Mass along the body (default: uniform over the volume).
+        cg : (float, float), optional
+            Centre of gravity ``x, z`` in m, body frame (default: from the distribution,
+            or the centre of volume).
+        inertia : float, optional
+            Pitch moment of inertia about the centre of gravity, kg m^2 (default: from the
+            distribution, or the mesh with uniform density).
+        """
         new = object.__new__(Hull)
-        new.__dict__.update({k: v for k, v in self.__dict__.items() if k != "mass"})
-        new.mass = _check_mass(mass)
-        if new.mass is not None:
-            _check_density(new)
+        new.__dict__.update({k: self.__dict__[k] for k in _GEOMETRY if k in self.__dict__})
+        new._set_mass(mass, mass_distribution, cg, inertia)
         return new
 
     # -- geometry -------------------------------------------------------------------------
@@ -260,6 +326,57 @@ class Hull:
         cen = (a + b + c) / 4.0
         return _readonly(o + (vol[:, None] * cen).sum(axis=0) / vol.sum())
 
+    @functools.cached_property
+    def cg(self) -> np.ndarray:
+        """(3,) float: centre of gravity in m, body frame.
+
+        Given, or from the mass distribution (its line density at the height of the centre
+        of volume unless it says otherwise), or the centre of volume (uniform density).
+        """
+        c = self.centroid.copy()
+        if self._cg_given is not None:
+            c[[0, 2]] = self._cg_given
+        elif self.mass_distribution is not None:
+            c[[0, 2]] = self.mass_distribution.cg(line_z=self.centroid[2])
+        return _readonly(c)
+
+    @functools.cached_property
+    def pitch_inertia(self) -> float:
+        """Moment of inertia about the pitch axis (``y``) through the centre of gravity, kg m^2.
+
+        Given, or from the mass distribution, or from the mesh with uniform density.
+        """
+        if self._inertia_given is not None:
+            return self._inertia_given
+        if self.mass is None:
+            raise InputError(f"hull {self.name!r} has no mass: give its mass in kg (mass=...)")
+        if self.mass_distribution is not None:
+            return self.mass_distribution.pitch_inertia(self.cg[[0, 2]], self.centroid[2])
+        second = self._second_moment(self.cg)
+        return float(self.mass / self.volume * (second[0, 0] + second[2, 2]))
+
+    def _second_moment(self, origin: np.ndarray) -> np.ndarray:
+        """(3, 3) float: the volume integrals of ``r_i r_j`` with ``r = v - origin``, m^5."""
+        tri = self._vertices[self._faces] - origin
+        a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+        vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+        # tetrahedron (0, a, b, c): integral of r r^T = V/20 (sum v v^T + s s^T), s = a + b + c
+        s = a + b + c
+        outer = (
+            np.einsum("i,ij,ik->jk", vol, a, a)
+            + np.einsum("i,ij,ik->jk", vol, b, b)
+            + np.einsum("i,ij,ik->jk", vol, c, c)
+            + np.einsum("i,ij,ik->jk", vol, s, s)
+        )
+        return outer / 20.0
+
+    def mass_per_metre_at(self, x: np.ndarray) -> np.ndarray | None:
+        """Mass per metre of body length at body stations ``x`` (m) from the mass
+        distribution, kg/m; None when the mass is spread uniformly over the volume."""
+        if self.mass_distribution is None:
+            return None
+        return self.mass_distribution.at(x)
+
     @property
     def density(self) -> float | None:
         """Mean density in kg/m^3 (mass / volume), or None without a mass."""
@@ -267,23 +384,19 @@ class Hull:
 
     @functools.cached_property
     def _slicer(self):
-        # The hull moved so that its bounding-box centre is the origin, scaled to a unit
-        # diagonal, with axes permuted cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at
-        # constant Z, so a slice at Z = (x - xc) * scale is the body's station x, in
-        # ((y - yc) * scale, (z - zc) * scale). manifold3d computes its cross sections in
-        # single precision and rounds them to a fixed grid of 1e-8 units (Clipper2), so a
-        # body of any size and placement gets the same relative accuracy only when centred
-        # and scaled. Returns the moved manifold, the centre (3,) in m and the scale in 1/m.
+        # The hull moved so that its bounding-box centre is the origin, with axes permuted
+        # cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at constant Z, so a slice at
+        # Z = x - xc is the body's station x, in (y - yc, z - zc). Centring keeps
+        # manifold3d's single-precision cross sections accurate for any placement.
         c = self.bounds.mean(axis=0)
-        k = 1.0 / self.size
         m = np.array(
             [
-                [0.0, k, 0.0, -k * c[1]],
-                [0.0, 0.0, k, -k * c[2]],
-                [k, 0.0, 0.0, -k * c[0]],
+                [0.0, 1.0, 0.0, -c[1]],
+                [0.0, 0.0, 1.0, -c[2]],
+                [1.0, 0.0, 0.0, -c[0]],
             ]
         )
-        return self._manifold.transform(m), c, k
+        return self._manifold.transform(m), c
 
     def __repr__(self) -> str:
         mass = "no mass" if self.mass is None else f"{self.mass:g} kg"
@@ -292,6 +405,21 @@ class Hull:
             f"<Hull {self.name!r}: {len(self._faces)} faces, "
             f"{L:.4g} x {B:.4g} x {H:.4g} m, {self.volume:.6g} m^3, {mass}>"
         )
+
+
+#: Cached attributes that depend on the geometry only (kept by Hull.with_mass).
+_GEOMETRY = (
+    "_vertices",
+    "_faces",
+    "_manifold",
+    "name",
+    "source",
+    "bounds",
+    "size",
+    "volume",
+    "centroid",
+    "edges",
+)
 
 
 def _check_density(hull: Hull) -> None:
@@ -341,6 +469,9 @@ def load_hull(
     forward: str = "+x",
     up: str = "+z",
     mass: float | None = None,
+    mass_distribution: MassDistribution | None = None,
+    cg: Sequence[float] | None = None,
+    inertia: float | None = None,
 ) -> Hull:
     """Read an STL or OBJ file into a :class:`Hull`.
 
@@ -356,6 +487,12 @@ def load_hull(
         Mesh axis pointing up (default ``+z``).
     mass : float, optional
         Body mass in kg.
+    mass_distribution : MassDistribution, optional
+        Mass along the body in the body frame (SI), instead of a uniform density.
+    cg : (float, float), optional
+        Centre of gravity ``x, z`` in m, body frame.
+    inertia : float, optional
+        Pitch moment of inertia about the centre of gravity in kg m^2.
 
     Returns
     -------
@@ -370,7 +507,18 @@ def load_hull(
     """
     p = Path(path)
     v, f = read_mesh(p)
-    hull = Hull.from_arrays(v, f, units=units, forward=forward, up=up, mass=mass, name=p.stem)
+    hull = Hull.from_arrays(
+        v,
+        f,
+        units=units,
+        forward=forward,
+        up=up,
+        mass=mass,
+        name=p.stem,
+        mass_distribution=mass_distribution,
+        cg=cg,
+        inertia=inertia,
+    )
     hull.source["path"] = str(p)
     return hull
 

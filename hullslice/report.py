@@ -158,7 +158,6 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
 #: Columns of the per-slice table of a force result (terminal view).
 SLICE_COLUMNS = (
     Column("j", "j", ""),
-    Column("part", "part", ""),
     Column("x", "x", "m", ".5f"),
     Column("dx", "d", "m", ".5f"),
     Column("penetration", "p", "m", ".5f"),
@@ -176,7 +175,6 @@ SLICE_COLUMNS = (
 #: Columns of the section table at one pose (terminal view).
 SECTION_COLUMNS = (
     Column("j", "j", ""),
-    Column("part", "part", ""),
     Column("x", "x", "m", ".5f"),
     Column("dx", "d", "m", ".5f"),
     Column("penetration", "p", "m", ".5f"),
@@ -188,29 +186,19 @@ SECTION_COLUMNS = (
 )
 
 
-def _records(columns: Mapping[str, np.ndarray], slice_index: np.ndarray) -> list[dict[str, Any]]:
-    return [
-        {"j": int(j) + 1, **{k: v[i] for k, v in columns.items()}}
-        for i, j in enumerate(slice_index)
-    ]
+def _records(columns: Mapping[str, np.ndarray]) -> list[dict[str, Any]]:
+    n = len(next(iter(columns.values()))) if columns else 0
+    return [{"j": j + 1, **{k: v[j] for k, v in columns.items()}} for j in range(n)]
 
 
 def section_records(sections) -> list[dict[str, Any]]:
-    """One dict per entry of a :class:`~hullslice.sections.Sections` (SI, deadrise in deg);
-    ``j`` numbers the slices from 1, ``part`` the separate parts of a slice from 0."""
-    return _records(sections.as_dict(), sections.slice_index)
+    """One dict per station of a :class:`~hullslice.sections.Sections` (SI, deadrise in deg)."""
+    return _records(sections.as_dict())
 
 
 def force_records(result) -> list[dict[str, Any]]:
-    """One dict per entry of a :class:`~hullslice.forces.ForceResult` (SI, deadrise in deg);
-    ``j`` numbers the slices from 1, ``part`` the separate parts of a slice from 0."""
-    return _records(result.columns(), result.sections.slice_index)
-
-
-def shown_columns(columns: Sequence[Column], sections) -> tuple[Column, ...]:
-    """The table columns worth showing: ``part`` only for sections in several parts."""
-    several = bool(np.any(sections.part > 0))
-    return tuple(c for c in columns if c.key != "part" or several)
+    """One dict per slice of a :class:`~hullslice.forces.ForceResult` (SI, deadrise in deg)."""
+    return _records(result.columns())
 
 
 def convergence_summary(study) -> dict[str, Any]:
@@ -249,6 +237,14 @@ HISTORY_COLUMNS = (
     Column("slices", "slices", ""),
     Column("valid", "valid", ""),
     Column("reason", "reason", ""),
+)
+
+
+#: Extra columns of a history with pitch or forward speed (terminal view).
+HISTORY_PITCH_COLUMNS = (
+    Column("pitch_deg", "pitch", "deg", ".3f"),
+    Column("forward_speed", "u", "m/s", ".3f"),
+    Column("moment", "M", "N m", ".4g"),
 )
 
 

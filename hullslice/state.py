@@ -34,9 +34,13 @@ class Pose:
     draft : float
         Depth of the body's lowest point below the calm water, in m (``>= 0``; ``0`` is
         first contact).
+    pitch : float
+        Pitch angle in rad, positive nose up (the body's forward ``x`` axis raised above
+        the horizontal); the body turns about its centre of gravity. Default 0 (level).
     """
 
     draft: float
+    pitch: float = 0.0
 
     def __post_init__(self) -> None:
         d = _finite(self.draft, "draft", "m")
@@ -45,23 +49,40 @@ class Pose:
                 f"draft {self.draft!r} m is negative: the draft is the depth of the body's "
                 "lowest point below the water, 0 at first contact"
             )
+        pitch = _finite(self.pitch, "pitch", "rad")
+        if abs(pitch) >= math.radians(80.0):
+            raise InputError(
+                f"pitch {math.degrees(pitch):.4g} deg is too steep for a 2D+t model: give a "
+                "pitch between -80 and 80 deg (in rad to the library, deg on the command line)"
+            )
         object.__setattr__(self, "draft", d)
+        object.__setattr__(self, "pitch", pitch)
 
 
 @dataclass(frozen=True)
 class Motion:
-    """The velocity of the body.
+    """The velocity of the body (of its centre of gravity, and its pitch rate).
 
     Parameters
     ----------
     velocity : float
         Vertical velocity in m/s, negative downward (into the water).
+    forward_speed : float
+        Horizontal velocity along the body's forward direction in m/s (default 0).
+    pitch_rate : float
+        Rate of change of the pitch in rad/s, positive nose up (default 0).
     """
 
     velocity: float
+    forward_speed: float = 0.0
+    pitch_rate: float = 0.0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "velocity", _finite(self.velocity, "velocity", "m/s"))
+        object.__setattr__(
+            self, "forward_speed", _finite(self.forward_speed, "forward speed", "m/s")
+        )
+        object.__setattr__(self, "pitch_rate", _finite(self.pitch_rate, "pitch rate", "rad/s"))
 
 
 @dataclass(frozen=True)

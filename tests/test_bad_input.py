@@ -157,9 +157,11 @@ def rounded_force(data: dict) -> None:
 
 
 def catamaran_force(data: dict) -> None:
-    # two floats moving together: each carries half the mass (tests/test_parts.py)
+    # two floats moving together: each carries its own half of the mass (tests/test_parts.py)
     assert data["force"] == pytest.approx(2 * wedge_force(MASS / 2), rel=1e-5)
-    assert [s["part"] for s in data["slices"]] == [0, 1] * SLICES
+    assert [s["station"] for s in data["slices"]] == list(np.repeat(np.arange(SLICES), 2))
+    # 10 kg over 1 m, half each
+    assert [s["mass_per_metre"] for s in data["slices"]] == pytest.approx([5.0] * 2 * SLICES)
     assert data["valid"] is True
 
 
@@ -185,9 +187,11 @@ def scaled_sections(scale: float) -> Callable[[dict], None]:
     return check
 
 
-def flagged_spans(data: dict) -> None:
-    assert data["valid"] is False and np.isfinite(data["force"])
-    assert all("meets the waterline in 2 separate spans" in s["reason"] for s in data["slices"])
+def twin_keel_pieces(data: dict) -> None:
+    # one entry per keel at each of the 4 stations, each with half the part's 10 kg/m
+    assert [s["station"] for s in data["slices"]] == [0, 0, 1, 1, 2, 2, 3, 3]
+    assert [s["mass_per_metre"] for s in data["slices"]] == pytest.approx([5.0] * 8)
+    assert np.isfinite(data["force"])
 
 
 def flagged_upward(data: dict) -> None:
@@ -573,7 +577,8 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "disjoint-bodies",
         "several disjoint bodies (a catamaran's two floats)",
-        "result: one entry per float at each station; the force is the sum of the floats'",
+        "result: one entry per float at each station, each with its own mass; the force is "
+        "the sum of the floats'",
         lambda t: [
             "force",
             stl(t, "cat.stl", *catamaran()),
@@ -589,8 +594,8 @@ CATALOGUE: tuple[Bad, ...] = (
     ),
     Bad(
         "twin-keels",
-        "a section meeting the water in several spans (twin keels joined above it)",
-        "result, flagged invalid: 'the section meets the waterline in 2 separate spans'",
+        "a section meeting the water in several places (twin keels joined above it)",
+        "result: one entry per wetted piece, the part's mass shared by their widths",
         lambda t: [
             "force",
             twin_keels(t),
@@ -606,7 +611,7 @@ CATALOGUE: tuple[Bad, ...] = (
             "--slices",
             "4",
         ],
-        check=flagged_spans,
+        check=twin_keel_pieces,
     ),
     # -- values
     Bad(

@@ -1,9 +1,10 @@
-"""Sections in several parts: a catamaran is the sum of its floats, twin keels are flagged.
+"""Sections in several parts: a catamaran is the sum of its floats.
 
 Reference: two floats moving together as one rigid body, far enough apart not to disturb
-each other's flow, carry each its own share of the mass; in the 2D+t method each float's
-slice is then a wedge of its own, so the pair's force is the sum of the forces on each
-float alone with its share of the mass, exactly (same stations, same formulas).
+each other's flow, carry each its own share of the mass (its volume's, the density being
+uniform); in the 2D+t method each float's slice is then a wedge of its own, so the pair's
+force is the sum of the forces on each float alone with its share of the mass (same
+stations, same formulas).
 """
 
 from __future__ import annotations
@@ -15,7 +16,6 @@ import pytest
 import hullslice as hs
 from hullslice import shapes
 from hullslice.motion import simulate
-from hullslice.sections import split_parts
 
 DRAFT, VELOCITY, SLICES = 0.03, -5.0, 16
 
@@ -50,20 +50,18 @@ def test_a_catamaran_is_the_sum_of_its_floats(floats):
 
     r = hs.compute_force(cat, DRAFT, VELOCITY, slices=SLICES)
     s = r.sections
-    assert len(s) == 2 * SLICES and s.slice_count == SLICES
-    assert list(s.part) == [0, 1] * SLICES
-    assert np.array_equal(s.slice_index, np.repeat(np.arange(SLICES), 2))
-    # each part is one float's section: area, penetration, half-beam, deadrise
-    h30, h20 = 0.1 * np.tan(np.radians(30.0)), 0.1 * np.tan(np.radians(20.0))
-    assert s.area[0::2] == pytest.approx(np.full(SLICES, 0.1 * h30), rel=1e-6)
-    assert s.area[1::2] == pytest.approx(np.full(SLICES, 0.1 * h20), rel=1e-6)
+    assert len(s) == 2 * SLICES and s.n_stations == SLICES
+    assert np.array_equal(s.station, np.repeat(np.arange(SLICES), 2))
+    # each entry is one float's section: penetration, half-beam, deadrise
     assert s.deadrise_deg[0::2] == pytest.approx(np.full(SLICES, 30.0), abs=1e-4)
     assert s.deadrise_deg[1::2] == pytest.approx(np.full(SLICES, 20.0), abs=1e-4)
     assert s.penetration == pytest.approx(np.full(2 * SLICES, DRAFT), rel=1e-6)
     assert s.half_beam[0::2] == pytest.approx(np.full(SLICES, DRAFT / np.tan(np.radians(30))))
-    # the mass per metre of the whole station is the sum of the parts'
-    station = np.bincount(s.slice_index, weights=s.mass_per_metre)
-    assert station == pytest.approx(np.full(SLICES, 20.0 * (0.1 * h30 + 0.1 * h20) / cat.volume))
+    # each float carries its own mass: its section's area times the density
+    h30, h20 = 0.1 * np.tan(np.radians(30.0)), 0.1 * np.tan(np.radians(20.0))
+    rho_b = 20.0 / cat.volume
+    assert s.mass_per_metre[0::2] == pytest.approx(np.full(SLICES, rho_b * 0.1 * h30), rel=1e-6)
+    assert s.mass_per_metre[1::2] == pytest.approx(np.full(SLICES, rho_b * 0.1 * h20), rel=1e-6)
 
     alone = [
         hs.compute_force(h.with_mass(share[h]), DRAFT, VELOCITY, slices=SLICES)
@@ -78,13 +76,15 @@ def test_a_catamaran_is_the_sum_of_its_floats(floats):
     assert list(r.valid[1::2]) == list(alone[1].valid)
 
 
-def test_no_half_beam_spans_both_floats(floats):
-    # what one equivalent wedge over the whole section gives: the half-beam spans both
-    # floats (0.3 m + half a float), a deadrise of a few degrees, a far larger force
+def test_a_dry_float_keeps_its_mass(floats):
+    # lift the port float by 2 cm: at 1 cm draft only the starboard float is wet, and it
+    # carries its own mass, not the pair's
     (vs, fs), (vp, fp) = floats
-    cat = hs.Hull.from_arrays(*join((vs, fs), (vp, fp)), mass=20.0)
-    s = hs.cut(cat, DRAFT, 4)
-    assert s.half_beam.max() < 0.1  # each part's own half-beam, never the span of both
+    cat = hs.Hull.from_arrays(*join((vs, fs), (vp + np.array([0.0, 0.0, 0.02]), fp)), mass=20.0)
+    s = hs.cut(cat, 0.01, 4)
+    assert len(s) == 4  # one wetted piece per station
+    h30 = 0.1 * np.tan(np.radians(30.0))
+    assert s.mass_per_metre == pytest.approx(np.full(4, 20.0 / cat.volume * 0.1 * h30), rel=1e-6)
 
 
 def test_a_free_fall_counts_slices_not_parts(floats):
@@ -95,44 +95,59 @@ def test_a_free_fall_counts_slices_not_parts(floats):
     assert np.all(np.isfinite(h.force))
 
 
-def test_twin_keels_joined_above_the_water_are_flagged():
-    # one part whose bottom is a W: at this draft the water meets it in two spans
+def test_twin_keels_joined_above_the_water_share_their_part_by_width():
+    # one part whose bottom is a W: at this draft the water meets it in two pieces
     w = [[-0.3, 0.05], [-0.2, -0.1], [-0.1, 0.0], [0.1, 0.0], [0.2, -0.1], [0.3, 0.05]]
     mesh = manifold3d.CrossSection([w]).extrude(1.0).to_mesh()
     v = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
     # extruded along the mesh z; its y is up, so its x is the body's port
     hull = hs.Hull.from_arrays(v, np.asarray(mesh.tri_verts), forward="+z", up="+y", mass=10.0)
-    r = hs.compute_force(hull, 0.05, -5.0, slices=4)
-    s = r.sections
-    assert list(s.waterline_spans) == [2, 2, 2, 2] and list(s.part) == [0, 0, 0, 0]
-    assert s.area == pytest.approx(np.full(4, 0.045), rel=1e-6)
-    assert not r.valid.any() and np.isfinite(r.total)
-    assert all("meets the waterline in 2 separate spans" in why for why in r.loads.reason)
-    # deeper, the tunnel is under water: one span, the flag goes
-    deep = hs.cut(hull, 0.12, 4)
-    assert list(deep.waterline_spans) == [1, 1, 1, 1]
+    s = hs.cut(hull, 0.05, 4)
+    assert list(s.station) == [0, 0, 1, 1, 2, 2, 3, 3]
+    # symmetric: half the section's mass each (area 0.045 m^2, density 10 / 0.045)
+    assert s.mass_per_metre == pytest.approx(np.full(8, 5.0), rel=1e-6)
+    assert s.y_keel[0::2] == pytest.approx(np.full(4, -0.2), abs=1e-6)
 
 
-def test_holes_belong_to_the_part_around_them():
-    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
-    hole = (square * 0.5 + 0.25)[::-1]  # clockwise
-    left = square - [3.0, 0.0]
-    parts = split_parts((square, left, hole))
-    assert len(parts) == 2
-    assert [len(p) for p in parts] == [1, 2]  # starboard (left, y < 0) first, then the holed
-    assert parts[1][1] is hole
-    assert split_parts((square, hole))[0] == (square, hole)
-    assert split_parts(()) == [()]
-
-
-def test_a_hollow_float_beside_a_solid_one():
+def test_a_hollow_float_beside_a_solid_one_carries_its_own_area():
     outer = manifold3d.Manifold.cube([1.0, 0.4, 0.2], center=True)
     inner = manifold3d.Manifold.cube([0.8, 0.2, 0.1], center=True)
     other = manifold3d.Manifold.cube([1.0, 0.4, 0.2], center=True).translate([0.0, 1.0, 0.0])
-    body = (outer - inner) + other
-    mesh = body.to_mesh()
-    hull = hs.Hull.from_arrays(np.asarray(mesh.vert_properties)[:, :3], mesh.tri_verts)
-    s = hs.cut(hull, 0.2, 2)
-    assert list(s.part) == [0, 1, 0, 1]
+    mesh = ((outer - inner) + other).to_mesh()
+    hull = hs.Hull.from_arrays(np.asarray(mesh.vert_properties)[:, :3], mesh.tri_verts, mass=1.0)
+    s = hs.cut(hull, 0.05, 2)
     # hollow part: 0.4 x 0.2 less the 0.2 x 0.1 cavity; solid part: 0.4 x 0.2
-    assert s.area == pytest.approx([0.06, 0.08, 0.06, 0.08], rel=1e-6)
+    rho_b = 1.0 / hull.volume
+    assert list(s.station) == [0, 0, 1, 1]
+    assert s.mass_per_metre == pytest.approx(rho_b * np.array([0.06, 0.08, 0.06, 0.08]))
+
+
+def test_a_float_under_water_beside_one_at_the_waterline_keeps_its_entry(floats):
+    # the port float 2 cm lower than the starboard one's deck: at the starboard float's
+    # full draft the port float is under water altogether, the starboard one is crossed
+    (vs, fs), (vp, fp) = floats
+    h30 = 0.1 * np.tan(np.radians(30.0))
+    low = vp - np.array([0.0, 0.0, 0.02 + (0.1 * np.tan(np.radians(20.0)))])
+    cat = hs.Hull.from_arrays(*join((vs, fs), (low, fp)), mass=20.0)
+    s = hs.cut(cat, cat.extents[2] - 0.005, 4)
+    assert list(s.station) == [0, 0, 1, 1, 2, 2, 3, 3]
+    assert np.all(s.penetration > 0.0)
+    # the mass is all there: sum of M dx over the entries is the body's
+    assert float((s.mass_per_metre * s.dx).sum()) == pytest.approx(20.0, rel=1e-6)
+    assert s.mass_per_metre[0::2] == pytest.approx(np.full(4, 20.0 / cat.volume * 0.1 * h30))
+
+
+def test_a_section_under_water_beyond_its_widest_point_keeps_its_keel():
+    # a square section turned 30 degrees: near full immersion the water meets it in a short
+    # span around its top corner, while its keel (the bottom corner) lies far to one side
+    import trimesh
+    from scipy.spatial.transform import Rotation
+
+    b = trimesh.creation.box(extents=(1.0, 1.0, 1.0))
+    v = Rotation.from_euler("x", 30.0, degrees=True).apply(np.asarray(b.vertices))
+    hull = hs.Hull.from_arrays(v, np.asarray(b.faces), mass=500.0)
+    draft = 0.95 * hull.extents[2]
+    s = hs.cut(hull, draft, 4)
+    assert s.penetration == pytest.approx(np.full(4, draft), rel=1e-6)
+    assert s.mass_per_metre == pytest.approx(np.full(4, 500.0), rel=1e-6)
+    assert s.chine_wetted.all()  # beyond the widest point: flagged, not passed as valid

@@ -121,9 +121,9 @@ def test_sections_are_real_areas(body, fraction, slices):
     assert np.all(s.area >= 0.0)
     assert np.all(s.penetration >= 0.0) and np.all(s.half_beam >= 0.0)
     assert np.all((s.mass_per_metre >= 0.0) & np.isfinite(s.mass_per_metre))
-    assert list(s.part) == [0] * len(s)  # a convex body has one part per station
+    assert list(s.station) == list(range(len(s)))  # a convex body: one entry per station
     if len(s):
-        assert s.slice_count == slices
+        assert s.n_stations == slices
         assert s.dx.sum() == pytest.approx(s.wetted_length, rel=1e-12)
     # the areas are those of the body, computed another way
     exact = [exact_section_area(hull.vertices, hull.faces, x) for x in s.x]
@@ -158,7 +158,7 @@ def test_a_body_of_constant_section_integrates_exactly(body, slices):
     st.floats(0.01, 1.0),
     st.integers(1, 24),
 )
-def test_disjoint_bodies_give_a_part_each(first, second, gap, slices):
+def test_disjoint_bodies_give_an_entry_each_with_its_own_mass(first, second, gap, slices):
     (v1, f1, _), (v2, f2, _) = first, second
     # the second body to port of the first, with a gap; both at the same height
     v2 = v2 + np.array(
@@ -166,12 +166,18 @@ def test_disjoint_bodies_give_a_part_each(first, second, gap, slices):
     )
     both = hull_of(np.vstack([v1, v2]), np.vstack([f1, f2 + len(v1)]))
     s = hs.cut(both, both.extents[2], slices)
-    assert np.all(s.part <= 1)
-    # each station's areas add up to both bodies' sections there
-    station = np.bincount(s.slice_index, weights=s.area)
-    x = s.x[s.part == 0]
+    assert np.all(np.bincount(s.station) <= 2)  # at most one entry per body at a station
+    # each station's section is both bodies' sections there
+    first = np.flatnonzero(np.r_[True, s.station[1:] != s.station[:-1]])
+    x = s.x[first]
     exact = [exact_section_area(v1, f1, xi) + exact_section_area(v2, f2, xi) for xi in x]
-    assert station == pytest.approx(exact, rel=0.0, abs=eps(both))
+    assert s.area[first] == pytest.approx(exact, rel=0.0, abs=eps(both))
+    # each body carries its own mass, under water all of it: the entries' masses add up to
+    # the pair's within the midpoint bound of each body (times the density)
+    mass = float((s.mass_per_metre * s.dx)[s.penetration > 0.0].sum())
+    (_, w1, h1), (_, w2, h2) = np.ptp(v1, axis=0), np.ptp(v2, axis=0)
+    bound = 2.0 * s.dx[0] * (w1 * h1 + w2 * h2) + eps(both) * both.extents[0]
+    assert abs(mass - both.mass) <= DENSITY * bound
 
 
 # -- forces ---------------------------------------------------------------------------------

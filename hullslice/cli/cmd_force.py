@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 
 from ..forces import convergence
 from ..report import (
@@ -12,21 +13,24 @@ from ..report import (
     csv_text,
     force_records,
     json_text,
-    shown_columns,
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
-from ..solvers.registry import DEFAULT_SOLVER
 from ..state import Motion, Pose
 from .common import (
     add_fluid_options,
     add_mesh_options,
     add_output_options,
+    add_pose_options,
+    add_slicing_option,
+    add_solver_options,
     emit,
     fluid,
     load,
     number,
     slice_list,
+    solver,
+    solver_label,
 )
 
 
@@ -54,6 +58,7 @@ def add_parser(sub) -> None:
         metavar="M/S",
         help="vertical velocity in m/s, negative downward (e.g. --velocity=-3.5)",
     )
+    add_pose_options(g)
     g.add_argument(
         "--slices",
         type=slice_list,
@@ -62,18 +67,14 @@ def add_parser(sub) -> None:
         help="slice counts over the wetted length; three or more give the extrapolated "
         "force (default: 16,32,64)",
     )
-    g.add_argument(
-        "--solver",
-        default=DEFAULT_SOLVER,
-        metavar="NAME",
-        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
-    )
+    add_solver_options(g)
     g.add_argument(
         "--deadrise",
         choices=list(DEADRISE_ESTIMATORS),
         default="wedge",
         help="local deadrise estimator (default: wedge)",
     )
+    add_slicing_option(g)
     add_fluid_options(p)
     add_output_options(p)
     p.set_defaults(func=run)
@@ -88,14 +89,16 @@ CONVERGENCE_COLUMNS = (
 
 def run(args: argparse.Namespace) -> int:
     hull = load(args)
+    slv = solver(args)
     study = convergence(
         hull,
-        Pose(args.draft),
-        Motion(args.velocity),
+        Pose(args.draft, args.pitch),
+        Motion(args.velocity, args.forward_speed, args.pitch_rate),
         slices=args.slices,
-        solver=args.solver,
+        solver=slv,
         fluid=fluid(args),
         deadrise=args.deadrise,
+        slicing=args.slicing,
     )
     finest = study.finest
     summary = convergence_summary(study)
@@ -106,7 +109,14 @@ def run(args: argparse.Namespace) -> int:
             "mass": hull.mass,
             "draft": args.draft,
             "velocity": args.velocity,
+            "pitch_deg": math.degrees(args.pitch),
+            "forward_speed": args.forward_speed,
+            "pitch_rate_deg_s": math.degrees(args.pitch_rate),
+            "cg": [float(hull.cg[0]), float(hull.cg[2])],
+            "force_x": finest.total_x,
+            "moment": finest.moment,
             "solver": finest.solver,
+            "solver_options": dict(slv.settings),
             "rho": finest.fluid.rho,
             "g": finest.fluid.g,
             "wetted_length": finest.sections.wetted_length,
@@ -129,13 +139,13 @@ def _table(hull, args, study, summary, records) -> str:
     lines = [
         f"{hull.name}: mass {hull.mass:g} kg, draft {args.draft:g} m, velocity "
         f"{args.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
-        f"solver {finest.solver}, water {finest.fluid.rho:g} kg/m^3, g {finest.fluid.g:g} m/s^2,"
-        f" deadrise by {finest.sections.deadrise_method}",
+        f"solver {solver_label(args)}, water {finest.fluid.rho:g} kg/m^3, "
+        f"g {finest.fluid.g:g} m/s^2, deadrise by {finest.sections.deadrise_method}",
         "",
         table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
         "",
         f"slices at n = {study.counts[-1]}:",
-        table_text(shown_columns(SLICE_COLUMNS, finest.sections), records),
+        table_text(SLICE_COLUMNS, records),
         "",
         f"force {finest.total:.4f} N at {study.counts[-1]} slices",
     ]
@@ -149,10 +159,9 @@ def _table(hull, args, study, summary, records) -> str:
                 f"{rich.order:.2f}, GCI {100 * rich.gci:.4f} %, {rich.behaviour})"
             )
     invalid = int((~finest.valid).sum())
-    what = "slice parts" if finest.sections.part.any() else "slices"
     lines.append(
-        f"all {what} inside the method's validity range"
+        "all slices inside the method's validity range"
         if invalid == 0
-        else f"{invalid} of {len(finest)} {what} outside the validity range (see 'reason')"
+        else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
     )
     return "\n".join(lines)

@@ -3,18 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import math
 
-from ..report import (
-    SECTION_COLUMNS,
-    csv_text,
-    json_text,
-    section_records,
-    shown_columns,
-    table_text,
-)
+from ..report import SECTION_COLUMNS, csv_text, json_text, section_records, table_text
 from ..sections import DEADRISE_ESTIMATORS, cut
 from ..state import Pose
-from .common import add_mesh_options, add_output_options, emit, load, number, positive_int
+from .common import (
+    add_mesh_options,
+    add_output_options,
+    add_pose_options,
+    add_slicing_option,
+    emit,
+    load,
+    number,
+    positive_int,
+)
 
 
 def add_parser(sub) -> None:
@@ -34,6 +37,7 @@ def add_parser(sub) -> None:
         metavar="M",
         help="depth of the body's lowest point below the calm water, in m",
     )
+    add_pose_options(g, pitch_rate=False, forward_speed=False)
     g.add_argument(
         "--slices",
         type=positive_int,
@@ -47,13 +51,20 @@ def add_parser(sub) -> None:
         default="wedge",
         help="local deadrise estimator (default: wedge, the equivalent wedge p / c)",
     )
+    add_slicing_option(g)
     add_output_options(p)
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
     hull = load(args)
-    sections = cut(hull, Pose(args.draft), args.slices, deadrise=args.deadrise)
+    sections = cut(
+        hull,
+        Pose(args.draft, args.pitch),
+        args.slices,
+        deadrise=args.deadrise,
+        slicing=args.slicing,
+    )
     records = section_records(sections)
     if args.format == "json":
         emit(
@@ -62,6 +73,7 @@ def run(args: argparse.Namespace) -> int:
                 {
                     "mesh": args.mesh,
                     "draft": sections.draft,
+                    "pitch_deg": math.degrees(sections.pitch),
                     "wetted_length": sections.wetted_length,
                     "deadrise_method": sections.deadrise_method,
                     "sections": records,
@@ -72,9 +84,10 @@ def run(args: argparse.Namespace) -> int:
         emit(args, csv_text(["j", *sections.as_dict()], records))
     else:
         head = (
-            f"{hull.name}: draft {sections.draft:g} m, wetted length "
-            f"{sections.wetted_length:.5f} m, {sections.slice_count} slices, deadrise by "
+            f"{hull.name}: draft {sections.draft:g} m, pitch {math.degrees(sections.pitch):g} deg, "
+            "wetted length "
+            f"{sections.wetted_length:.5f} m, {len(sections)} slices, deadrise by "
             f"{sections.deadrise_method}"
         )
-        emit(args, head + "\n" + table_text(shown_columns(SECTION_COLUMNS, sections), records))
+        emit(args, head + "\n" + table_text(SECTION_COLUMNS, records))
     return 0

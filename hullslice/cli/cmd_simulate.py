@@ -5,9 +5,12 @@ from __future__ import annotations
 import argparse
 import sys
 
+import numpy as np
+
 from ..motion import STOP_RULES, prescribed, read_kinematics, simulate
 from ..report import (
     HISTORY_COLUMNS,
+    HISTORY_PITCH_COLUMNS,
     csv_text,
     history_records,
     history_summary,
@@ -15,17 +18,21 @@ from ..report import (
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
-from ..solvers.registry import DEFAULT_SOLVER
 from .common import (
     UsageError,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
+    add_pose_options,
+    add_slicing_option,
+    add_solver_options,
     emit,
     fluid,
     load,
     number,
     positive_int,
+    solver,
+    solver_label,
 )
 
 TABLE_ROWS = 40
@@ -65,6 +72,18 @@ def add_parser(sub) -> None:
         metavar="M",
         help="initial draft of the lowest point in m (default: 0, first contact)",
     )
+    add_pose_options(g)
+    g.add_argument(
+        "--free-pitch",
+        action="store_true",
+        help="integrate the pitch from the moment about the centre of gravity (default: the "
+        "pitch changes at the constant --pitch-rate)",
+    )
+    g.add_argument(
+        "--free-surge",
+        action="store_true",
+        help="integrate the forward speed from the horizontal force (default: constant)",
+    )
     g.add_argument(
         "--kinematics",
         metavar="CSV",
@@ -85,18 +104,14 @@ def add_parser(sub) -> None:
         metavar="N",
         help="slices over the wetted length at each instant (default: 32)",
     )
-    m.add_argument(
-        "--solver",
-        default=DEFAULT_SOLVER,
-        metavar="NAME",
-        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
-    )
+    add_solver_options(m)
     m.add_argument(
         "--deadrise",
         choices=list(DEADRISE_ESTIMATORS),
         default="wedge",
         help="local deadrise estimator (default: wedge)",
     )
+    add_slicing_option(m)
     add_fluid_options(p)
     add_output_options(p)
     p.set_defaults(func=run)
@@ -131,18 +146,36 @@ def run(args: argparse.Namespace) -> int:
                 f"hullslice simulate: error: a free fall needs {' and '.join(missing)} "
                 "(or give --kinematics CSV for a prescribed motion)"
             )
-    elif args.velocity is not None or args.t_end is not None:
-        raise UsageError(
-            "hullslice simulate: error: --kinematics gives the motion; leave out --velocity "
-            "and --t-end"
-        )
+    else:
+        given = [
+            opt
+            for opt, value, default in (
+                ("--velocity", args.velocity, None),
+                ("--t-end", args.t_end, None),
+                ("--dt", args.dt, None),
+                ("--draft", args.draft, 0.0),
+                ("--pitch", args.pitch, 0.0),
+                ("--forward-speed", args.forward_speed, 0.0),
+                ("--pitch-rate", args.pitch_rate, 0.0),
+                ("--free-pitch", args.free_pitch, False),
+                ("--free-surge", args.free_surge, False),
+            )
+            if value != default
+        ]
+        if given:
+            raise UsageError(
+                f"hullslice simulate: error: --kinematics gives the motion; leave out "
+                f"{', '.join(given)} (the table's columns t, penetration, velocity and "
+                "optionally pitch_deg, pitch_rate_deg_s, forward_speed give it)"
+            )
     hull = load(args)
     progress = Progress() if sys.stderr.isatty() else None
     common = {
         "slices": args.slices,
-        "solver": args.solver,
+        "solver": solver(args),
         "fluid": fluid(args),
         "deadrise": args.deadrise,
+        "slicing": args.slicing,
         "progress": progress,
     }
     try:
@@ -154,6 +187,11 @@ def run(args: argparse.Namespace) -> int:
                 args.t_end,
                 dt=args.dt,
                 draft=args.draft,
+                pitch=args.pitch,
+                forward_speed=args.forward_speed,
+                pitch_rate=args.pitch_rate,
+                free_pitch=args.free_pitch,
+                free_surge=args.free_surge,
                 stop_on=stop_on,
                 **common,
             )
@@ -169,17 +207,20 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "csv":
         emit(args, csv_text(list(history.COLUMNS), history_records(history)))
     else:
-        emit(args, _table(hull, history, summary))
+        emit(args, _table(hull, history, summary, solver_label(args)))
     return 0
 
 
-def _table(hull, history, summary) -> str:
+def _table(hull, history, summary, solver_text) -> str:
     s = history.settings
     every = max(1, -(-len(history) // TABLE_ROWS))
-    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {s['solver']}, " + (
+    columns = HISTORY_COLUMNS
+    if np.any(history.pitch != 0) or np.any(history.forward_speed != 0):
+        columns = (*HISTORY_COLUMNS[:5], *HISTORY_PITCH_COLUMNS, *HISTORY_COLUMNS[5:])
+    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {solver_text}, " + (
         f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
     )
-    lines = [head, "", table_text(HISTORY_COLUMNS, history_records(history, every))]
+    lines = [head, "", table_text(columns, history_records(history, every))]
     if every > 1:
         lines.append(f"(one instant in {every} of {len(history)} shown; --format csv for all)")
     lines.append("")

@@ -23,7 +23,9 @@ def add_parser(sub) -> None:
         "solvers",
         help="list the installed 2D solvers",
         description="List the 2D solvers registered in the entry-point group "
-        "'hullslice.solvers', with their distribution, version and status.",
+        "'hullslice.solvers', with their distribution, version and status (ok, broken: "
+        "fails to load, with the error; shadowed: another distribution registers the same "
+        "name). JSON and CSV also give each solver's options (--solver-option KEY=VALUE).",
     )
     p.add_argument("--format", choices=FORMATS, default="table", help="output format")
     p.set_defaults(func=run)
@@ -42,8 +44,18 @@ def run(args: argparse.Namespace) -> int:
     if args.format == "json":
         emit(args, json_text({"default": DEFAULT_SOLVER, "solvers": [asdict(i) for i in infos]}))
     elif args.format == "csv":
-        keys = ["name", "status", "distribution", "version", "value", "description", "error"]
-        emit(args, csv_text(keys, [asdict(i) for i in infos]))
+        keys = [
+            "name",
+            "status",
+            "distribution",
+            "version",
+            "value",
+            "description",
+            "error",
+            "options",
+        ]
+        records = [{**asdict(i), "options": " ".join(i.options)} for i in infos]
+        emit(args, csv_text(keys, records))
     else:
         emit(args, table_text(COLUMNS, rows) if rows else "no solvers are installed")
     return 0

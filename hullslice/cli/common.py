@@ -3,13 +3,19 @@
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import sys
 from pathlib import Path
+from typing import Any
 
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
+from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
 from ..report import write_atomic
+from ..solvers.base import Solver
+from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
 
 FORMATS = ("table", "json", "csv")
@@ -56,6 +62,68 @@ def lower(text: str) -> str:
     return text.strip().lower()
 
 
+def solver_option(text: str) -> tuple[str, Any]:
+    """``"KEY=VALUE"`` to ``(KEY, value)``, the value read as JSON when it parses, else text.
+
+    ``rho=1025`` gives the number 1025, ``a_coeffs=[0, -3000]`` a list, ``pile_up=wagner``
+    and ``table=curves.csv`` the text as it is.
+    """
+    key, sep, value = text.partition("=")
+    key = key.strip()
+    if not sep or not key:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is not KEY=VALUE (e.g. --solver-option pile_up=wagner)"
+        )
+    try:
+        return key, json.loads(value)
+    except json.JSONDecodeError:
+        return key, value
+
+
+def add_solver_options(g: argparse._ArgumentGroup) -> None:
+    """``--solver NAME`` and the repeatable ``--solver-option KEY=VALUE``."""
+    g.add_argument(
+        "--solver",
+        default=DEFAULT_SOLVER,
+        metavar="NAME",
+        help=f"2D solver, see 'hullslice solvers' (default: {DEFAULT_SOLVER})",
+    )
+    g.add_argument(
+        "--solver-option",
+        type=solver_option,
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="an option of the 2D solver (repeatable); VALUE is read as JSON when it parses "
+        "(numbers, [lists], true/false), else as text; SI units, e.g. froude_min=8 "
+        "(smallest peak Froude number), or for --solver curves table=FILE.csv (columns "
+        "z_tilde,a_tilde,v_tilde), rho=1025 (kg/m^3, the density the curves were made for), "
+        "pile_up=wagner. 'hullslice solvers --format json' lists each solver's options and "
+        "their defaults",
+    )
+
+
+def solver(args: argparse.Namespace) -> Solver:
+    """The solver named by ``--solver``, built with the ``--solver-option`` values."""
+    options: dict[str, Any] = {}
+    for key, value in args.solver_option:
+        if key in options:
+            raise UsageError(
+                f"hullslice {args.command}: error: --solver-option {key} is given twice; "
+                "give each option once"
+            )
+        options[key] = value
+    return get_solver(args.solver, **options)
+
+
+def solver_label(args: argparse.Namespace) -> str:
+    """The solver's name with the options given on the command line, for table headers."""
+    if not args.solver_option:
+        return args.solver
+    opts = ", ".join(f"{k}={json.dumps(v)}" for k, v in args.solver_option)
+    return f"{args.solver} ({opts})"
+
+
 def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) -> None:
     p.add_argument("mesh", metavar="MESH", help="hull mesh file, STL or OBJ")
     g = p.add_argument_group("mesh options")
@@ -79,13 +147,104 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         metavar="AXIS",
         help="mesh axis pointing up: x, y, z, or with a sign as --up=-y (default: +z)",
     )
-    g.add_argument(
+    m = p.add_argument_group("mass")
+    m.add_argument(
         "--mass",
         type=number("kg"),
         metavar="KG",
-        required=mass_required,
-        help="body mass in kg" + ("" if mass_required else " (needed for mass per metre)"),
+        help="body mass in kg"
+        + (" (or --mass-distribution)" if mass_required else " (for mass per metre)"),
     )
+    m.add_argument(
+        "--mass-distribution",
+        metavar="CSV",
+        help="mass along the body instead of a uniform density: CSV with columns "
+        "x,mass_per_metre (m, kg/m) or point masses x,z,mass[,length] (m, kg), body frame in "
+        "metres after --units and axes",
+    )
+    m.add_argument(
+        "--cg",
+        type=pair("m"),
+        metavar="X,Z",
+        help="centre of gravity x,z in m, body frame (default: from the mass distribution, "
+        "or the centre of volume)",
+    )
+    m.add_argument(
+        "--inertia",
+        type=number("kg*m^2"),
+        metavar="KG*M^2",
+        help="pitch moment of inertia about the centre of gravity in kg*m^2 (default: from "
+        "the mass distribution, or the mesh with uniform density)",
+    )
+    p.set_defaults(mass_required=mass_required)
+
+
+def pair(unit: str):
+    def parse(text: str) -> tuple[float, float]:
+        parts = text.split(",")
+        try:
+            if len(parts) != 2:
+                raise ValueError
+            return float(parts[0]), float(parts[1])
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not two numbers X,Z (in {unit}), e.g. 16.5,1.2"
+            ) from None
+
+    parse.__name__ = f"pair in {unit}"
+    return parse
+
+
+def angle(unit: str):
+    """Parse a number in degrees (``unit`` names deg or deg/s) and return it in radians."""
+    parse_number = number(unit)
+
+    def parse(text: str) -> float:
+        return math.radians(parse_number(text))
+
+    parse.__name__ = f"number in {unit}"
+    return parse
+
+
+def add_slicing_option(g) -> None:
+    """``--slicing wetted|fixed``."""
+    from ..sections import SLICINGS
+
+    g.add_argument(
+        "--slicing",
+        choices=list(SLICINGS),
+        default="wetted",
+        help="wetted: the slices cover the wetted length at each instant (the paper's); "
+        "fixed: they cover the body's length and are cut once per pitch, much faster on "
+        "large meshes (default: wetted)",
+    )
+
+
+def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> None:
+    """Pitch (and optionally forward speed and pitch rate) options, in degrees and m/s."""
+    g.add_argument(
+        "--pitch",
+        type=angle("deg"),
+        default=0.0,
+        metavar="DEG",
+        help="pitch angle in degrees, positive nose up, about the centre of gravity (default: 0)",
+    )
+    if forward_speed:
+        g.add_argument(
+            "--forward-speed",
+            type=number("m/s"),
+            default=0.0,
+            metavar="M/S",
+            help="horizontal speed along the body's forward direction in m/s (default: 0)",
+        )
+    if pitch_rate:
+        g.add_argument(
+            "--pitch-rate",
+            type=angle("deg/s"),
+            default=0.0,
+            metavar="DEG/S",
+            help="pitch rate in degrees per second, positive nose up (default: 0)",
+        )
 
 
 def add_fluid_options(p: argparse.ArgumentParser) -> None:
@@ -123,9 +282,26 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
 
 
 def load(args: argparse.Namespace) -> Hull:
-    """The hull of the command line's mesh options (the output path is checked first)."""
+    """The hull of the command's mesh and mass options (the output path is checked first)."""
     check_output(args)
-    return load_hull(args.mesh, units=args.units, forward=args.forward, up=args.up, mass=args.mass)
+    dist = None
+    if args.mass_distribution:
+        dist = read_mass_distribution(args.mass_distribution)
+    elif args.mass_required and args.mass is None:
+        raise UsageError(
+            f"hullslice {args.command}: error: give the body's mass, --mass KG or "
+            "--mass-distribution CSV"
+        )
+    return load_hull(
+        args.mesh,
+        units=args.units,
+        forward=args.forward,
+        up=args.up,
+        mass=args.mass,
+        mass_distribution=dist,
+        cg=args.cg,
+        inertia=args.inertia,
+    )
 
 
 def check_output(args: argparse.Namespace) -> None:
@@ -141,7 +317,7 @@ def check_output(args: argparse.Namespace) -> None:
             f"cannot write {out!r}: the folder {str(target.parent)!r} does not exist; create it "
             "first"
         )
-    for option in ("mesh", "kinematics"):
+    for option in ("mesh", "kinematics", "mass_distribution"):
         source = getattr(args, option, None)
         if source and target.exists() and Path(source).exists() and target.samefile(source):
             raise InputError(

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import abc
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -13,7 +13,7 @@ from ..errors import InputError
 from ..sections import Sections
 from ..state import Fluid
 
-__all__ = ["SectionLoads", "Solver"]
+__all__ = ["SectionLoads", "Solver", "join_reasons"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -112,3 +112,26 @@ class Solver(abc.ABC):
     def __repr__(self) -> str:
         opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
         return f"{type(self).__name__}({opts})"
+
+
+def join_reasons(n: int, checks: Sequence[tuple[np.ndarray, str]]) -> np.ndarray:
+    """The ``reason`` array of :class:`SectionLoads` from a list of validity checks.
+
+    Parameters
+    ----------
+    n : int
+        Number of sections.
+    checks : sequence of ((n,) bool, str)
+        For each check, the sections that fail it and the message that says why.
+
+    Returns
+    -------
+    (n,) object array of str
+        Per section, the messages of the checks it fails joined by ``"; "``; ``""`` where
+        it passes them all (so ``reason == ""`` is the ``valid`` array).
+    """
+    reason = np.full(n, "", dtype=object)
+    for mask, msg in checks:
+        mask = np.broadcast_to(np.asarray(mask, dtype=bool), (n,))
+        reason[mask] = [f"{r}; {msg}" if r else msg for r in reason[mask]]
+    return reason

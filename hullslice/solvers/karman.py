@@ -14,23 +14,28 @@ equivalent mass ``M' = M rho_curves / rho``; the force still uses the real ``M``
 
 from __future__ import annotations
 
+import csv
+import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any, ClassVar
 
 import numpy as np
 
-from ..errors import InputError
+from ..errors import CaseError, InputError
 from ..sections import Sections
 from ..state import Fluid
-from .base import SectionLoads, Solver
+from .base import SectionLoads, Solver, join_reasons
 
 __all__ = [
+    "CURVE_COLUMNS",
     "PAPER_CURVES",
     "CharacteristicCurves",
     "CurveSolver",
     "ExtendedVonKarman",
     "dobrovolskaya_pile_up",
+    "peak_froude",
     "peak_values",
 ]
 
@@ -76,38 +81,122 @@ class CharacteristicCurves:
     _v: Callable[[np.ndarray], np.ndarray] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        if not (np.isfinite(self.rho) and self.rho > 0):
-            raise InputError(f"curve density {self.rho!r} kg/m^3 is not positive")
+        rho = _number(self.rho, "curve density rho", "kg/m^3")
+        if rho <= 0.0:
+            raise InputError(f"curve density {self.rho!r} kg/m^3 is not positive (try 1000)")
+        object.__setattr__(self, "rho", rho)
         if self.table is not None:
-            t = np.array(self.table, dtype=np.float64)
+            if _given(self.a_coeffs) or _given(self.v_coeffs):
+                raise InputError(
+                    "characteristic curves take either a table or polynomial coefficients, not both"
+                )
+            t = _float_array(self.table, "curve table")
             if t.ndim != 2 or t.shape[1] != 3 or len(t) < 2 or not np.all(np.isfinite(t)):
-                raise InputError("a curve table needs at least two finite rows of z~, a~, v~")
-            t = t[np.argsort(t[:, 0])]
+                raise InputError(
+                    f"a curve table needs at least two rows of three finite numbers "
+                    f"(z~, a~, v~); got an array of shape {t.shape}"
+                )
+            t = t[np.argsort(t[:, 0], kind="stable")]
             if np.any(np.diff(t[:, 0]) <= 0):
-                raise InputError("a curve table has repeated z~ values")
+                raise InputError("a curve table has repeated z~ values: give each z~ once")
+            if t[-1, 0] > 0.0:
+                raise InputError(
+                    f"a curve table has z~ = {t[-1, 0]:g} > 0: the scaled penetration "
+                    "z~ = -p gamma / (sqrt(M) tan(beta)) is negative or zero"
+                )
             t.flags.writeable = False
             object.__setattr__(self, "table", t)
             z, a, v = t.T
             object.__setattr__(self, "_a", lambda zt: np.interp(zt, z, a))
             object.__setattr__(self, "_v", lambda zt: np.interp(zt, z, v))
-            rng = (float(z[0]), float(z[-1]))
+            default_range = (float(z[0]), float(z[-1]))
         else:
-            if not self.a_coeffs or not self.v_coeffs:
-                raise InputError("characteristic curves need coefficients or a table")
-            pa = np.polynomial.Polynomial(np.asarray(self.a_coeffs, dtype=np.float64))
-            pv = np.polynomial.Polynomial(np.asarray(self.v_coeffs, dtype=np.float64))
+            if not (_given(self.a_coeffs) and _given(self.v_coeffs)):
+                raise InputError(
+                    "characteristic curves need the coefficients of both a~ and v~ "
+                    "(ascending powers of z~), or a table of z~, a~, v~"
+                )
+            ca = _coefficients(self.a_coeffs, "a~")
+            cv = _coefficients(self.v_coeffs, "v~")
+            pa, pv = np.polynomial.Polynomial(ca), np.polynomial.Polynomial(cv)
             object.__setattr__(self, "a_coeffs", tuple(float(c) for c in pa.coef))
             object.__setattr__(self, "v_coeffs", tuple(float(c) for c in pv.coef))
             object.__setattr__(self, "_a", pa)
             object.__setattr__(self, "_v", pv)
-            rng = (_fit_floor(pa), 0.0)
+            default_range = None
         if self.z_range is None:
+            rng = default_range if default_range is not None else (_fit_floor(pa), 0.0)
             object.__setattr__(self, "z_range", rng)
         else:
-            lo, hi = (float(r) for r in self.z_range)
-            if not lo < hi:
-                raise InputError(f"curve range {self.z_range!r} is empty: give (low, high)")
-            object.__setattr__(self, "z_range", (lo, hi))
+            zr = _float_array(self.z_range, "curve range z_range")
+            if zr.shape != (2,) or not np.all(np.isfinite(zr)) or not zr[0] < zr[1]:
+                raise InputError(
+                    f"curve range {self.z_range!r} is not a range of z~: give (low, high) "
+                    "with low < high, e.g. (-0.0387, 0)"
+                )
+            object.__setattr__(self, "z_range", (float(zr[0]), float(zr[1])))
+
+    @classmethod
+    def from_csv(
+        cls,
+        path: str | os.PathLike,
+        *,
+        rho: float = 1000.0,
+        z_range: tuple[float, float] | None = None,
+    ) -> CharacteristicCurves:
+        """Curves from a CSV table with the columns ``z_tilde``, ``a_tilde``, ``v_tilde``.
+
+        The header names the columns (any order; other columns are ignored); lines starting
+        with ``#`` are comments. Between rows the curves are interpolated linearly.
+
+        Parameters
+        ----------
+        path : str or path
+            The CSV file.
+        rho : float
+            Water density the curves were made for, kg/m^3 (default 1000).
+        z_range : (float, float), optional
+            Range of ``z~`` where the curves are valid (default: the table's first and last
+            ``z~``).
+
+        Raises
+        ------
+        CaseError
+            The file is missing, or lacks a column, or a row is not three numbers.
+        """
+        p = Path(path)
+        if not p.is_file():
+            raise CaseError(f"curve table {str(p)!r} does not exist: give the path of a CSV file")
+        with open(p, newline="", encoding="utf-8") as fh:
+            numbered = [
+                (i, row)
+                for i, line in enumerate(fh, start=1)
+                if line.strip() and not line.lstrip().startswith("#")
+                for row in csv.reader([line])
+            ]
+        if not numbered:
+            raise CaseError(f"curve table {str(p)!r} is empty")
+        header = [h.strip().lower() for h in numbered[0][1]]
+        missing = [c for c in CURVE_COLUMNS if c not in header]
+        if missing:
+            raise CaseError(
+                f"curve table {str(p)!r} lacks the column(s) {', '.join(missing)} (its header: "
+                f"{', '.join(header)}); it needs z_tilde, a_tilde, v_tilde"
+            )
+        idx = [header.index(c) for c in CURVE_COLUMNS]
+        rows = []
+        for lineno, row in numbered[1:]:
+            try:
+                rows.append([float(row[i]) for i in idx])
+            except (ValueError, IndexError):
+                raise CaseError(
+                    f"curve table {str(p)!r} line {lineno}: {','.join(row)!r} does not hold "
+                    "three numbers for z_tilde, a_tilde, v_tilde"
+                ) from None
+        try:
+            return cls(table=np.array(rows).reshape(-1, 3), rho=rho, z_range=z_range, source=str(p))
+        except InputError as exc:
+            raise CaseError(f"curve table {str(p)!r}: {exc}") from None
 
     def a(self, zt: np.ndarray) -> np.ndarray:
         """Scaled acceleration ``a~`` at scaled penetration ``zt``."""
@@ -141,6 +230,41 @@ def _fit_floor(pa: np.polynomial.Polynomial) -> float:
         raise InputError("the a~ polynomial has no minimum below its peak; give z_range")
     return float(max(minima))
 
+
+def _given(value: Any) -> bool:
+    """True unless ``value`` is None or an empty sequence."""
+    return value is not None and (not hasattr(value, "__len__") or len(value) > 0)
+
+
+def _number(value: Any, what: str, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} {value!r} is not a number (in {unit})") from None
+    if not np.isfinite(v):
+        raise InputError(f"{what} {value!r} is not finite (in {unit})")
+    return v
+
+
+def _float_array(value: Any, what: str) -> np.ndarray:
+    try:
+        return np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} {value!r} is not made of numbers") from None
+
+
+def _coefficients(value: Any, what: str) -> np.ndarray:
+    c = _float_array(value, f"coefficients of {what}")
+    if c.ndim != 1 or not np.all(np.isfinite(c)):
+        raise InputError(
+            f"coefficients of {what} {value!r} are not a list of finite numbers (ascending "
+            "powers of z~, constant term first)"
+        )
+    return c
+
+
+#: The columns of a curve table (CSV), in the order of a table's rows.
+CURVE_COLUMNS = ("z_tilde", "a_tilde", "v_tilde")
 
 #: The characteristic curves of the paper, Eqs. 5 and 6: a free-falling wedge with
 #: beta = 45 deg, M = 4.6842 kg/m, v_z0 = 5.5 m/s in water of 1000 kg/m^3.
@@ -202,6 +326,26 @@ def peak_values(
     }
 
 
+def peak_froude(
+    v_z0: np.ndarray,
+    mass_per_metre: np.ndarray,
+    deadrise: np.ndarray,
+    gamma: np.ndarray,
+    rho: float,
+    g: float,
+) -> np.ndarray:
+    """Froude number at the peak of a free-falling wedge, ``Fr* = |v_z*| / sqrt(g z*)``.
+
+    ``v_z*`` and ``z*`` are the velocity and penetration at the peak of the free fall
+    (Eq. 2, :func:`peak_values`); the paper asks for ``Fr* > 6.5`` (gravity negligible during
+    the impact). Parameters as for :func:`peak_values`, with ``g`` the gravitational
+    acceleration in m/s^2; infinite for ``g = 0``.
+    """
+    peak = peak_values(v_z0, mass_per_metre, deadrise, gamma, rho)
+    with np.errstate(divide="ignore"):
+        return np.abs(peak["v_star"]) / np.sqrt(g * peak["z_star"])
+
+
 class CurveSolver(Solver):
     """Inverse use of characteristic curves, for any curves and pile-up law.
 
@@ -230,19 +374,20 @@ class CurveSolver(Solver):
             v0 = velocity / vt
         a = at * v0**2 / root_m * gam / tb  # Eq. 4
         force = M * (a + fluid.g)  # Eq. 12, per metre
-        peak = peak_values(v0, m_eq, beta, gam, curves.rho)
-        with np.errstate(divide="ignore"):
-            froude = np.abs(peak["v_star"]) / np.sqrt(fluid.g * peak["z_star"])
+        # a section moving up is leaving the water (behind a transom or the lowest point of a
+        # hull moving forward): it is in no free fall, the flow separates, and it gets no force
+        force = np.where(velocity < 0.0, force, 0.0)
+        froude = peak_froude(v0, m_eq, beta, gam, curves.rho, fluid.g)
 
         lo, hi = curves.z_range
         fr_min = float(self.settings["froude_min"])
         checks = [
             ((zt < lo) | (zt > hi), f"z~ outside the curves' range [{lo:.4g}, {hi:.4g}]"),
             (vt <= 0.0, "v~ <= 0 (past the end of the curves)"),
-            (velocity >= 0.0, "section not moving down into the water"),
+            (velocity >= 0.0, "section not moving down into the water (no force)"),
             (froude <= fr_min, f"Fr* <= {fr_min:g} (gravity not negligible)"),
         ]
-        reason = _reasons(len(M), checks)
+        reason = join_reasons(len(M), checks)
         return SectionLoads(
             force_per_metre=force,
             valid=reason == "",
@@ -257,15 +402,6 @@ class CurveSolver(Solver):
                 "froude": froude,
             },
         )
-
-
-def _reasons(n: int, checks: list[tuple[np.ndarray, str]]) -> np.ndarray:
-    """Join the messages of the failed checks per section with '; '."""
-    reason = np.full(n, "", dtype=object)
-    for mask, msg in checks:
-        mask = np.asarray(mask, dtype=bool)
-        reason[mask] = [f"{r}; {msg}" if r else msg for r in reason[mask]]
-    return reason
 
 
 class ExtendedVonKarman(CurveSolver):

@@ -2,12 +2,17 @@
 
 Every solver, the default one included, is found through installed distributions'
 entry points. Discovery reads metadata only; a plugin's module is imported when the solver
-is first asked for by name or when all solvers are listed. A plugin that fails to import
-or is not a :class:`~hullslice.solvers.base.Solver` is reported as broken (a warning naming
-it and its distribution) and the others keep working. When two distributions register the
-same name, the one from hullslice itself wins, otherwise the first by distribution name, and
-a warning names both. Setting the environment variable ``HULLSLICE_NO_PLUGINS=1`` loads only
-the solvers registered by hullslice itself.
+is first asked for by name or when all solvers are listed. A plugin that fails to import,
+is not a :class:`~hullslice.solvers.base.Solver`, leaves its abstract methods
+unimplemented or has no ``name`` is broken: asking for it raises a
+:class:`~hullslice.errors.PluginError` naming it and its distribution,
+:func:`list_solvers` lists it with the status ``"broken"`` and the error, and the other
+solvers keep working. A solver that fails when it is built raises a
+:class:`~hullslice.errors.SolverError` naming it and its distribution. When two
+distributions register the same name, the one from hullslice itself wins, otherwise the
+first by distribution name, and a :class:`~hullslice.errors.PluginWarning` names both.
+Setting the environment variable ``HULLSLICE_NO_PLUGINS=1`` loads only the solvers
+registered by hullslice itself.
 """
 
 from __future__ import annotations
@@ -15,11 +20,12 @@ from __future__ import annotations
 import functools
 import os
 import warnings
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from importlib.metadata import EntryPoint, entry_points
-from typing import NoReturn
+from typing import Any, NoReturn
 
-from ..errors import PluginError, PluginWarning, UnknownSolverError
+from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
 from .base import Solver
 
 __all__ = [
@@ -59,6 +65,8 @@ class SolverInfo:
         The solver's one-line description (empty until loaded).
     error : str
         Why it is broken or shadowed.
+    options : dict
+        The solver's options with their defaults (empty until loaded).
     """
 
     name: str
@@ -68,6 +76,7 @@ class SolverInfo:
     status: str = "not loaded"
     description: str = ""
     error: str = ""
+    options: Mapping[str, Any] = field(default_factory=dict)
 
 
 def _dist_of(ep: EntryPoint) -> tuple[str, str]:
@@ -131,12 +140,18 @@ class _Registry:
             missing = ", ".join(sorted(obj.__abstractmethods__))
             msg = f"solver plugin {_describe(ep)} does not implement {missing}"
             return self._broken(name, msg)
+        if not (isinstance(obj.name, str) and obj.name):
+            msg = (
+                f"solver plugin {_describe(ep)} does not set the class variable 'name' "
+                "(the name its results are reported under)"
+            )
+            return self._broken(name, msg)
         self.classes[name] = obj
         return obj
 
     def _broken(self, name: str, msg: str) -> NoReturn:
+        # the error is the report: a warning with the same text would only repeat it
         self.broken[name] = msg
-        warnings.warn(msg, PluginWarning, stacklevel=4)
         raise PluginError(msg)
 
     def distribution(self, name: str) -> str:
@@ -167,13 +182,15 @@ def list_solvers() -> list[SolverInfo]:
     for name, ep in reg.winners.items():
         dist, version = _dist_of(ep)
         try:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore", PluginWarning)
-                cls = reg.load(name)
+            cls = reg.load(name)
         except PluginError as exc:
             out.append(SolverInfo(name, ep.value, dist, version, "broken", "", str(exc)))
             continue
-        out.append(SolverInfo(name, ep.value, dist, version, "ok", cls.description))
+        out.append(
+            SolverInfo(
+                name, ep.value, dist, version, "ok", cls.description, options=dict(cls.options)
+            )
+        )
     for loser, winner in reg.shadowed:
         dist, version = _dist_of(loser)
         out.append(
@@ -211,6 +228,9 @@ def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> 
         No installed solver has that name; the message lists the installed ones.
     PluginError
         The plugin registered under that name cannot be loaded.
+    SolverError
+        The solver fails when it is built with these options (other than by refusing an
+        option with an :class:`~hullslice.errors.InputError`).
     """
     if solver is None:
         solver = DEFAULT_SOLVER
@@ -219,7 +239,7 @@ def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> 
             raise TypeError("options cannot be given with a solver instance")
         return solver
     if isinstance(solver, type) and issubclass(solver, Solver):
-        return solver(**options)
+        return _build(solver, options, lambda: _describe_class(solver))
     if not isinstance(solver, str):
         raise TypeError(f"solver must be a name, a Solver subclass or instance, not {solver!r}")
     reg = _registry()
@@ -231,13 +251,44 @@ def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> 
         raise UnknownSolverError(
             f"no solver named {solver!r} is installed{hint}; installed solvers: {installed}"
         )
-    return reg.load(solver)(**options)
+    return _build(reg.load(solver), options, lambda: reg.distribution(solver))
+
+
+def _build(cls: type[Solver], options: dict, who) -> Solver:
+    """``cls(**options)``; an unexpected exception becomes a SolverError naming the plugin."""
+    try:
+        return cls(**options)
+    except HullsliceError:
+        raise
+    except Exception as exc:
+        raise SolverError(
+            f"solver {who()} failed to start with options {options!r}: {type(exc).__name__}: {exc}"
+        ) from exc
 
 
 def describe(solver: Solver) -> str:
-    """Name and distribution of a solver instance, for error messages."""
+    """Name, class and distribution of a solver instance, for error messages."""
     reg = _registry()
-    name = getattr(solver, "name", "") or type(solver).__name__
-    if name in reg.winners and reg.classes.get(name) is type(solver):
-        return reg.distribution(name)
-    return f"{name!r} ({type(solver).__module__}.{type(solver).__qualname__})"
+    for name, cls in reg.classes.items():
+        if cls is type(solver):
+            return reg.distribution(name)
+    return _describe_class(type(solver))
+
+
+def _describe_class(cls: type) -> str:
+    """``'name' (module.Class, distribution D V)`` for a solver class not found by name."""
+    name = getattr(cls, "name", "") or cls.__name__
+    where = f"{cls.__module__}.{cls.__qualname__}"
+    dist = _distribution_of_module(cls.__module__)
+    return f"{name!r} ({where}, distribution {dist})" if dist else f"{name!r} ({where})"
+
+
+def _distribution_of_module(module: str) -> str:
+    """``"name version"`` of the distribution whose entry point imports from the same
+    top-level package as ``module``, or ``""``."""
+    top = module.split(".")[0]
+    for ep in _registry().winners.values():
+        if ep.value.split(":")[0].split(".")[0] == top:
+            dist, version = _dist_of(ep)
+            return f"{dist} {version}".strip()
+    return ""

@@ -1,0 +1,270 @@
+"""Placing the hull in the earth frame at a pitch, and what depends only on the pitch.
+
+The body turns about its centre of gravity ``g``. A body point ``r = v - g`` (``x``, ``z``
+components; ``y`` is unchanged) is at
+
+    X = x_g + r_x cos(theta) - r_z sin(theta)
+    Z = Z_g + r_x sin(theta) + r_z cos(theta)
+
+with ``theta`` the pitch, positive nose up. ``Z_g`` follows from the draft: the lowest point
+of the body is ``draft`` below the water ``Z = 0``. Earth ``X`` is measured so that a level
+body has ``X = x``: stations are reported in a frame moving horizontally with the body.
+
+For one pitch, three things do not depend on the draft and are computed once
+(:class:`Frame`): the lowest point, the keel line (the lower edge of the body's side view,
+``Z_k(X)``, exact as a polyline) and the manifold3d object that cuts the body along earth
+planes ``X = const``.
+"""
+
+from __future__ import annotations
+
+from collections import OrderedDict
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Frame", "KeelLine", "frame"]
+
+
+@dataclass(frozen=True, eq=False)
+class KeelLine:
+    """The lower edge of the body's side view at one pitch: ``Z_k(X)`` as a polyline.
+
+    Coordinates are relative to the centre of gravity in the pitched frame (``X - x_g``,
+    ``Z - Z_g``), in m.
+
+    Attributes
+    ----------
+    x : (k,) float
+        Break points, increasing.
+    z : (k,) float
+        Height of the lowest point of the body's section at each break point.
+    """
+
+    x: np.ndarray
+    z: np.ndarray
+
+    def at(self, x: np.ndarray, dx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Keel height at relative stations ``x`` and its mean slope ``dZ_k/dX`` over slices
+        of thickness ``dx`` centred on them (clipped to the body's length).
+
+        A mesh's keel is a polyline whose slope jumps from facet to facet; the mean over the
+        slice is the slice's own slope and tends to the local one as the slices get thinner.
+        """
+        x = np.asarray(x, dtype=np.float64)
+        z = np.interp(x, self.x, self.z)
+        lo = np.maximum(x - 0.5 * np.asarray(dx), self.x[0])
+        hi = np.minimum(x + 0.5 * np.asarray(dx), self.x[-1])
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mean = (np.interp(hi, self.x, self.z) - np.interp(lo, self.x, self.z)) / (hi - lo)
+        i = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, len(self.x) - 2)
+        local = (self.z[i + 1] - self.z[i]) / (self.x[i + 1] - self.x[i])
+        return z, np.where(hi > lo, mean, local)
+
+    def below(self, level: float) -> tuple[float, float] | None:
+        """The ``x`` range where the keel is below ``level`` (relative), or None."""
+        x, z = self.x, self.z
+        under = z < level
+        xs = [x[under]]
+        cross = under[:-1] != under[1:]
+        if cross.any():
+            i = np.flatnonzero(cross)
+            t = (level - z[i]) / (z[i + 1] - z[i])
+            xs.append(x[i] + t * (x[i + 1] - x[i]))
+        allx = np.concatenate(xs)
+        if len(allx) == 0:
+            return None
+        return float(allx.min()), float(allx.max())
+
+
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """What depends on the pitch only: placement, keel line and the cutter.
+
+    Attributes
+    ----------
+    pitch : float
+        Pitch in rad, positive nose up.
+    cg : (3,) float
+        Centre of gravity in the body frame, m (the centre of rotation).
+    lowest, highest : float
+        Heights of the body's lowest and highest points above the centre of gravity in the
+        pitched frame, m.
+    keel : KeelLine
+        The keel line, relative to the centre of gravity.
+    """
+
+    pitch: float
+    cg: np.ndarray
+    lowest: float
+    highest: float
+    keel: KeelLine
+    _slicer: object
+    _offset: np.ndarray  # (Y, Z, X) of the slicer's origin, relative to the cg
+    _fixed: dict = field(default_factory=dict, repr=False)
+    _scale: float = 1.0  # the slicer's coordinates are metres times this
+
+    def fixed_stations(self, n: int) -> tuple[float, np.ndarray]:
+        """Thickness and mid-stations (relative to the cg) of ``n`` equal slices over the
+        body's length at this pitch."""
+        xa, xb = float(self.keel.x[0]), float(self.keel.x[-1])
+        d = (xb - xa) / n
+        return d, xa + (np.arange(n) + 0.5) * d
+
+    def fixed_outline(self, n: int, tol: float):
+        """The outline of ``n`` fixed stations over the body's length (mid-stations of
+        equal slices), cut once and kept: ``(Outline, polygons)`` relative to the cg."""
+        from .sections import Outline
+
+        key = (int(n), float(tol))
+        if key not in self._fixed:
+            polys = self.cut(self.fixed_stations(n)[1])
+            self._fixed[key] = (Outline.of(polys, tol, self.origin), polys)
+        return self._fixed[key]
+
+    def z_cg(self, draft: float) -> float:
+        """Earth height of the centre of gravity for a draft (m)."""
+        return -self.lowest - draft
+
+    def cut(self, x_rel: np.ndarray) -> list[tuple[np.ndarray, ...]]:
+        """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
+        them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
+        in ``(Y, Z)`` less :attr:`origin` (add it, and ``Z_g``, for earth coordinates)."""
+        ox, k = self._offset[2], self._scale
+        return [
+            tuple(
+                np.asarray(c, dtype=np.float64) / k
+                for c in self._slicer.slice(float((xi - ox) * k)).to_polygons()
+            )
+            for xi in x_rel
+        ]
+
+    @property
+    def origin(self) -> tuple[float, float]:
+        """``(Y, Z - Z_g)`` of the origin of :meth:`cut`'s contours, m."""
+        return float(self._offset[0]), float(self._offset[1])
+
+    def body_to_earth(self, v: np.ndarray, z_cg: float) -> np.ndarray:
+        """Earth coordinates ``(X, Y, Z)`` (m) of body points ``v`` (n, 3)."""
+        c, s = np.cos(self.pitch), np.sin(self.pitch)
+        r = np.asarray(v, dtype=np.float64) - self.cg
+        X = self.cg[0] + r[:, 0] * c - r[:, 2] * s
+        Z = z_cg + r[:, 0] * s + r[:, 2] * c
+        return np.stack([X, r[:, 1] + self.cg[1], Z], axis=1)
+
+
+#: How many pitches' frames a hull keeps (each holds a transformed copy of the mesh).
+FRAME_CACHE = 4
+
+
+def frame(hull, pitch: float) -> Frame:
+    """The :class:`Frame` of a hull at a pitch (rad), kept on the hull for reuse."""
+    pitch = float(pitch)
+    cache: OrderedDict = hull.__dict__.setdefault("_frames", OrderedDict())
+    if pitch in cache:
+        cache.move_to_end(pitch)
+        return cache[pitch]
+    fr = _frame(hull, pitch)
+    cache[pitch] = fr
+    while len(cache) > FRAME_CACHE:
+        cache.popitem(last=False)
+    return fr
+
+
+def _frame(hull, pitch: float) -> Frame:
+    g = np.asarray(hull.cg, dtype=np.float64)
+    c, s = np.cos(pitch), np.sin(pitch)
+    v = hull.vertices
+    zrel = (v[:, 0] - g[0]) * s + (v[:, 2] - g[2]) * c
+    lowest, highest = float(zrel.min()), float(zrel.max())
+    # centre the cutter's coordinates on the body (manifold3d's sections are single
+    # precision): the bounding-box centre, in the pitched frame relative to the cg
+    box = hull.bounds.mean(axis=0) - g
+    ox = box[0] * c - box[2] * s
+    oz = box[0] * s + box[2] * c
+    oy = box[1] + g[1]
+    # rows map a body point to (Y, Z, X) relative to that centre; manifold3d cuts at Z = X.
+    # Scaled to a unit size too: manifold3d rounds its sections to a fixed grid (Clipper2,
+    # 1e-8), so a tiny body would be cut into nothing and a huge one coarsely
+    scale = 1.0 / hull.size
+    cut_matrix = scale * np.array(
+        [
+            [0.0, 1.0, 0.0, -oy],
+            [s, 0.0, c, -(s * g[0] + c * g[2]) - oz],
+            [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
+        ]
+    )
+    slicer = hull.manifold.transform(cut_matrix)
+    # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg
+    a, b = silhouette_edges(hull)
+    keel = _lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
+    return Frame(pitch, g, lowest, highest, keel, slicer, np.array([oy, oz, ox]), _scale=scale)
+
+
+def _turn(r: np.ndarray, c: float, s: float) -> np.ndarray:
+    """(X, Z) of body offsets ``r`` (n, 3) turned nose up by the pitch (cos, sin)."""
+    return np.stack([r[:, 0] * c - r[:, 2] * s, r[:, 0] * s + r[:, 2] * c], axis=1)
+
+
+def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
+    """The edges of the body's outline seen from the side, as end points (e, 3) in m.
+
+    An edge is on the outline seen along ``y`` when one of its two faces faces port and the
+    other starboard (or either is edge-on). Turning the body about ``y`` (its pitch) does not
+    change which faces face which way, so these edges serve every pitch: the keel line at
+    any pitch is the lower envelope of their side views. Kept on the hull.
+    """
+    cached = hull.__dict__.get("_silhouette")
+    if cached is not None:
+        return cached
+    v, f = hull.vertices, hull.faces
+    ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
+    directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    order = np.argsort(lo * len(v) + hi, kind="stable")
+    face = np.repeat(np.arange(len(f)), 3)[order]
+    # a closed manifold uses each edge twice: the two uses are neighbours once sorted
+    side = (np.sign(ny[face[0::2]]) * np.sign(ny[face[1::2]])) <= 0
+    ends = directed[order[0::2][side]]
+    out = (v[ends[:, 0]], v[ends[:, 1]])
+    hull.__dict__["_silhouette"] = out
+    return out
+
+
+def _lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
+    """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
+
+    Evaluated exactly at every end point; where two segments cross between end points the
+    envelope is refined at the middle of that interval (the crossing point itself is not
+    found, so there the line may lie a little high).
+    """
+    xs = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
+    z = _envelope_at(a, b, xs)
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    zm = _envelope_at(a, b, mid)
+    lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
+    if lower.any():
+        xs = np.concatenate([xs, mid[lower]])
+        z = np.concatenate([z, zm[lower]])
+        order = np.argsort(xs)
+        xs, z = xs[order], z[order]
+    return KeelLine(xs, z)
+
+
+def _envelope_at(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    """Lowest height of the segments over each of the sorted abscissae ``xs``."""
+    lo = np.minimum(a[:, 0], b[:, 0])
+    hi = np.maximum(a[:, 0], b[:, 0])
+    i0 = np.searchsorted(xs, lo, side="left")
+    i1 = np.searchsorted(xs, hi, side="right")  # abscissae i0 .. i1-1 lie on the segment
+    count = i1 - i0
+    seg = np.repeat(np.arange(len(a)), count)
+    idx = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
+    xa, za, xb, zb = a[seg, 0], a[seg, 1], b[seg, 0], b[seg, 1]
+    x = xs[idx]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = np.where(xb != xa, (x - xa) / (xb - xa), 0.0)
+    z_on = np.where(xb != xa, za + t * (zb - za), np.minimum(za, zb))
+    z = np.full(len(xs), np.inf)
+    np.minimum.at(z, idx, z_on)
+    return z

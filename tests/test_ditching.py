@@ -1,0 +1,53 @@
+"""The full-scale fuselage ditching: 60 m/s forward, 1.5 m/s sink, 0 to 8 degrees of pitch."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+
+from .conftest import MESHES
+
+
+@pytest.fixture(scope="module")
+def fuselage():
+    return hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
+
+
+def peak_force(hull, pitch_deg, slices, dt):
+    h = hs.simulate(
+        hull,
+        -1.5,
+        0.16,
+        dt=dt,
+        pitch=np.radians(pitch_deg),
+        forward_speed=60.0,
+        slices=slices,
+        stop_on=(),
+    )
+    return h.peak["force"]
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("pitch_deg", [0.0, 4.0, 8.0])
+def test_ditching_peak_force_converges(fuselage, pitch_deg):
+    coarse = peak_force(fuselage, pitch_deg, 64, 0.004)
+    fine_slices = peak_force(fuselage, pitch_deg, 128, 0.004)
+    fine_dt = peak_force(fuselage, pitch_deg, 64, 0.002)
+    assert fine_slices == pytest.approx(coarse, rel=0.02)
+    assert fine_dt == pytest.approx(coarse, rel=0.02)
+
+
+def test_model_scale_is_froude_similar(fuselage):
+    # a 1:10 model (1/1000 of the mass) at Froude-scaled speeds (sqrt(1/10)) sees the same
+    # flow: forces scale as 1/1000, times as sqrt(1/10); gravity is the same in both
+    model = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    k = np.sqrt(0.1)
+    pose = hs.Pose(0.08, np.radians(6.0))
+    full = hs.compute_force(fuselage, pose, hs.Motion(-1.5, 60.0), slices=48)
+    small = hs.compute_force(
+        model, hs.Pose(0.008, pose.pitch), hs.Motion(-1.5 * k, 60.0 * k), slices=48
+    )
+    assert small.total * 1000 == pytest.approx(full.total, rel=1e-4)
+    assert small.moment * 1e4 == pytest.approx(full.moment, rel=1e-4)

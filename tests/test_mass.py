@@ -1,0 +1,132 @@
+"""Mass properties: uniform density, line densities and point masses."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import trimesh
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.mass import MassDistribution, read_mass_distribution
+
+from .conftest import MESHES
+
+
+@pytest.fixture(scope="module")
+def fuselage():
+    return hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
+
+
+def test_pitch_inertia_from_the_mesh_matches_trimesh(fuselage):
+    tm = trimesh.Trimesh(fuselage.vertices, fuselage.faces, process=False)
+    tm.density = fuselage.density
+    # trimesh: inertia tensor about the centre of mass; the pitch axis is y
+    assert fuselage.pitch_inertia == pytest.approx(tm.moment_inertia[1, 1], rel=1e-9)
+    assert fuselage.cg == pytest.approx(tm.center_mass, abs=1e-9)
+
+
+@pytest.mark.parametrize("pitch_deg", [0.0, 6.0])
+def test_mass_per_metre_adds_up_to_the_mass(fuselage, pitch_deg):
+    # the whole body under water, cut into many slices: sum M dX = m (midpoint rule)
+    pose = hs.Pose(draft=0.0, pitch=np.radians(pitch_deg))
+    height = hs.sections._height_at(fuselage, pose.pitch)
+    s = hs.cut(fuselage, hs.Pose(height, pose.pitch), 400)
+    total = (s.mass_per_metre * s.dx).sum()
+    assert total == pytest.approx(fuselage.mass, rel=0.005)
+
+
+def test_line_distribution_mass_per_metre_adds_up(fuselage):
+    x = np.linspace(0.0, 37.6, 50)
+    m_per_m = 1000.0 + 1500.0 * np.sin(np.pi * x / 37.6)  # heavier in the middle
+    dist = MassDistribution(x=x, mass_per_metre=m_per_m)
+    hull = fuselage.with_mass(mass_distribution=dist)
+    assert hull.mass == pytest.approx(np.trapezoid(m_per_m, x), rel=1e-12)
+    for pitch in (0.0, np.radians(8.0)):
+        height = hs.sections._height_at(hull, pitch)
+        s = hs.cut(hull, hs.Pose(height, pitch), 400)
+        assert (s.mass_per_metre * s.dx).sum() == pytest.approx(hull.mass, rel=0.005)
+    # the sections carry the given density where the body is level
+    s = hs.cut(hull, 1.0, 16)
+    np.testing.assert_allclose(s.mass_per_metre, dist.at(s.x), rtol=1e-12)
+
+
+def test_line_moments_are_exact():
+    # a linear density: closed-form integrals
+    x = np.array([0.0, 2.0, 5.0])
+    m = np.array([1.0, 3.0, 0.0])
+    dist = MassDistribution(x=x, mass_per_metre=m, line_z=0.5)
+    fine = np.linspace(0.0, 5.0, 200001)
+    mf = np.interp(fine, x, m)
+    mass = np.trapezoid(mf, fine)
+    xg = np.trapezoid(fine * mf, fine) / mass
+    assert dist.total == pytest.approx(mass, rel=1e-9)
+    cg = dist.cg(line_z=99.0)  # its own line height wins
+    assert cg == pytest.approx([xg, 0.5], rel=1e-9)
+    i = dist.pitch_inertia(cg, line_z=99.0)
+    assert i == pytest.approx(np.trapezoid((fine - xg) ** 2 * mf, fine), rel=1e-8)
+
+
+def test_point_masses():
+    pts = np.array([[1.0, 0.0, 10.0, 0.5], [5.0, 2.0, 30.0, 1.0]])
+    dist = MassDistribution(points=pts)
+    assert dist.total == 40.0
+    cg = dist.cg(line_z=0.0)
+    assert cg == pytest.approx([(10 + 150) / 40, 60 / 40])
+    # point masses plus thin rods of their lengths about their own centres
+    expected = 10 * ((1 - 4) ** 2 + 1.5**2 + 0.5**2 / 12) + 30 * (1**2 + 0.5**2 + 1 / 12)
+    assert dist.pitch_inertia(cg, 0.0) == pytest.approx(expected, rel=1e-12)
+    assert dist.at(np.array([1.2, 1.3, 5.0])) == pytest.approx([20.0, 0.0, 30.0])
+
+
+def test_given_cg_and_inertia_override(fuselage):
+    hull = fuselage.with_mass(60000.0, cg=(18.0, 1.5), inertia=3.0e6)
+    assert hull.cg[[0, 2]] == pytest.approx([18.0, 1.5])
+    assert hull.pitch_inertia == 3.0e6
+
+
+def test_distribution_and_mass_must_agree(fuselage):
+    dist = MassDistribution(x=[0.0, 10.0], mass_per_metre=[100.0, 100.0])
+    with pytest.raises(hs.InputError, match="adds up to 1000 kg but the mass is given as 2000"):
+        fuselage.with_mass(2000.0, mass_distribution=dist)
+    assert fuselage.with_mass(1003.0, mass_distribution=dist).mass == 1003.0
+
+
+def test_read_csv_forms(tmp_path):
+    line = tmp_path / "line.csv"
+    line.write_text("# aircraft\nx,mass_per_metre\n0,100\n10,300\n")
+    d = read_mass_distribution(line)
+    assert d.total == pytest.approx(2000.0)
+    pts = tmp_path / "pts.csv"
+    pts.write_text("x,z,mass,length\n1,0.5,100,2\n3,0.5,300,2\n")
+    d = read_mass_distribution(pts)
+    assert d.total == 400.0 and d.cg(0.0) == pytest.approx([2.5, 0.5])
+
+
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("x,weight\n0,1\n1,2\n", "needs x,mass_per_metre"),
+        ("x,mass_per_metre\n0,1\n0,2\n", "strictly increasing"),
+        ("x,mass_per_metre\n0,1\n1,-2\n", "negative"),
+        ("x,mass_per_metre\n0,1\n1,abc\n", "line 3"),
+        ("x,z,mass\n0,0,-5\n", "must be > 0"),
+        ("", "is empty"),
+    ],
+)
+def test_bad_mass_distribution_files(tmp_path, text, message):
+    path = tmp_path / "m.csv"
+    path.write_text(text)
+    with pytest.raises(hs.CaseError, match=message):
+        read_mass_distribution(path)
+
+
+def test_uniform_prism_centroid_and_inertia_closed_form():
+    # a box: I_yy = m (L^2 + H^2) / 12
+    v, f = shapes.prism_from_sections(
+        np.array([0.0, 2.0]),
+        np.broadcast_to([[-0.5, 0.0], [0.5, 0.0], [0.5, 1.0], [-0.5, 1.0]], (2, 4, 2)),
+    )
+    hull = hs.Hull.from_arrays(v, f, mass=6.0)
+    assert hull.pitch_inertia == pytest.approx(6.0 * (4.0 + 1.0) / 12, rel=1e-12)
+    assert hull.cg == pytest.approx([1.0, 0.0, 0.5])
