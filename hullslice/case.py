@@ -16,7 +16,8 @@ an unknown key, a value of the wrong type (a quoted number, a boolean for a numb
 fractional slice count) or out of range (a negative mass, NaN) raises a
 :class:`~hullslice.errors.CaseError` that names the key, the expected type and unit, and
 the offending value. Keys are flat (no tables) except ``solver_options``, whose table is
-passed to the solver as it is.
+passed to the solver as it is. Values are in the command line's units: SI, angles in
+degrees (``pitch``, ``pitch_rate``).
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ from typing import Any
 
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
+from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
 __all__ = ["SCHEMA", "Key", "load_case", "validate_case"]
 
@@ -112,18 +114,30 @@ SCHEMA: dict[str, Key] = {
         Key("forward", "text", "", "mesh axis pointing forward", "+x", _axis),
         Key("up", "text", "", "mesh axis pointing up", "+z", _axis),
         Key("mass", "number", "kg", "mass of the body", check=_positive),
+        Key("mass_distribution", "path", "", "CSV of the mass along the body, relative to "
+            "the case"),
+        Key("cg", "pair", "m", "centre of gravity x, z in the body frame"),
+        Key("inertia", "number", "kg*m^2", "pitch moment of inertia about the centre of "
+            "gravity", check=_positive),
         Key("rho", "number", "kg/m^3", "water density", RHO_WATER, _positive),
         Key("g", "number", "m/s^2", "gravitational acceleration", G, _not_negative),
         Key("solver", "text", "", "name of the 2D solver", "extended-von-karman"),
         Key("solver_options", "table", "", "options passed to the 2D solver"),
-        Key("deadrise", "text", "", "local deadrise estimator", "wedge"),
+        Key("deadrise", "text", "", "local deadrise estimator", "wedge",
+            _one_of(DEADRISE_ESTIMATORS)),
+        Key("slicing", "text", "", "how the slices are placed", "wetted", _one_of(SLICINGS)),
         Key("slices", "counts", "", "slice count(s) over the wetted length", check=_slice_range),
         Key("draft", "number", "m", "depth of the lowest point below the water", None,
             _not_negative),
+        Key("pitch", "number", "deg", "pitch angle, positive nose up"),
         Key("velocity", "number", "m/s", "vertical velocity, negative down"),
+        Key("forward_speed", "number", "m/s", "horizontal speed along the body"),
+        Key("pitch_rate", "number", "deg/s", "pitch rate, positive nose up"),
         Key("t_end", "number", "s", "duration of a free fall", check=_positive),
         Key("dt", "number", "s", "time step of a free fall", check=_positive),
         Key("kinematics", "path", "", "CSV of t, penetration, velocity, relative to the case"),
+        Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
+        Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
     )
 }  # fmt: skip
@@ -134,6 +148,7 @@ _KIND_WORDS = {
     "number": "a number",
     "count": "a whole number",
     "counts": "a whole number or a list of whole numbers",
+    "pair": "a list of two numbers",
     "flag": "true or false",
     "table": "a table",
 }
@@ -169,6 +184,14 @@ def _convert(key: Key, value: Any, where: str) -> Any:
             hint = " (write the number without quotes)"
         elif ok and not math.isfinite(value):
             ok, hint = False, " (a finite number is needed)"
+    elif kind == "pair":
+        ok = (
+            isinstance(value, list)
+            and len(value) == 2
+            and all(isinstance(i, int | float) and not isinstance(i, bool) for i in value)
+            and all(math.isfinite(i) for i in value)
+        )
+        hint = " (write e.g. [12.5, 0.3])"
     else:  # count or counts
         items = value if kind == "counts" and isinstance(value, list) else [value]
         ok = bool(items) and all(isinstance(i, int) and not isinstance(i, bool) for i in items)
@@ -181,6 +204,8 @@ def _convert(key: Key, value: Any, where: str) -> Any:
         )
     if kind == "number":
         return float(value)
+    if kind == "pair":
+        return (float(value[0]), float(value[1]))
     if kind == "table":
         return dict(value)
     if kind == "count":

@@ -22,6 +22,11 @@ t_end = 0.03
 dt = 1e-4
 kinematics = "kin.csv"
 continue_invalid = false
+pitch = 4.5                  # deg
+forward_speed = 0.0
+cg = [0.17, -0.03]           # m
+mass_distribution = "mass.csv"
+slicing = "fixed"
 
 [solver_options]
 froude_min = 6.5
@@ -44,6 +49,9 @@ def test_a_full_case_is_read_with_its_types_and_defaults(tmp_path):
     assert case["draft"] == 0.0383 and case["velocity"] == -3.4943
     assert case["continue_invalid"] is False
     assert case["solver_options"] == {"froude_min": 6.5}
+    assert case["pitch"] == 4.5 and case["cg"] == (0.17, -0.03)
+    assert case["mass_distribution"] == tmp_path / "mass.csv"
+    assert case["slicing"] == "fixed"
     # defaults of the keys that have one
     assert case["rho"] == hs.RHO_WATER and case["g"] == hs.G
     assert (case["forward"], case["up"], case["deadrise"]) == ("+x", "+z", "wedge")
@@ -86,6 +94,12 @@ def test_one_slice_count_is_a_list_of_one():
         ({"mesh": "a.stl", "solver_options": 3}, "key 'solver_options' must be a table"),
         ({"mesh": "a.stl", "t_end": 0.01, "dt": 0.1}, "'dt' (0.1 s) is longer than the run"),
         ({"mesh": "a.stl", "velocity": [1, 2]}, "key 'velocity' must be a number in m/s"),
+        ({"mesh": "a.stl", "cg": [12.5]}, "key 'cg' must be a list of two numbers in m"),
+        ({"mesh": "a.stl", "cg": [1, "2"]}, "(write e.g. [12.5, 0.3])"),
+        ({"mesh": "a.stl", "inertia": 0}, "key 'inertia' (pitch moment of inertia"),
+        ({"mesh": "a.stl", "slicing": "random"}, "key 'slicing' (how the slices are placed)"),
+        ({"mesh": "a.stl", "deadrise": "best"}, "must be one of wedge, waterline-slope"),
+        ({"mesh": "a.stl", "free_pitch": 1}, "key 'free_pitch' must be true or false"),
     ],
 )
 def test_bad_keys_and_values(case, message):
@@ -136,10 +150,14 @@ def test_every_schema_key_has_a_documented_kind_and_unit():
     numbers = {k.name: k.unit for k in SCHEMA.values() if k.kind == "number"}
     assert numbers == {
         "mass": "kg",
+        "inertia": "kg*m^2",
         "rho": "kg/m^3",
         "g": "m/s^2",
         "draft": "m",
+        "pitch": "deg",
         "velocity": "m/s",
+        "forward_speed": "m/s",
+        "pitch_rate": "deg/s",
         "t_end": "s",
         "dt": "s",
     }
