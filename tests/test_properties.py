@@ -36,7 +36,7 @@ import pytest
 import trimesh
 from hypothesis import assume, given
 from hypothesis import strategies as st
-from scipy.spatial import ConvexHull
+from scipy.spatial import ConvexHull, QhullError
 from scipy.spatial.transform import Rotation
 
 import hullslice as hs
@@ -105,9 +105,12 @@ def exact_section_area(v: np.ndarray, f: np.ndarray, x: float) -> float:
     t = (x - a[crossing, 0]) / (b[crossing, 0] - a[crossing, 0])
     pts = a[crossing, 1:] + t[:, None] * (b[crossing, 1:] - a[crossing, 1:])
     pts = np.vstack([pts, v[v[:, 0] == x, 1:]])
-    if len(pts) < 3:
+    if len(np.unique(pts, axis=0)) < 3:
         return 0.0
-    return float(ConvexHull(pts).volume)  # a 2D hull's "volume" is its area
+    try:
+        return float(ConvexHull(pts).volume)  # a 2D hull's "volume" is its area
+    except QhullError:  # the points on one line: a section of no area
+        return 0.0
 
 
 # -- sections -------------------------------------------------------------------------------
