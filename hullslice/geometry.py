@@ -119,7 +119,7 @@ class Frame:
         key = (int(n), float(tol))
         if key not in self._fixed:
             polys = self.cut(self.fixed_stations(n)[1])
-            self._fixed[key] = (Outline.of(polys, tol, self.origin), polys)
+            self._fixed[key] = (Outline.of(polys, tol, self.origin, self.scale), polys)
         return self._fixed[key]
 
     def z_cg(self, draft: float) -> float:
@@ -129,15 +129,15 @@ class Frame:
     def cut(self, x_rel: np.ndarray) -> list[tuple[np.ndarray, ...]]:
         """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
         them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
-        in ``(Y, Z)`` less :attr:`origin` (add it, and ``Z_g``, for earth coordinates)."""
+        in the cutter's coordinates: divide by :attr:`scale` and add :attr:`origin` (and
+        ``Z_g``) for earth coordinates in m."""
         ox, k = self._offset[2], self._scale
-        return [
-            tuple(
-                np.asarray(c, dtype=np.float64) / k
-                for c in self._slicer.slice(float((xi - ox) * k)).to_polygons()
-            )
-            for xi in x_rel
-        ]
+        return [tuple(self._slicer.slice(float((xi - ox) * k)).to_polygons()) for xi in x_rel]
+
+    @property
+    def scale(self) -> float:
+        """The cutter's coordinates are metres times this (the body brought to unit size)."""
+        return self._scale
 
     @property
     def origin(self) -> tuple[float, float]:

@@ -54,7 +54,7 @@ DEADRISE_ESTIMATORS: dict[str, str] = {
 
 
 class ShiftedPolygons(Sequence):
-    """Station contours moved by a fixed offset when they are read (no copy until then).
+    """Station contours scaled and moved when they are read (no copy until then).
 
     Parameters
     ----------
@@ -62,11 +62,16 @@ class ShiftedPolygons(Sequence):
         Contours per station.
     shift : (float, float)
         Offset added to every point, m.
+    scale : float
+        Every point is divided by it before the shift.
     """
 
-    def __init__(self, polygons: Sequence[Polygons], shift: tuple[float, float]) -> None:
+    def __init__(
+        self, polygons: Sequence[Polygons], shift: tuple[float, float], scale: float = 1.0
+    ) -> None:
         self._polygons = polygons
         self._shift = np.asarray(shift, dtype=np.float64)
+        self._scale = float(scale)
 
     def __len__(self) -> int:
         return len(self._polygons)
@@ -74,7 +79,7 @@ class ShiftedPolygons(Sequence):
     def __getitem__(self, i):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
-        return tuple(c + self._shift for c in self._polygons[i])
+        return tuple(np.asarray(c) / self._scale + self._shift for c in self._polygons[i])
 
 
 def _readonly(a) -> np.ndarray:
@@ -364,7 +369,7 @@ def sections_at(
         bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
         dx = np.diff(np.clip(bounds, x0, x1))
     polys = fr.cut(rel)
-    props = wetted_properties(Outline.of(polys, tol, fr.origin), level, tol, deadrise)
+    props = wetted_properties(Outline.of(polys, tol, fr.origin, fr.scale), level, tol, deadrise)
     return _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise)
 
 
@@ -404,7 +409,7 @@ def _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise, sc
         keel_slope=slope[st],
         keel_z=(keel_z + z_cg)[st],
         y_keel=props["y_keel"],
-        polygons=ShiftedPolygons(polys, shift),
+        polygons=ShiftedPolygons(polys, shift, fr.scale),
         deadrise_method=deadrise,
         draft=pose.draft,
         pitch=pose.pitch,
@@ -480,7 +485,7 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
 
 def _outline_of(fr, rel: np.ndarray, tol: float):
     polys = fr.cut(rel)
-    return Outline.of(polys, tol, fr.origin), polys
+    return Outline.of(polys, tol, fr.origin, fr.scale), polys
 
 
 def _with_fresh(fr, sel, slice_polys, fresh, x, level, tol, deadrise):
@@ -567,15 +572,21 @@ class Outline:
 
     @classmethod
     def of(
-        cls, polygons: Sequence[Polygons], tol: float, origin: tuple[float, float] = (0.0, 0.0)
+        cls,
+        polygons: Sequence[Polygons],
+        tol: float,
+        origin: tuple[float, float] = (0.0, 0.0),
+        scale: float = 1.0,
     ) -> Outline:
         """The outline of station sections given as contours (see :func:`section_properties`),
-        each point moved by ``origin``."""
+        each point divided by ``scale`` and moved by ``origin``."""
         s = len(polygons)
         contours = [c for secs in polygons for c in secs]
         if contours:
             sizes = np.array([len(c) for c in contours])
             a = np.concatenate(contours)
+            if scale != 1.0:
+                a = a / scale
             if origin != (0.0, 0.0):
                 a = a + np.asarray(origin)
             nxt = np.arange(len(a)) + 1

@@ -1,0 +1,244 @@
+"""hullslice's benchmark suite: one command, a table of measured figures against targets.
+
+    python benchmarks/run.py [--quick] [--repeat 5]
+
+Meshes: the generic fuselage of ``hullslice.shapes`` at about 10k, 100k and 1M faces
+(``--quick`` stops at 100k). For each: the time to load it from a file; the time to cut it
+at 128 stations with manifold3d and with trimesh's ``section_multiplane`` on the same
+planes; the cost of one force evaluation (a time step's stage) with 128 slices, level,
+with the fixed slicing cut once (cached) against re-cutting the 3D hull at every step
+(naive); the cost of an evaluation at a new pitch (the cut must be redone). Then: the
+cached cost against the slice count (32 to 512), whole free falls of 100 to 10,000
+steps, a 2,000-step free fall of the 1M-face fuselage in a process of its own (time and
+peak memory), the paper's free-fall case from process start to printed report, and the
+time of ``import hullslice`` and ``hullslice --help``. Times are medians of ``--repeat``
+runs on this machine; ratios compare figures measured in the same run.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import textwrap
+import time
+from pathlib import Path
+
+import numpy as np
+import trimesh
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.motion import ForceModel
+
+ROOT = Path(__file__).resolve().parents[1]
+SIZES = {"10k": (63, 80), "100k": (313, 160), "1M": (1563, 320)}  # stations, points
+
+
+def median_time(fn, repeat: int) -> float:
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def per_call(fn, calls: int, repeat: int) -> float:
+    """Median over ``repeat`` runs of the mean time of ``calls`` calls of ``fn(i)``."""
+
+    def run():
+        for i in range(calls):
+            fn(i)
+
+    return median_time(run, repeat) / calls
+
+
+def fmt(seconds: float) -> str:
+    if seconds < 1e-3:
+        return f"{seconds * 1e6:.0f} us"
+    if seconds < 1.0:
+        return f"{seconds * 1e3:.2f} ms"
+    return f"{seconds:.2f} s"
+
+
+class Table:
+    def __init__(self) -> None:
+        self.rows: list[tuple[str, str, str, str]] = []
+
+    def add(self, what: str, value: str, target: str = "", ok: bool | None = None) -> None:
+        verdict = "" if ok is None else ("met" if ok else "NOT MET")
+        self.rows.append((what, value, target, verdict))
+        print(f"  {what}: {value}" + (f"  (target {target}: {verdict})" if target else ""))
+
+    def show(self) -> None:
+        heads = ("measure", "value", "target", "")
+        widths = [max(len(r[i]) for r in [heads, *self.rows]) for i in range(4)]
+        line = "  ".join(h.ljust(w) for h, w in zip(heads, widths, strict=True))
+        print("\n" + line.rstrip())
+        print("  ".join("-" * w for w in widths))
+        for r in self.rows:
+            print("  ".join(c.ljust(w) for c, w in zip(r, widths, strict=True)).rstrip())
+
+
+def fuselage_file(tmp: Path, size: str) -> Path:
+    stations, points = SIZES[size]
+    v, f = shapes.fuselage(stations=stations, points=points)
+    path = tmp / f"fuselage_{size}.stl"
+    trimesh.Trimesh(v, f, process=False).export(path)
+    return path
+
+
+def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
+    path = fuselage_file(tmp, size)
+    t_load = median_time(lambda: hs.load_hull(path, mass=60000.0), max(1, repeat // 2))
+    hull = hs.load_hull(path, mass=60000.0)
+    faces = len(hull.faces)
+    table.add(f"{size} ({faces} faces): load from STL", fmt(t_load))
+
+    # cutting at 128 stations: manifold3d against trimesh on the same planes
+    xs = np.linspace(hull.bounds[0, 0], hull.bounds[1, 0], 130)[1:-1]
+    t_cut = median_time(lambda: hs.cut(hull, 1.0, stations=xs[::1][:128]), repeat)
+    tm = trimesh.Trimesh(hull.vertices, hull.faces, process=False)
+    heights = xs[:128] - xs[0]
+    t_tm = median_time(
+        lambda: tm.section_multiplane([xs[0], 0.0, 0.0], [1.0, 0.0, 0.0], heights), repeat
+    )
+    table.add(f"{size}: cut at 128 stations, manifold3d", fmt(t_cut))
+    table.add(f"{size}: trimesh section_multiplane, same planes", fmt(t_tm), "", None)
+    table.add(f"{size}: ratio trimesh / manifold3d", f"{t_tm / t_cut:.1f}")
+
+    # one force evaluation, level, 128 slices: cut once against re-cutting every step
+    motion = hs.Motion(-1.5, 60.0)
+    drafts = np.linspace(0.05, 0.3, 50)
+    cached = ForceModel(hull, slices=128, slicing="fixed")
+    naive = ForceModel(hull, slices=128, slicing="fixed", cache=False)
+    cached(hs.Pose(0.1, 0.08), motion)
+    t_cached = per_call(lambda i: cached(hs.Pose(drafts[i % 50], 0.08), motion), 50, repeat)
+    t_naive = per_call(lambda i: naive(hs.Pose(drafts[i % 50], 0.08), motion), 5, repeat)
+    wetted = ForceModel(hull, slices=128)
+    t_wetted = per_call(lambda i: wetted(hs.Pose(drafts[i % 50], 0.08), motion), 5, repeat)
+    table.add(
+        f"{size}: step (one evaluation), fixed pitch, 128 slices, cached",
+        fmt(t_cached),
+        "< 1 ms" if size == "1M" else "",
+        (t_cached < 1e-3) if size == "1M" else None,
+    )
+    table.add(f"{size}: same, naive (re-cut the 3D hull every step)", fmt(t_naive))
+    table.add(f"{size}: ratio naive / cached", f"{t_naive / t_cached:.0f}")
+    table.add(f"{size}: same, slices over the wetted length (re-cut)", fmt(t_wetted))
+
+    # a step at a new pitch: everything that depends on the pitch is redone
+    pitches = np.radians(np.linspace(6.0, 7.0, 7))
+    t_pitch = per_call(
+        lambda i: cached(hs.Pose(0.1, pitches[i % 7] + 1e-6 * i), motion), 7, 1
+    )
+    table.add(
+        f"{size}: step with a changing pitch, 128 slices",
+        fmt(t_pitch),
+        "< 30 ms" if size == "1M" else "",
+        (t_pitch < 0.03) if size == "1M" else None,
+    )
+    return {"hull": hull, "load": t_load, "path": path}
+
+
+def bench_slices(table: Table, hull, repeat: int) -> None:
+    motion = hs.Motion(-1.5, 60.0)
+    for n in (32, 128, 512):
+        model = ForceModel(hull, slices=n, slicing="fixed")
+        model(hs.Pose(0.1, 0.08), motion)
+        t = per_call(lambda i, m=model: m(hs.Pose(0.1 + 1e-4 * (i % 20), 0.08), motion), 40,
+                     repeat)
+        table.add(f"100k: cached evaluation, {n} slices", fmt(t))
+
+
+def bench_steps(table: Table, repeat: int) -> None:
+    hull = hs.load_hull(ROOT / "meshes" / "paper_prism.stl", mass=1.0)
+    for steps in (100, 1000, 10000):
+        t_end = 0.02
+        t = median_time(
+            lambda s=steps: hs.simulate(
+                hull, -4.0, t_end, dt=t_end / s, slices=64, slicing="fixed", stop_on=()
+            ),
+            1 if steps > 1000 else repeat,
+        )
+        table.add(f"paper prism free fall, {steps} steps, fixed 64 slices", fmt(t))
+
+
+CHILD = textwrap.dedent(
+    """
+    import resource, sys, time
+    import hullslice as hs
+    t0 = time.perf_counter()
+    hull = hs.load_hull(sys.argv[1], mass=60000.0)
+    t_load = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    h = hs.simulate(hull, -1.5, 0.4, dt=0.0002, pitch=0.08, forward_speed=60.0,
+                    slices=128, slicing="fixed", stop_on=())
+    t_sim = time.perf_counter() - t0
+    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    print(t_load, t_sim, len(h), peak)
+    """
+)
+
+
+def bench_big_simulation(table: Table, path: Path) -> None:
+    out = subprocess.run(
+        [sys.executable, "-c", CHILD, str(path)], capture_output=True, text=True, check=True
+    )
+    t_load, t_sim, steps, peak = (float(v) for v in out.stdout.split())
+    table.add("1M: load (in the simulating process)", fmt(t_load))
+    table.add(
+        f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
+        fmt(t_sim),
+        f"< 1.5 x load = {fmt(1.5 * t_load)}",
+        t_sim < 1.5 * t_load,
+    )
+    table.add("1M: ratio simulation / load", f"{t_sim / t_load:.2f}")
+    table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
+
+
+def bench_process(table: Table, repeat: int) -> None:
+    exe = [sys.executable, "-m", "hullslice"]
+    paper = [
+        *exe, "simulate", str(ROOT / "meshes" / "paper_prism.stl"), "--mass", "1",
+        "--velocity=-4", "--t-end", "0.03", "--dt", "2e-4",
+    ]
+    t = median_time(lambda: subprocess.run(paper, capture_output=True, check=True), repeat)
+    table.add("paper free fall, process start to printed report", fmt(t), "< 2 s", t < 2.0)
+    t = median_time(
+        lambda: subprocess.run([sys.executable, "-c", "import hullslice"], check=True), repeat
+    )
+    table.add("import hullslice (process)", fmt(t), "< 0.5 s", t < 0.5)
+    t = median_time(
+        lambda: subprocess.run([*exe, "--help"], capture_output=True, check=True), repeat
+    )
+    table.add("hullslice --help (process)", fmt(t), "< 0.5 s", t < 0.5)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh")
+    ap.add_argument("--repeat", type=int, default=5, help="repetitions (default 5)")
+    args = ap.parse_args()
+    table = Table()
+    print(f"hullslice {hs.__version__}, numpy {np.__version__}, {os.cpu_count()} cores")
+    with tempfile.TemporaryDirectory() as tmp:
+        sizes = ("10k", "100k") if args.quick else ("10k", "100k", "1M")
+        results = {}
+        for size in sizes:
+            print(f"mesh {size} ...")
+            results[size] = bench_mesh(table, Path(tmp), size, args.repeat)
+        bench_slices(table, results["100k"]["hull"], args.repeat)
+        bench_steps(table, args.repeat)
+        if not args.quick:
+            bench_big_simulation(table, results["1M"]["path"])
+        bench_process(table, args.repeat)
+    table.show()
+
+
+if __name__ == "__main__":
+    main()
