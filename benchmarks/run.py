@@ -133,9 +133,7 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
 
     # a step at a new pitch: everything that depends on the pitch is redone
     pitches = np.radians(np.linspace(6.0, 7.0, 7))
-    t_pitch = per_call(
-        lambda i: cached(hs.Pose(0.1, pitches[i % 7] + 1e-6 * i), motion), 7, 1
-    )
+    t_pitch = per_call(lambda i: cached(hs.Pose(0.1, pitches[i % 7] + 1e-6 * i), motion), 7, 1)
     table.add(
         f"{size}: step with a changing pitch, 128 slices",
         fmt(t_pitch),
@@ -150,15 +148,14 @@ def bench_slices(table: Table, hull, repeat: int) -> None:
     for n in (32, 128, 512):
         model = ForceModel(hull, slices=n, slicing="fixed")
         model(hs.Pose(0.1, 0.08), motion)
-        t = per_call(lambda i, m=model: m(hs.Pose(0.1 + 1e-4 * (i % 20), 0.08), motion), 40,
-                     repeat)
+        t = per_call(lambda i, m=model: m(hs.Pose(0.1 + 1e-4 * (i % 20), 0.08), motion), 40, repeat)
         table.add(f"100k: cached evaluation, {n} slices", fmt(t))
 
 
 def bench_steps(table: Table, repeat: int) -> None:
     hull = hs.load_hull(ROOT / "meshes" / "paper_prism.stl", mass=1.0)
+    t_end = 0.02
     for steps in (100, 1000, 10000):
-        t_end = 0.02
         t = median_time(
             lambda s=steps: hs.simulate(
                 hull, -4.0, t_end, dt=t_end / s, slices=64, slicing="fixed", stop_on=()
@@ -204,8 +201,16 @@ def bench_big_simulation(table: Table, path: Path) -> None:
 def bench_process(table: Table, repeat: int) -> None:
     exe = [sys.executable, "-m", "hullslice"]
     paper = [
-        *exe, "simulate", str(ROOT / "meshes" / "paper_prism.stl"), "--mass", "1",
-        "--velocity=-4", "--t-end", "0.03", "--dt", "2e-4",
+        *exe,
+        "simulate",
+        str(ROOT / "meshes" / "paper_prism.stl"),
+        "--mass",
+        "1",
+        "--velocity=-4",
+        "--t-end",
+        "0.03",
+        "--dt",
+        "2e-4",
     ]
     t = median_time(lambda: subprocess.run(paper, capture_output=True, check=True), repeat)
     table.add("paper free fall, process start to printed report", fmt(t), "< 2 s", t < 2.0)

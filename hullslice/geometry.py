@@ -52,14 +52,17 @@ class KeelLine:
         slice is the slice's own slope and tends to the local one as the slices get thinner.
         """
         x = np.asarray(x, dtype=np.float64)
-        z = np.interp(x, self.x, self.z)
-        lo = np.maximum(x - 0.5 * np.asarray(dx), self.x[0])
-        hi = np.minimum(x + 0.5 * np.asarray(dx), self.x[-1])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mean = (np.interp(hi, self.x, self.z) - np.interp(lo, self.x, self.z)) / (hi - lo)
-        i = np.clip(np.searchsorted(self.x, x, side="right") - 1, 0, len(self.x) - 2)
+        half = 0.5 * np.asarray(dx, dtype=np.float64)
+        lo = np.maximum(x - half, self.x[0])
+        hi = np.minimum(x + half, self.x[-1])
+        z, zlo, zhi = np.interp(np.concatenate([x, lo, hi]), self.x, self.z).reshape(3, -1)
+        span = hi - lo
+        ok = span > 0
+        if ok.all():
+            return z, (zhi - zlo) / span
+        i = np.minimum(np.maximum(np.searchsorted(self.x, x, side="right") - 1, 0), len(self.x) - 2)
         local = (self.z[i + 1] - self.z[i]) / (self.x[i + 1] - self.x[i])
-        return z, np.where(hi > lo, mean, local)
+        return z, np.where(ok, (zhi - zlo) / np.where(ok, span, 1.0), local)
 
     def below(self, level: float) -> tuple[float, float] | None:
         """The ``x`` range where the keel is below ``level`` (relative), or None."""

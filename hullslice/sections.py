@@ -384,11 +384,20 @@ def _station_mass(hull: Hull, fr, area: np.ndarray, rel: np.ndarray) -> np.ndarr
     return hull.mass_per_metre_at(fr.cg[0] + rel / c) / c
 
 
-def _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise, scale=None):
-    """:class:`Sections` from per-station positions and per-entry properties."""
+def _assemble(
+    hull, fr, pose, level, length, rel, dx, props, polys, deadrise, scale=None, keel=None
+):
+    """:class:`Sections` from per-station positions and per-entry properties; ``keel`` is
+    the keel line's height and slope at the stations when already known."""
     st = props["station"]
-    r = np.ones(len(st)) if scale is None else scale[st]
-    keel_z, slope = fr.keel.at(rel, dx)
+    keel_z, slope = fr.keel.at(rel, dx) if keel is None else keel
+    if scale is None:
+        penetration, half_beam = props["penetration"], props["half_beam"]
+        port, stbd = props["half_beam_port"], props["half_beam_stbd"]
+    else:
+        r = scale[st]
+        penetration, half_beam = props["penetration"] * r, props["half_beam"] * r
+        port, stbd = props["half_beam_port"] * r, props["half_beam_stbd"] * r
     z_cg = -level
     shift = (fr.origin[0], fr.origin[1] + z_cg)
     m_station = _station_mass(hull, fr, props["area"], rel)
@@ -396,10 +405,10 @@ def _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise, sc
         station=st,
         x=(rel + fr.cg[0])[st],
         dx=dx[st],
-        penetration=props["penetration"] * r,
-        half_beam=props["half_beam"] * r,
-        half_beam_port=props["half_beam_port"] * r,
-        half_beam_stbd=props["half_beam_stbd"] * r,
+        penetration=penetration,
+        half_beam=half_beam,
+        half_beam_port=port,
+        half_beam_stbd=stbd,
         deadrise=props["deadrise"],
         deadrise_port=props["deadrise_port"],
         deadrise_stbd=props["deadrise_stbd"],
@@ -445,27 +454,32 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
         )
     x0, x1 = extent
     k = np.arange(
-        int(np.clip((x0 - xa) // d, 0, n - 1)), int(np.clip((x1 - xa) // d, 0, n - 1)) + 1
+        min(max(int((x0 - xa) // d), 0), n - 1), min(max(int((x1 - xa) // d), 0), n - 1) + 1
     )
     lo = np.maximum(xa + k * d, x0)
     hi = np.minimum(xa + (k + 1) * d, x1)
     keep = hi > lo
     k, lo, hi = k[keep], lo[keep], hi[keep]
-    props = wetted_properties(outline, level, tol, deadrise)
+    # only the stations of the wetted slices and their neighbours matter
+    w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
+    props = wetted_properties(outline.window(w0, w1), level, tol, deadrise)
+    props["station"] = props["station"] + w0
     wet_mid = np.zeros(n, dtype=bool)
     wet_mid[props["station"][props["penetration"] > 0]] = True
-    full = np.isclose(hi - lo, d, rtol=1e-12, atol=0.0)
+    full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
     source = k.copy()
     # a partial slice whose own mid-station is dry borrows its wetted neighbour's section
     inward = np.where(k == k.min(), 1, -1)
     borrow = ~full & ~wet_mid[k]
-    source[borrow] = np.clip(k[borrow] + inward[borrow], 0, n - 1)
+    source[borrow] = np.minimum(np.maximum(k[borrow] + inward[borrow], 0), n - 1)
     fresh = ~full & ~wet_mid[source]
-    kz_x, _ = fr.keel.at(x, hi - lo)
-    kz_src, _ = fr.keel.at(mids[source], np.full(len(source), d))
-    with np.errstate(divide="ignore", invalid="ignore"):
-        ratio = np.where(full, 1.0, (level - kz_x) / (level - kz_src))
+    keel = fr.keel.at(x, hi - lo)
+    ratio = np.ones(len(x))
+    part = ~full & ~fresh
+    if part.any():
+        kz_src = np.interp(mids[source[part]], fr.keel.x, fr.keel.z)
+        ratio[part] = (level - keel[0][part]) / (level - kz_src)
     # entries of the chosen sources, one slice after another (entries sorted by station)
     first = np.searchsorted(props["station"], source, side="left")
     count = np.searchsorted(props["station"], source, side="right") - first
@@ -473,13 +487,23 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     slot = np.repeat(np.arange(len(source)), count)
     sel = {key: val[take] for key, val in props.items() if key != "area"}
     sel["station"] = slot
-    sel["area"] = props["area"][source]
+    sel["area"] = props["area"][source - w0]
     slice_polys = [polys[src] for src in source]
     if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
         sel, slice_polys = _with_fresh(fr, sel, slice_polys, fresh, x, level, tol, deadrise)
-        ratio = np.where(fresh, 1.0, ratio)
     return _assemble(
-        hull, fr, pose, level, x1 - x0, x, hi - lo, sel, slice_polys, deadrise, scale=ratio
+        hull,
+        fr,
+        pose,
+        level,
+        x1 - x0,
+        x,
+        hi - lo,
+        sel,
+        slice_polys,
+        deadrise,
+        scale=ratio,
+        keel=keel,
     )
 
 
@@ -626,6 +650,19 @@ class Outline:
             station, ya, za, yb, zb, zlo, start, area, contour, part_area, part_station,
             _group_max(contour, za, c), _group_min(contour, ya, c), _group_max(contour, ya, c),
             zmin, ymin, ymax, z_chine,
+        )  # fmt: skip
+
+    def window(self, k0: int, k1: int) -> Outline:
+        """The outline of stations ``k0`` to ``k1 - 1`` alone (views, no copies)."""
+        e0, e1 = int(self.start[k0]), int(self.start[k1])
+        c0 = int(np.searchsorted(self.part_station, k0))
+        c1 = int(np.searchsorted(self.part_station, k1))
+        return Outline(
+            self.station[e0:e1] - k0, self.ya[e0:e1], self.za[e0:e1], self.yb[e0:e1],
+            self.zb[e0:e1], self.zlo[e0:e1], self.start[k0 : k1 + 1] - e0, self.area[k0:k1],
+            self.contour[e0:e1] - c0, self.part_area[c0:c1], self.part_station[c0:c1] - k0,
+            self.part_zmax[c0:c1], self.part_ymin[c0:c1], self.part_ymax[c0:c1],
+            self.zmin[k0:k1], self.ymin[k0:k1], self.ymax[k0:k1], self.z_chine[k0:k1],
         )  # fmt: skip
 
     def below(self, level: float) -> tuple:

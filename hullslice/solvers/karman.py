@@ -121,8 +121,10 @@ class CharacteristicCurves:
             pa, pv = np.polynomial.Polynomial(ca), np.polynomial.Polynomial(cv)
             object.__setattr__(self, "a_coeffs", tuple(float(c) for c in pa.coef))
             object.__setattr__(self, "v_coeffs", tuple(float(c) for c in pv.coef))
-            object.__setattr__(self, "_a", pa)
-            object.__setattr__(self, "_v", pv)
+            polyval = np.polynomial.polynomial.polyval  # the plain function: no domain maps
+            ka, kv = pa.coef.copy(), pv.coef.copy()
+            object.__setattr__(self, "_a", lambda zt: polyval(zt, ka))
+            object.__setattr__(self, "_v", lambda zt: polyval(zt, kv))
             default_range = None
         if self.z_range is None:
             rng = default_range if default_range is not None else (_fit_floor(pa), 0.0)
