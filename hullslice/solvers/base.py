@@ -49,7 +49,7 @@ class SectionLoads:
         object.__setattr__(self, "reason", r)
         diags = {}
         for k, a in dict(self.diagnostics).items():
-            arr = np.array(a, dtype=np.float64)
+            arr = np.asarray(a, dtype=np.float64)  # no copy: the solver's own arrays
             arr.flags.writeable = False
             diags[str(k)] = arr
         object.__setattr__(self, "diagnostics", diags)
