@@ -23,6 +23,7 @@ degrees (``pitch``, ``pitch_rate``).
 from __future__ import annotations
 
 import difflib
+import json
 import math
 import os
 import tomllib
@@ -35,7 +36,16 @@ from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
 from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
-__all__ = ["SCHEMA", "Key", "load_case", "validate_case"]
+__all__ = [
+    "COMMAND_KEYS",
+    "SCHEMA",
+    "Key",
+    "case_argv",
+    "case_from_args",
+    "load_case",
+    "validate_case",
+    "write_case",
+]
 
 #: Largest case file read, in bytes: a case is a few lines; anything larger is not one.
 MAX_CASE_BYTES = 1024**2
@@ -109,6 +119,8 @@ SCHEMA: dict[str, Key] = {
     k.name: k
     for k in (
         Key("title", "text", "", "a name for the study, for reports"),
+        Key("command", "text", "", "what to compute: sections, force, simulate or info",
+            check=_one_of(("sections", "force", "simulate", "info"))),
         Key("mesh", "path", "", "the hull mesh, STL or OBJ, relative to the case file"),
         Key("units", "text", "", "length unit of the mesh", "m", _one_of(LENGTH_UNITS)),
         Key("forward", "text", "", "mesh axis pointing forward", "+x", _axis),
@@ -139,6 +151,11 @@ SCHEMA: dict[str, Key] = {
         Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
         Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
+        Key("stations", "count", "", "stations of the sectional area curve (info)"),
+        Key("format", "text", "", "output format: table, json or csv", None,
+            _one_of(("table", "json", "csv"))),
+        Key("output", "path", "", "file to write the output to, relative to the case"),
+        Key("plot", "path", "", "image to draw the main figure to, relative to the case"),
     )
 }  # fmt: skip
 
@@ -266,7 +283,7 @@ def validate_case(
                 unit = f" {key.unit}" if key.unit else ""
                 raise CaseError(f"{where}key {name!r} ({key.help}) {why}: {value!r}{unit}")
         if key.kind == "path":
-            value = Path(base, value) if base is not None else Path(value)
+            value = Path(os.path.normpath(Path(base, value))) if base is not None else Path(value)
         elif key.kind == "text" and key.check is not None:
             value = value.strip().lower()
         out[name] = value
@@ -327,3 +344,153 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"case file {name!r} is not valid TOML: {exc}") from None
     return validate_case(data, base=p.parent, source=name)
+
+
+_COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output"}
+_MASS = {"mass", "mass_distribution", "cg", "inertia"}
+_METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
+_MOTION = {"pitch", "forward_speed", "pitch_rate"}
+
+#: The keys that each command takes (besides ``title``, ``command`` and the mesh's).
+COMMAND_KEYS: dict[str, set[str]] = {
+    "info": _COMMON | _MASS | {"stations", "plot"},
+    "sections": _COMMON | _MASS | {"draft", "pitch", "slices", "deadrise", "slicing", "plot"},
+    "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "plot"},
+    "simulate": _COMMON | _MASS | _METHOD | _MOTION | {
+        "velocity", "t_end", "dt", "draft", "kinematics", "free_pitch", "free_surge",
+        "continue_invalid", "plot",
+    },
+}  # fmt: skip
+
+
+def case_command(case: Mapping[str, Any]) -> str:
+    """The command a checked case runs: its ``command``, or the one its keys imply."""
+    if "command" in case:
+        return str(case["command"])
+    if "kinematics" in case or "t_end" in case:
+        return "simulate"
+    if "velocity" in case:
+        return "force"
+    if "draft" in case:
+        return "sections"
+    return "info"
+
+
+# option name on the command line, and how a value is written there
+_FLAGS = {"free_pitch", "free_surge", "continue_invalid"}
+
+
+def case_argv(case: Mapping[str, Any]) -> list[str]:
+    """The command line a checked case amounts to (see :func:`validate_case`).
+
+    Raises
+    ------
+    CaseError
+        A key that the case's command does not take.
+    """
+    command = case_command(case)
+    allowed = COMMAND_KEYS[command]
+    extra = [k for k in case if k not in allowed and SCHEMA[k].default is None]
+    if extra:
+        raise CaseError(
+            f"case: key {extra[0]!r} does not apply to the command {command!r}; its keys are "
+            f"{', '.join(sorted(allowed))}"
+        )
+    argv = [command, str(case["mesh"])]
+    for name, value in case.items():
+        if name in ("title", "command", "mesh") or name not in allowed:
+            continue
+        option = "--" + name.replace("_", "-")
+        if name in _FLAGS:
+            if value:
+                argv.append(option)
+        elif name == "solver_options":
+            for k, v in value.items():
+                argv.append(f"--solver-option={k}={json.dumps(v)}")
+        elif name == "cg":
+            argv.append(f"--cg={value[0]!r},{value[1]!r}")
+        elif name == "slices":
+            argv.append(f"--slices={','.join(str(n) for n in value)}")
+        elif isinstance(value, float):
+            argv.append(f"{option}={value!r}")
+        else:
+            argv.append(f"{option}={value}")
+    return argv
+
+
+def case_from_args(args) -> dict[str, Any]:
+    """The case a parsed command line amounts to (angles back in degrees), for
+    :func:`write_case`: the keys its command takes, without those left unset."""
+    command = args.command
+    out: dict[str, Any] = {"command": command}
+    for name in SCHEMA:
+        if name in ("title", "command") or name not in COMMAND_KEYS[command] | {"mesh"}:
+            continue
+        if name == "solver_options":
+            value = dict(getattr(args, "solver_option", []) or [])
+            if value:
+                out[name] = value
+            continue
+        value = getattr(args, name, None)
+        if value is None or (name in _FLAGS and not value):
+            continue
+        if name in ("pitch", "pitch_rate"):
+            value = math.degrees(value)
+            if value == 0.0:
+                continue
+        if name == "slices":
+            value = list(value) if isinstance(value, list | tuple) else [int(value)]
+        if name == "cg":
+            value = [float(value[0]), float(value[1])]
+        if name in ("mesh", "kinematics", "mass_distribution", "output", "plot"):
+            value = Path(value).resolve()
+        out[name] = value
+    return out
+
+
+def _toml_value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise CaseError(f"case: {value!r} cannot be written to a case file")
+        text = repr(value)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(value, str | Path):
+        return json.dumps(str(value))  # a TOML basic string is a JSON string
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
+    raise CaseError(f"case: a value of type {type(value).__name__} cannot be written")
+
+
+def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
+    """Write a case to a TOML file, completely or not at all.
+
+    Paths are written relative to the file's folder, so that the case can be moved with its
+    files; ``solver_options`` becomes a table at the end.
+    """
+    from .report import write_atomic
+
+    target = Path(path)
+    folder = target.resolve().parent
+    lines = ["# hullslice case file: run it with 'hullslice run " + target.name + "'"]
+    table = None
+    for name, value in case.items():
+        if name not in SCHEMA:
+            raise CaseError(f"case: unknown key {name!r}")
+        if name == "solver_options":
+            table = value
+            continue
+        if isinstance(value, Path):
+            value = Path(os.path.relpath(value.resolve(), folder)).as_posix()
+        key = SCHEMA[name]
+        unit = f" [{key.unit}]" if key.unit else ""
+        lines.append(f"{name} = {_toml_value(value)}  # {key.help}{unit}")
+    if table:
+        lines.append("")
+        lines.append("[solver_options]")
+        lines += [f"{json.dumps(str(k))} = {_toml_value(v)}" for k, v in table.items()]
+    validate_case(tomllib.loads("\n".join(lines)))  # what is written reads back
+    return write_atomic(target, "\n".join(lines) + "\n")

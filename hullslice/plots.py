@@ -15,7 +15,15 @@ import numpy as np
 from .errors import HullsliceError
 from .report import write_atomic
 
-__all__ = ["plot_footprint", "plot_history", "save"]
+__all__ = [
+    "plot_area_curve",
+    "plot_convergence",
+    "plot_footprint",
+    "plot_force_distribution",
+    "plot_history",
+    "plot_sections",
+    "save",
+]
 
 
 class MissingDependencyError(ImportError, HullsliceError):
@@ -115,5 +123,158 @@ def plot_footprint(
     ax.set_title("Wetted footprint: aft and fore ends of the wetted part")
     ax.grid(True, alpha=0.3)
     ax.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def plot_convergence(
+    study,
+    references: dict[str, float] | None = None,
+    title: str | None = None,
+):
+    """Force against slice thickness, with the Richardson-extrapolated force and its GCI band
+    (as the paper's Fig. 8).
+
+    Parameters
+    ----------
+    study : ConvergenceStudy
+    references : dict of str to float, optional
+        Forces in N drawn as horizontal lines (e.g. the paper's and a CFD value), by label.
+    """
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    d = np.array(
+        [r.sections.wetted_length / n for r, n in zip(study.results, study.counts, strict=True)]
+    )
+    f = study.forces
+    ax.plot(d * 1e3, f, "o-", color="C0", label="2D+t force, n slices")
+    for di, fi, n in zip(d, f, study.counts, strict=True):
+        ax.annotate(
+            f"n = {n}", (di * 1e3, fi), textcoords="offset points", xytext=(4, 6), fontsize=8
+        )
+    rich = study.richardson
+    if rich is not None and rich.behaviour != "divergent":
+        band = abs(rich.extrapolated) * rich.gci
+        ax.errorbar(
+            [0.0],
+            [rich.extrapolated],
+            yerr=[[band], [band]],
+            fmt="D",
+            color="C3",
+            capsize=4,
+            label=f"Richardson: {rich.extrapolated:.4f} N (GCI {100 * rich.gci:.3g} %)",
+        )
+    for i, (label, value) in enumerate((references or {}).items()):
+        ax.axhline(value, color=f"C{i + 4}", ls="--", lw=1.0, label=f"{label}: {value:.4f} N")
+    ax.set_xlabel("slice thickness d [mm]")
+    ax.set_ylabel("vertical force [N]")
+    ax.margins(x=0.1, y=0.12)
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="best", fontsize=8)
+    ax.set_title(title or "Convergence in the slice thickness")
+    fig.tight_layout()
+    return fig
+
+
+def plot_force_distribution(result, title: str | None = None):
+    """Force per metre, penetration and deadrise along the body at one instant."""
+    plt = _pyplot()
+    s = result.sections
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 5.5), sharex=True)
+    f = result.loads.force_per_metre
+    ax1.bar(s.x, f, width=s.dx, color="C0", alpha=0.75, edgecolor="C0", label="force per metre")
+    bad = ~result.valid
+    if bad.any():
+        ax1.bar(
+            s.x[bad],
+            f[bad],
+            width=s.dx[bad],
+            color="C3",
+            alpha=0.8,
+            label="outside the validity range",
+        )
+    ax1.set_ylabel("force per metre [N/m]")
+    ax1.grid(True, alpha=0.3)
+    ax1.legend(loc="best", fontsize=8)
+    ax2.plot(s.x, s.penetration * 1e3, "o-", ms=3, color="C1", label="penetration")
+    ax2.set_ylabel("penetration [mm]", color="C1")
+    ax2.grid(True, alpha=0.3)
+    ax3 = ax2.twinx()
+    ax3.plot(s.x, s.deadrise_deg, "s-", ms=3, color="C2", label="deadrise")
+    ax3.set_ylabel("deadrise [deg]", color="C2")
+    ax2.set_xlabel("x along the body [m]")
+    ax1.set_title(title or f"Total {result.total:.4f} N over {len(s)} slices")
+    fig.tight_layout()
+    return fig
+
+
+def plot_sections(hull, sections, title: str | None = None):
+    """The cut: the body's side view with the stations and the waterline, and the section
+    outlines at the stations (earth frame, waterline at z = 0)."""
+    plt = _pyplot()
+    from matplotlib.collections import LineCollection
+
+    from .geometry import frame, silhouette_edges
+
+    fr = frame(hull, sections.pitch)
+    a, b = silhouette_edges(hull)
+    c, sn = np.cos(sections.pitch), np.sin(sections.pitch)
+
+    def earth(v):
+        r = v - fr.cg
+        return np.stack(
+            [fr.cg[0] + r[:, 0] * c - r[:, 2] * sn, sections.z_cg + r[:, 0] * sn + r[:, 2] * c],
+            axis=1,
+        )
+
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [3, 2]})
+    ax1.add_collection(
+        LineCollection(np.stack([earth(a), earth(b)], axis=1), colors="0.3", linewidths=0.6)
+    )
+    ax1.axhline(0.0, color="C0", lw=1.2, label="waterline")
+    stations = np.unique(sections.station)
+    xs = (
+        np.array([sections.x[sections.station == i][0] for i in stations])
+        if len(stations)
+        else np.empty(0)
+    )
+    cmap = plt.get_cmap("viridis")
+    colors = [cmap(i / max(len(xs) - 1, 1)) for i in range(len(xs))]
+    for x, col in zip(xs, colors, strict=True):
+        ax1.axvline(x, color=col, lw=0.6, alpha=0.8)
+    ax1.autoscale()
+    ax1.set_aspect("equal", adjustable="datalim")
+    ax1.set_xlabel("x [m]")
+    ax1.set_ylabel("z [m]")
+    ax1.set_title(
+        f"Side view: draft {sections.draft:.4g} m, pitch "
+        f"{np.degrees(sections.pitch):.3g} deg, {len(xs)} stations"
+    )
+    ax1.legend(loc="best", fontsize=8)
+    for i, col in zip(stations, colors, strict=True):
+        for contour in sections.polygons[i]:
+            closed = np.vstack([contour, contour[:1]])
+            ax2.plot(closed[:, 0], closed[:, 1], color=col, lw=0.8)
+    ax2.axhline(0.0, color="C0", lw=1.2)
+    ax2.set_aspect("equal", adjustable="datalim")
+    ax2.set_xlabel("y [m]")
+    ax2.set_ylabel("z [m]")
+    ax2.set_title("Sections (aft to fore: dark to light)")
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    return fig
+
+
+def plot_area_curve(x, area, title: str | None = None):
+    """The sectional area curve: cross-section area against position along the body."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 3.5))
+    ax.plot(x, area, "-", color="C0")
+    ax.fill_between(x, 0.0, area, color="C0", alpha=0.2)
+    ax.set_xlabel("x along the body [m]")
+    ax.set_ylabel("section area [m$^2$]")
+    ax.grid(True, alpha=0.3)
+    ax.set_title(title or "Sectional area curve")
     fig.tight_layout()
     return fig

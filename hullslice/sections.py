@@ -41,7 +41,15 @@ from .geometry import frame
 from .mesh import Hull
 from .state import Pose
 
-__all__ = ["DEADRISE_ESTIMATORS", "SLICINGS", "Outline", "Sections", "cut", "section_properties"]
+__all__ = [
+    "DEADRISE_ESTIMATORS",
+    "SLICINGS",
+    "Outline",
+    "Sections",
+    "area_curve",
+    "cut",
+    "section_properties",
+]
 
 Polygons = tuple[np.ndarray, ...]
 
@@ -371,6 +379,30 @@ def sections_at(
     polys = fr.cut(rel)
     props = wetted_properties(Outline.of(polys, tol, fr.origin, fr.scale), level, tol, deadrise)
     return _assemble(hull, fr, pose, level, length, rel, dx, props, polys, deadrise)
+
+
+def area_curve(hull: Hull, stations: int = 40) -> tuple[np.ndarray, np.ndarray]:
+    """The sectional area curve of a level hull.
+
+    Parameters
+    ----------
+    hull : Hull
+    stations : int
+        Number of stations, the mid-points of equal parts of the body's length (default 40).
+
+    Returns
+    -------
+    x : (stations,) float
+        Stations along the body, m.
+    area : (stations,) float
+        Area of the cross-section at each, m^2. ``sum(area) * length / stations`` is the
+        volume by the midpoint rule.
+    """
+    n = _slice_count(stations)
+    fr = frame(hull, 0.0)
+    _, rel = fr.fixed_stations(n)
+    outline = Outline.of(fr.cut(rel), TOL.coordinate * hull.size, fr.origin, fr.scale)
+    return rel + fr.cg[0], outline.area.copy()
 
 
 def _station_mass(hull: Hull, fr, area: np.ndarray, rel: np.ndarray) -> np.ndarray:

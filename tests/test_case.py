@@ -67,7 +67,10 @@ def test_one_slice_count_is_a_list_of_one():
     ("case", "message"),
     [
         ({"mesh": "a.stl", "mas": 1.0}, "unknown key 'mas'; did you mean 'mass'?"),
-        ({"mesh": "a.stl", "colour": "red"}, "unknown key 'colour'; the keys are title, mesh"),
+        (
+            {"mesh": "a.stl", "colour": "red"},
+            "unknown key 'colour'; the keys are title, command, mesh",
+        ),
         ({"mass": 1.0}, "key 'mesh' is missing"),
         ({"mesh": 3}, "key 'mesh' must be a file path in quotes"),
         (

@@ -5,26 +5,26 @@ from __future__ import annotations
 import argparse
 import math
 
+from .. import plots
 from ..forces import convergence
 from ..report import (
     SLICE_COLUMNS,
     Column,
     convergence_summary,
-    csv_text,
     force_records,
-    json_text,
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
 from ..state import Motion, Pose
 from .common import (
+    Outcome,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
     add_pose_options,
     add_slicing_option,
     add_solver_options,
-    emit,
+    finish,
     fluid,
     load,
     number,
@@ -76,7 +76,11 @@ def add_parser(sub) -> None:
     )
     add_slicing_option(g)
     add_fluid_options(p)
-    add_output_options(p)
+    add_output_options(
+        p,
+        plot="the convergence in the slices (or, with one count, the force "
+        "per metre along the body)",
+    )
     p.set_defaults(func=run)
 
 
@@ -88,6 +92,11 @@ CONVERGENCE_COLUMNS = (
 
 
 def run(args: argparse.Namespace) -> int:
+    return finish(args, compute(args))
+
+
+def compute(args: argparse.Namespace) -> Outcome:
+    """The force at the state of ``args``, for one or more slice counts."""
     hull = load(args)
     slv = solver(args)
     study = convergence(
@@ -103,35 +112,51 @@ def run(args: argparse.Namespace) -> int:
     finest = study.finest
     summary = convergence_summary(study)
     records = force_records(finest)
-    if args.format == "json":
-        data = {
-            "mesh": args.mesh,
-            "mass": hull.mass,
-            "draft": args.draft,
-            "velocity": args.velocity,
-            "pitch_deg": math.degrees(args.pitch),
-            "forward_speed": args.forward_speed,
-            "pitch_rate_deg_s": math.degrees(args.pitch_rate),
-            "cg": [float(hull.cg[0]), float(hull.cg[2])],
-            "force_x": finest.total_x,
-            "moment": finest.moment,
-            "solver": finest.solver,
-            "solver_options": dict(slv.settings),
-            "rho": finest.fluid.rho,
-            "g": finest.fluid.g,
-            "wetted_length": finest.sections.wetted_length,
-            "deadrise_method": finest.sections.deadrise_method,
-            **summary,
-            "valid": finest.all_valid,
-            "slices": records,
+    data = {
+        "mesh": str(args.mesh),
+        "mass": hull.mass,
+        "draft": args.draft,
+        "velocity": args.velocity,
+        "pitch_deg": math.degrees(args.pitch),
+        "forward_speed": args.forward_speed,
+        "pitch_rate_deg_s": math.degrees(args.pitch_rate),
+        "cg": [float(hull.cg[0]), float(hull.cg[2])],
+        "force_x": finest.total_x,
+        "moment": finest.moment,
+        "solver": finest.solver,
+        "solver_options": dict(slv.settings),
+        "rho": finest.fluid.rho,
+        "g": finest.fluid.g,
+        "wetted_length": finest.sections.wetted_length,
+        "deadrise_method": finest.sections.deadrise_method,
+        "slicing": args.slicing,
+        **summary,
+        "valid": finest.all_valid,
+        "slices": records,
+    }
+    data["slice_count"] = summary["slices"]
+    figures = {
+        "force_distribution": lambda: plots.plot_force_distribution(
+            finest, f"{hull.name}: force per metre at {study.counts[-1]} slices"
+        ),
+    }
+    if len(study.counts) > 1:
+        figures = {
+            "convergence": lambda: plots.plot_convergence(
+                study, title=f"{hull.name}: convergence in the slice thickness"
+            ),
+            **figures,
         }
-        data["slice_count"] = summary["slices"]
-        emit(args, json_text(data))
-    elif args.format == "csv":
-        emit(args, csv_text(["j", *finest.columns()], records))
-    else:
-        emit(args, _table(hull, args, study, summary, records))
-    return 0
+    figures["sections"] = lambda: plots.plot_sections(
+        hull, finest.sections, f"{hull.name}: the cut at {study.counts[-1]} slices"
+    )
+    return Outcome(
+        table=_table(hull, args, study, summary, records),
+        data=data,
+        csv_columns=["j", *finest.columns()],
+        csv_rows=records,
+        figures=figures,
+    )
 
 
 def _table(hull, args, study, summary, records) -> str:

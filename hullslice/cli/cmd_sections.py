@@ -5,15 +5,17 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..report import SECTION_COLUMNS, csv_text, json_text, section_records, table_text
+from .. import plots
+from ..report import SECTION_COLUMNS, section_records, table_text
 from ..sections import DEADRISE_ESTIMATORS, cut
 from ..state import Pose
 from .common import (
+    Outcome,
     add_mesh_options,
     add_output_options,
     add_pose_options,
     add_slicing_option,
-    emit,
+    finish,
     load,
     number,
     positive_int,
@@ -52,11 +54,16 @@ def add_parser(sub) -> None:
         help="local deadrise estimator (default: wedge, the equivalent wedge p / c)",
     )
     add_slicing_option(g)
-    add_output_options(p)
+    add_output_options(p, plot="the cut: the side view with the stations and the section outlines")
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
+    return finish(args, compute(args))
+
+
+def compute(args: argparse.Namespace) -> Outcome:
+    """The sections of ``args``' hull at its pose."""
     hull = load(args)
     sections = cut(
         hull,
@@ -66,28 +73,24 @@ def run(args: argparse.Namespace) -> int:
         slicing=args.slicing,
     )
     records = section_records(sections)
-    if args.format == "json":
-        emit(
-            args,
-            json_text(
-                {
-                    "mesh": args.mesh,
-                    "draft": sections.draft,
-                    "pitch_deg": math.degrees(sections.pitch),
-                    "wetted_length": sections.wetted_length,
-                    "deadrise_method": sections.deadrise_method,
-                    "sections": records,
-                }
-            ),
-        )
-    elif args.format == "csv":
-        emit(args, csv_text(["j", *sections.as_dict()], records))
-    else:
-        head = (
-            f"{hull.name}: draft {sections.draft:g} m, pitch {math.degrees(sections.pitch):g} deg, "
-            "wetted length "
-            f"{sections.wetted_length:.5f} m, {len(sections)} slices, deadrise by "
-            f"{sections.deadrise_method}"
-        )
-        emit(args, head + "\n" + table_text(SECTION_COLUMNS, records))
-    return 0
+    data = {
+        "mesh": str(args.mesh),
+        "draft": sections.draft,
+        "pitch_deg": math.degrees(sections.pitch),
+        "wetted_length": sections.wetted_length,
+        "deadrise_method": sections.deadrise_method,
+        "slicing": args.slicing,
+        "sections": records,
+    }
+    head = (
+        f"{hull.name}: draft {sections.draft:g} m, pitch {math.degrees(sections.pitch):g} deg, "
+        f"wetted length {sections.wetted_length:.5f} m, {sections.n_stations} slices "
+        f"({args.slicing}), deadrise by {sections.deadrise_method}"
+    )
+    return Outcome(
+        table=head + "\n" + table_text(SECTION_COLUMNS, records),
+        data=data,
+        csv_columns=["j", *sections.as_dict()],
+        csv_rows=records,
+        figures={"sections": lambda: plots.plot_sections(hull, sections, hull.name)},
+    )

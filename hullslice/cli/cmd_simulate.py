@@ -7,18 +7,18 @@ import sys
 
 import numpy as np
 
+from .. import plots
 from ..motion import STOP_RULES, prescribed, read_kinematics, simulate
 from ..report import (
     HISTORY_COLUMNS,
     HISTORY_PITCH_COLUMNS,
-    csv_text,
     history_records,
     history_summary,
-    json_text,
     table_text,
 )
 from ..sections import DEADRISE_ESTIMATORS
 from .common import (
+    Outcome,
     UsageError,
     add_fluid_options,
     add_mesh_options,
@@ -26,7 +26,7 @@ from .common import (
     add_pose_options,
     add_slicing_option,
     add_solver_options,
-    emit,
+    finish,
     fluid,
     load,
     number,
@@ -113,7 +113,7 @@ def add_parser(sub) -> None:
     )
     add_slicing_option(m)
     add_fluid_options(p)
-    add_output_options(p)
+    add_output_options(p, plot="the history (force, acceleration, velocity, draft, pitch)")
     p.set_defaults(func=run)
 
 
@@ -137,6 +137,11 @@ class Progress:
 
 
 def run(args: argparse.Namespace) -> int:
+    return finish(args, compute(args))
+
+
+def compute(args: argparse.Namespace) -> Outcome:
+    """The history of ``args``' free motion or prescribed kinematics."""
     if args.kinematics is None:
         missing = [
             o for o, v in (("--velocity", args.velocity), ("--t-end", args.t_end)) if v is None
@@ -202,13 +207,24 @@ def run(args: argparse.Namespace) -> int:
         if progress is not None:
             progress.done()
     summary = history_summary(history)
-    if args.format == "json":
-        emit(args, json_text({"mesh": args.mesh, **summary, "history": history.columns()}))
-    elif args.format == "csv":
-        emit(args, csv_text(list(history.COLUMNS), history_records(history)))
-    else:
-        emit(args, _table(hull, history, summary, solver_label(args)))
-    return 0
+    title = (
+        f"{hull.name}: {history.mode}, pitch {history.settings.get('initial_pitch_deg', 0):g} deg"
+        if history.mode != "prescribed"
+        else f"{hull.name}: prescribed motion"
+    )
+    figures = {"history": lambda: plots.plot_history(history, title)}
+    if np.any(history.forward_speed != 0):
+        x = hull.bounds[:, 0]
+        figures["footprint"] = lambda: plots.plot_footprint(
+            [history], [hull.name], (float(x[0]), float(x[1]))
+        )
+    return Outcome(
+        table=_table(hull, history, summary, solver_label(args)),
+        data={"mesh": str(args.mesh), **summary, "history": history.columns()},
+        csv_columns=list(history.COLUMNS),
+        csv_rows=history_records(history),
+        figures=figures,
+    )
 
 
 def _table(hull, history, summary, solver_text) -> str:

@@ -6,6 +6,8 @@ import argparse
 import json
 import math
 import sys
+from collections.abc import Callable
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -13,7 +15,7 @@ from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
-from ..report import write_atomic
+from ..report import csv_text, json_text, write_atomic
 from ..solvers.base import Solver
 from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
@@ -265,7 +267,7 @@ def add_fluid_options(p: argparse.ArgumentParser) -> None:
     )
 
 
-def add_output_options(p: argparse.ArgumentParser) -> None:
+def add_output_options(p: argparse.ArgumentParser, plot: str = "") -> None:
     g = p.add_argument_group("output")
     g.add_argument(
         "--format",
@@ -279,6 +281,72 @@ def add_output_options(p: argparse.ArgumentParser) -> None:
         metavar="PATH",
         help="write to this file instead of the terminal (written completely or not at all)",
     )
+    if plot:
+        g.add_argument(
+            "--plot",
+            metavar="PATH.png",
+            help=f"also draw {plot} to this image (PNG, SVG or PDF by the extension; needs "
+            "matplotlib: pip install 'hullslice[plot]')",
+        )
+    g.add_argument(
+        "--save-case",
+        metavar="PATH.toml",
+        help="also write the case this command amounts to, for 'hullslice run' to repeat it",
+    )
+
+
+@dataclass
+class Outcome:
+    """What a command produced, in every form it can be given.
+
+    Attributes
+    ----------
+    table : str
+        The terminal view.
+    data : dict
+        The JSON view.
+    csv_columns : list of str
+        Columns of the CSV view.
+    csv_rows : list of dict
+        Rows of the CSV view.
+    figures : dict of str to callable
+        Figure builders by name; the first is the one ``--plot`` draws.
+    """
+
+    table: str
+    data: dict
+    csv_columns: list[str]
+    csv_rows: list[dict]
+    figures: dict[str, Callable] = field(default_factory=dict)
+
+    def text(self, fmt: str) -> str:
+        if fmt == "json":
+            return json_text(self.data)
+        if fmt == "csv":
+            return csv_text(self.csv_columns, self.csv_rows)
+        return self.table
+
+
+def finish(args: argparse.Namespace, outcome: Outcome) -> int:
+    """Give a command's outcome: the text in its format, the figure and the case file."""
+    plot = getattr(args, "plot", None)
+    if plot:
+        check_path(plot, args, "--plot")
+        if not outcome.figures:
+            raise InputError(f"hullslice {args.command} draws no figure; leave out --plot")
+        from ..plots import save
+
+        figure = next(iter(outcome.figures.values()))()
+        save(figure, plot)
+        print(f"wrote {plot}", file=sys.stderr)
+    if getattr(args, "save_case", None):
+        from ..case import case_from_args, write_case
+
+        check_path(args.save_case, args, "--save-case")
+        write_case(case_from_args(args), args.save_case)
+        print(f"wrote {args.save_case}", file=sys.stderr)
+    emit(args, outcome.text(args.format))
+    return 0
 
 
 def load(args: argparse.Namespace) -> Hull:
@@ -305,24 +373,30 @@ def load(args: argparse.Namespace) -> Hull:
 
 
 def check_output(args: argparse.Namespace) -> None:
-    """Refuse an ``--output`` that cannot be written, before any work is done."""
-    out = getattr(args, "output", None)
-    if not out:
-        return
+    """Refuse an ``--output``, ``--plot`` or ``--save-case`` that cannot be written, before
+    any work is done."""
+    for option in ("output", "plot", "save_case"):
+        path = getattr(args, option, None)
+        if path:
+            check_path(path, args, "--" + option.replace("_", "-"))
+
+
+def check_path(out: str, args: argparse.Namespace, option: str = "--output") -> None:
+    """Refuse an output path that is a folder, in a missing folder, or one of the inputs."""
     target = Path(out)
     if target.is_dir():
-        raise InputError(f"cannot write {out!r}: it is a folder; give a file name in it")
+        raise InputError(f"cannot write {out!r} ({option}): it is a folder; give a file name in it")
     if not (target.parent if str(target.parent) else Path(".")).is_dir():
         raise InputError(
-            f"cannot write {out!r}: the folder {str(target.parent)!r} does not exist; create it "
-            "first"
+            f"cannot write {out!r} ({option}): the folder {str(target.parent)!r} does not "
+            "exist; create it first"
         )
-    for option in ("mesh", "kinematics", "mass_distribution"):
-        source = getattr(args, option, None)
+    for name in ("mesh", "kinematics", "mass_distribution", "case"):
+        source = getattr(args, name, None)
         if source and target.exists() and Path(source).exists() and target.samefile(source):
             raise InputError(
-                f"cannot write {out!r}: it is the input {option} file and would be overwritten; "
-                "give another output file"
+                f"cannot write {out!r} ({option}): it is the input {name} file and would be "
+                "overwritten; give another file"
             )
 
 

@@ -1,0 +1,120 @@
+"""``hullslice info``: what a mesh file holds: size, volume, mass properties, area curve."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+import numpy as np
+
+from .. import plots
+from ..report import Column, table_text
+from ..sections import area_curve
+from .common import Outcome, add_mesh_options, add_output_options, finish, load, positive_int
+
+AREA_COLUMNS = (Column("x", "x", "m", ".5g"), Column("area", "area", "m^2", ".6g"))
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "info",
+        help="a mesh's size, volume, mass properties and sectional area curve",
+        description="Read a hull mesh as the other commands do (units, axes, checks and "
+        "repairs) and describe it: bounding box, faces, volume, the mass properties with "
+        "--mass or --mass-distribution, and the sectional area curve.",
+    )
+    add_mesh_options(p)
+    p.add_argument(
+        "--stations",
+        type=positive_int,
+        default=40,
+        metavar="N",
+        help="stations of the sectional area curve, along the body's length (default: 40)",
+    )
+    add_output_options(p, plot="the sectional area curve")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    return finish(args, compute(args))
+
+
+def compute(args: argparse.Namespace) -> Outcome:
+    """The description of ``args``' mesh."""
+    hull = load(args)
+    x, area = area_curve(hull, args.stations)
+    lo, hi = hull.bounds
+    ext = hull.extents
+    path = Path(args.mesh)
+    data = {
+        "mesh": str(args.mesh),
+        "name": hull.name,
+        "file_bytes": path.stat().st_size,
+        "units": args.units,
+        "forward": args.forward,
+        "up": args.up,
+        "faces": len(hull.faces),
+        "vertices": len(hull.vertices),
+        "closed": True,
+        "repairs": list(hull.source.get("repairs", ())),
+        "bounds_min": lo,
+        "bounds_max": hi,
+        "length": ext[0],
+        "beam": ext[1],
+        "height": ext[2],
+        "volume": hull.volume,
+        "surface_area": float(hull.manifold.surface_area()),
+        "centre_of_volume": hull.centroid,
+        "mass": hull.mass,
+        "density": hull.density,
+        "cg": hull.cg if hull.mass is not None else None,
+        "pitch_inertia": hull.pitch_inertia if hull.mass is not None else None,
+        "mass_distribution": args.mass_distribution,
+        "area_curve": {"x": x, "area": area},
+        "max_area": float(area.max()),
+        "max_area_x": float(x[int(np.argmax(area))]),
+    }
+    rows = [{"x": xi, "area": ai} for xi, ai in zip(x, area, strict=True)]
+    return Outcome(
+        table=_table(hull, data, rows),
+        data=data,
+        csv_columns=["x", "area"],
+        csv_rows=rows,
+        figures={
+            "area_curve": lambda: plots.plot_area_curve(
+                x, area, f"{hull.name}: sectional area curve"
+            )
+        },
+    )
+
+
+def _vec(v) -> str:
+    return "(" + ", ".join(f"{c:.6g}" for c in v) + ")"
+
+
+def _table(hull, d, rows) -> str:
+    repairs = d["repairs"]
+    lines = [
+        f"{hull.name}: {d['mesh']} ({d['file_bytes']} bytes), units {d['units']}, forward "
+        f"{d['forward']}, up {d['up']}",
+        f"  faces {d['faces']}, vertices {d['vertices']}, closed (checked on loading)"
+        + (f"; repaired: {'; '.join(repairs)}" if repairs else ", no repair needed"),
+        f"  bounding box {_vec(d['bounds_min'])} to {_vec(d['bounds_max'])} m",
+        f"  length {d['length']:.6g} m, beam {d['beam']:.6g} m, height {d['height']:.6g} m",
+        f"  volume {d['volume']:.6g} m^3, surface {d['surface_area']:.6g} m^2, centre of volume "
+        f"{_vec(d['centre_of_volume'])} m",
+    ]
+    if d["mass"] is not None:
+        lines.append(
+            f"  mass {d['mass']:.6g} kg, mean density {d['density']:.6g} kg/m^3, centre of "
+            f"gravity {_vec(d['cg'])} m, pitch inertia {d['pitch_inertia']:.6g} kg*m^2"
+        )
+    else:
+        lines.append("  no mass given (--mass KG for the mass properties)")
+    lines += [
+        "",
+        f"sectional area curve ({len(rows)} stations; largest {d['max_area']:.6g} m^2 at "
+        f"x = {d['max_area_x']:.6g} m):",
+        table_text(AREA_COLUMNS, rows),
+    ]
+    return "\n".join(lines)

@@ -1,0 +1,196 @@
+"""``hullslice report CASE.toml -o DIR``: a report folder for a case, to attach to a study."""
+
+from __future__ import annotations
+
+import argparse
+import html
+import shutil
+import sys
+import tempfile
+from pathlib import Path
+
+from .. import __version__
+from ..case import SCHEMA, case_argv, case_command, load_case, write_case
+from ..errors import InputError
+from ..report import _umask, csv_text, json_text, write_atomic
+from . import cmd_force, cmd_info, cmd_sections, cmd_simulate
+
+COMPUTE = {
+    "info": cmd_info.compute,
+    "sections": cmd_sections.compute,
+    "force": cmd_force.compute,
+    "simulate": cmd_simulate.compute,
+}
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "report",
+        help="write a report folder for a case file: inputs, mesh, tables, figures, data",
+        description="Run a case file and write a folder with a report (Markdown, or HTML with "
+        "--html) that gives the inputs, the mesh summary, the results table, the figures "
+        "(PNG) and the data (CSV and JSON), with the case file itself so that the study can "
+        "be repeated. The folder is written completely or not at all.",
+    )
+    p.add_argument("case", metavar="CASE.toml", help="the case file")
+    p.add_argument("-o", "--output", metavar="DIR", required=True, help="the report folder")
+    p.add_argument("--html", action="store_true", help="write report.html (default: report.md)")
+    p.add_argument(
+        "--overwrite",
+        action="store_true",
+        help="replace the folder if it exists and is not empty (default: refuse)",
+    )
+    p.set_defaults(func=run)
+
+
+def _parse(argv: list[str]) -> argparse.Namespace:
+    from . import build_parser
+
+    return build_parser().parse_args(argv)
+
+
+def run(args: argparse.Namespace) -> int:
+    target = Path(args.output)
+    if target.exists() and not target.is_dir():
+        raise InputError(f"report folder {args.output!r} is a file: give a folder name")
+    if target.is_dir() and any(target.iterdir()) and not args.overwrite:
+        raise InputError(
+            f"report folder {args.output!r} exists and is not empty: give another folder, or "
+            "--overwrite to replace it"
+        )
+    parent = target.resolve().parent
+    if not parent.is_dir():
+        raise InputError(f"the folder {str(parent)!r} does not exist; create it first")
+    case = load_case(args.case)
+    command = case_command(case)
+    argv = [a for a in case_argv(case) if not a.startswith(("--output=", "--plot=", "--format="))]
+    cmd_args = _parse(argv)
+    outcome = COMPUTE[command](cmd_args)
+    info_args = _parse(
+        [
+            "info",
+            *[a for a in argv[1:] if a.split("=")[0] in _INFO_OPTIONS or not a.startswith("-")],
+        ]
+    )
+    info = outcome if command == "info" else cmd_info.compute(info_args)
+
+    with tempfile.TemporaryDirectory(prefix=f".{target.name}.", dir=parent) as tmp:
+        work = Path(tmp) / "report"
+        work.mkdir()
+        files = _write_files(work, case, outcome, info, command)
+        page = _html if args.html else _markdown
+        name = "report.html" if args.html else "report.md"
+        write_atomic(work / name, page(case, command, outcome, info, files))
+        work.chmod(0o777 & ~_umask())  # an ordinary folder, not a private temporary one
+        if target.exists():
+            shutil.rmtree(target)
+        work.rename(target)
+    print(f"wrote {target / name}", file=sys.stderr)
+    return 0
+
+
+_INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",
+                 "--inertia"}  # fmt: skip
+
+
+def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:
+    files: dict[str, str] = {}
+    case_out = {k: v for k, v in case.items() if k not in ("output", "plot", "format")}
+    case_out["command"] = command
+    write_case(case_out, work / "case.toml")
+    files["case.toml"] = "the case, to repeat the study: hullslice run case.toml"
+    write_atomic(work / "results.json", json_text(outcome.data))
+    files["results.json"] = "the results, every number"
+    write_atomic(work / "results.csv", csv_text(outcome.csv_columns, outcome.csv_rows))
+    files["results.csv"] = "the results table"
+    if command != "info":
+        write_atomic(work / "mesh.json", json_text(info.data))
+        files["mesh.json"] = "the mesh summary"
+    from ..plots import save
+
+    figures = dict(outcome.figures)
+    if command != "info":
+        figures.update(info.figures)
+    for fig_name, build in figures.items():
+        save(build(), work / f"{fig_name}.png")
+        files[f"{fig_name}.png"] = fig_name.replace("_", " ")
+    return files
+
+
+def _inputs(case) -> list[tuple[str, str, str]]:
+    rows = []
+    for name, value in case.items():
+        key = SCHEMA[name]
+        if isinstance(value, dict):
+            value = ", ".join(f"{k} = {v}" for k, v in value.items())
+        elif isinstance(value, Path):
+            value = value.name
+        rows.append((name, str(value), key.unit))
+    return rows
+
+
+def _markdown(case, command, outcome, info, files) -> str:
+    title = case.get("title") or f"{command} of {Path(case['mesh']).name}"
+    lines = [
+        f"# {title}",
+        "",
+        f"hullslice {__version__}, command `{command}`. Units SI (angles in degrees); vertical "
+        "velocity negative downward, forces positive upward.",
+        "",
+        "## Inputs",
+        "",
+        "| key | value | unit |",
+        "| --- | --- | --- |",
+        *[f"| {k} | {v} | {u} |" for k, v, u in _inputs(case)],
+        "",
+        "## Mesh",
+        "",
+        "```",
+        info.table.split("\nsectional area curve")[0],
+        "```",
+        "",
+        "## Results",
+        "",
+        "```",
+        outcome.table,
+        "```",
+        "",
+        "## Figures",
+        "",
+        *[f"![{desc}]({name})\n" for name, desc in files.items() if name.endswith(".png")],
+        "## Files",
+        "",
+        *[f"- `{name}`: {desc}" for name, desc in files.items()],
+        "",
+    ]
+    return "\n".join(lines)
+
+
+def _html(case, command, outcome, info, files) -> str:
+    title = html.escape(case.get("title") or f"{command} of {Path(case['mesh']).name}")
+    rows = "".join(
+        f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td><td>{html.escape(u)}</td></tr>"
+        for k, v, u in _inputs(case)
+    )
+    figures = "".join(
+        f'<figure><img src="{n}" alt="{html.escape(d)}"><figcaption>{html.escape(d)}'
+        "</figcaption></figure>"
+        for n, d in files.items()
+        if n.endswith(".png")
+    )
+    listing = "".join(
+        f"<li><code>{html.escape(n)}</code>: {html.escape(d)}</li>" for n, d in files.items()
+    )
+    mesh = html.escape(info.table.split("\nsectional area curve")[0])
+    return (
+        "<!DOCTYPE html>\n<html><head><meta charset='utf-8'>"
+        f"<title>{title}</title><style>body{{font-family:sans-serif;max-width:60em;margin:auto}}"
+        "table{border-collapse:collapse}td,th{border:1px solid #999;padding:2px 6px}"
+        "pre{background:#f4f4f4;padding:6px;overflow-x:auto}img{max-width:100%}</style>"
+        f"</head><body><h1>{title}</h1><p>hullslice {__version__}, command <code>{command}"
+        "</code>. Units SI (angles in degrees); vertical velocity negative downward, forces "
+        f"positive upward.</p><h2>Inputs</h2><table><tr><th>key</th><th>value</th><th>unit"
+        f"</th></tr>{rows}</table><h2>Mesh</h2><pre>{mesh}</pre><h2>Results</h2><pre>"
+        f"{html.escape(outcome.table)}</pre><h2>Figures</h2>{figures}<h2>Files</h2><ul>"
+        f"{listing}</ul></body></html>\n"
+    )
