@@ -187,7 +187,11 @@ def test_report_folder(capsys, tmp_path, paper_hull):
     assert "| draft | 0.0383 | m |" in text and "![convergence](convergence.png)" in text
     for png in out.glob("*.png"):
         assert png.read_bytes()[:8] == PNG
-    # the report's own case file repeats the study
+    # the report's own case file repeats the study, its mesh named relative to the folder
+    case = (out / "case.toml").read_text()
+    mesh = next(line for line in case.splitlines() if line.startswith("mesh = "))
+    rel = mesh.split('"')[1]
+    assert (out / rel).resolve() == (MESHES / "paper_prism.stl").resolve()
     code, again, _ = run(capsys, "run", str(out / "case.toml"), "--format", "json")
     assert json.loads(again)["force"] == data["force"]
 

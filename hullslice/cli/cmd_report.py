@@ -74,9 +74,10 @@ def run(args: argparse.Namespace) -> int:
     )
     info = outcome if command == "info" else cmd_info.compute(info_args)
 
-    with tempfile.TemporaryDirectory(prefix=f".{target.name}.", dir=parent) as tmp:
-        work = Path(tmp) / "report"
-        work.mkdir()
+    # built beside the target (same depth, so that the case's relative paths hold) and
+    # renamed into place only when complete
+    work = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
+    try:
         files = _write_files(work, case, outcome, info, command)
         page = _html if args.html else _markdown
         name = "report.html" if args.html else "report.md"
@@ -85,6 +86,9 @@ def run(args: argparse.Namespace) -> int:
         if target.exists():
             shutil.rmtree(target)
         work.rename(target)
+    except BaseException:
+        shutil.rmtree(work, ignore_errors=True)
+        raise
     print(f"wrote {target / name}", file=sys.stderr)
     return 0
 
