@@ -658,29 +658,43 @@ class Outline:
         c_area = 0.5 * np.bincount(contour, weights=cross, minlength=len(contours))
         outer = (c_area > 0.0)[contour] if len(a) else contour > 0
         part_area, renumber = _part_areas(contours, c_area, polygons)
-        station, a, b, contour = station[outer], a[outer], b[outer], renumber[contour[outer]]
+        if outer.all():  # no holes (the usual case): nothing to drop
+            contour = renumber[contour]
+        else:
+            station, a, b, contour = station[outer], a[outer], b[outer], renumber[contour[outer]]
         ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+        # per station and per contour, while both are still contiguous
+        c = len(part_area)
+        start = np.searchsorted(station, np.arange(s + 1))
+        cstart = np.searchsorted(contour, np.arange(c + 1))
+        zmin = _grouped(np.minimum, za, start, np.inf)
+        ymax = _grouped(np.maximum, ya, start, -np.inf)
+        ymin = _grouped(np.minimum, ya, start, np.inf)
+        side = np.concatenate([station[ya >= ymax[station] - tol],
+                               station[ya <= ymin[station] + tol]])  # fmt: skip
+        z_side = np.concatenate([za[ya >= ymax[station] - tol], za[ya <= ymin[station] + tol]])
+        z_chine = _group_min(side, z_side, s)
+        part_station = station[cstart[:-1]] if c else np.empty(0, dtype=np.int64)
+        part = (
+            _grouped(np.maximum, za, cstart, -np.inf),
+            _grouped(np.minimum, ya, cstart, np.inf),
+            _grouped(np.maximum, ya, cstart, -np.inf),
+        )
+        # then each station's edges by the height of their lower end
         zlo = np.minimum(za, zb)
-        order = np.lexsort((zlo, station))
+        # one sort of a combined key: the station, and the height scaled into [0, 1)
+        # (heights closer than 1e-10 of the body's may swap; no result depends on it)
+        if len(zlo):
+            lo, span = zlo.min(), np.ptp(zlo)
+            key = 2.0 * station + (zlo - lo) / (span * (1.0 + 1e-9) + 1e-300)
+            order = np.argsort(key)
+        else:
+            order = np.empty(0, dtype=np.int64)
         station, ya, za, yb, zb, zlo, contour = (
             v[order] for v in (station, ya, za, yb, zb, zlo, contour)
         )
-        zmin = _group_min(station, za, s)
-        ymax = _group_max(station, ya, s)
-        ymin = _group_min(station, ya, s)
-        at_port = ya >= ymax[station] - tol
-        at_stbd = ya <= ymin[station] + tol
-        z_chine = np.minimum(
-            _group_min(station[at_port], za[at_port], s),
-            _group_min(station[at_stbd], za[at_stbd], s),
-        )
-        start = np.searchsorted(station, np.arange(s + 1))
-        c = len(part_area)
-        part_station = np.zeros(c, dtype=np.int64)
-        part_station[contour] = station
         return cls(
-            station, ya, za, yb, zb, zlo, start, area, contour, part_area, part_station,
-            _group_max(contour, za, c), _group_min(contour, ya, c), _group_max(contour, ya, c),
+            station, ya, za, yb, zb, zlo, start, area, contour, part_area, part_station, *part,
             zmin, ymin, ymax, z_chine,
         )  # fmt: skip
 
@@ -762,6 +776,16 @@ def _prefix_index(starts: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return np.arange(total) + offsets
 
 
+def _grouped(ufunc, values: np.ndarray, start: np.ndarray, fill: float) -> np.ndarray:
+    """``ufunc`` reduced over the contiguous groups ``start[i]:start[i + 1]``; ``fill`` for
+    an empty group."""
+    out = np.full(len(start) - 1, fill)
+    full = start[1:] > start[:-1]
+    if full.any():
+        out[full] = ufunc.reduceat(values, start[:-1][full])
+    return out
+
+
 def _group_min(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
     out = np.full(n, np.inf)
     np.minimum.at(out, keys, values)
@@ -841,11 +865,10 @@ def wetted_properties(
     pts_piece = np.concatenate([seg_piece, seg_piece])
     pts_y = np.concatenate([y1, y2])
     pts_z = np.concatenate([z1, z2])
-    order = np.lexsort((pts_z, pts_piece))
-    first = np.ones(len(order), dtype=bool)
-    first[1:] = pts_piece[order][1:] != pts_piece[order][:-1]
+    # the keel: where the lowest point of each piece is (any one where several are)
+    at_keel = pts_z == zk[pts_piece]
     yk = np.full(m, np.nan)
-    yk[pts_piece[order][first]] = pts_y[order][first]
+    yk[pts_piece[at_keel]] = pts_y[at_keel]
     p = np.maximum(-zk, 0.0)
     c_port = yr - yk
     c_stbd = yk - yl
