@@ -262,7 +262,7 @@ def compute_force(
     pose: Pose | float,
     motion: Motion | float,
     *,
-    slices: int = 64,
+    slices: int = 32,
     solver: str | Solver | type[Solver] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
@@ -280,7 +280,7 @@ def compute_force(
         The motion (vertical velocity and forward speed in m/s, pitch rate in rad/s), or the
         vertical velocity alone (m/s, negative down).
     slices : int
-        Number of slices over the wetted length (default 64).
+        Number of slices over the wetted length (default 32, as everywhere).
     solver : str, Solver or Solver subclass, optional
         The 2D solver (default ``"extended-von-karman"``).
     fluid : Fluid, optional
@@ -366,7 +366,16 @@ def convergence(
     counts = tuple(sorted({int(n) for n in _counts(slices)}))
     solver = get_solver(solver)
     results = tuple(
-        compute_force(hull, pose, motion, slices=n, solver=solver, fluid=fluid, deadrise=deadrise)
+        compute_force(
+            hull,
+            pose,
+            motion,
+            slices=n,
+            solver=solver,
+            fluid=fluid,
+            deadrise=deadrise,
+            slicing=slicing,
+        )
         for n in counts
     )
     rich = richardson(counts, [r.total for r in results]) if len(counts) >= 3 else None

@@ -44,25 +44,28 @@ class KeelLine:
     x: np.ndarray
     z: np.ndarray
 
-    def at(self, x: np.ndarray, dx: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """Keel height at relative stations ``x`` and its mean slope ``dZ_k/dX`` over slices
-        of thickness ``dx`` centred on them (clipped to the body's length).
+    def at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Keel height and slope ``dZ_k/dX`` at relative stations ``x``.
 
-        A mesh's keel is a polyline whose slope jumps from facet to facet; the mean over the
-        slice is the slice's own slope and tends to the local one as the slices get thinner.
+        A mesh's keel line is a polyline whose slope jumps from facet to facet, and a body
+        moving forward turns every jump into a jump of penetration velocity (60 m/s times a
+        slope change of 0.01 is 0.6 m/s). The slope is therefore taken continuous: each
+        facet's slope stands at the facet's middle, linearly in between. It is exact on a
+        straight keel, and a kink (a transom's edge) blends over the two facets beside it
+        only, however thin the slices.
         """
         x = np.asarray(x, dtype=np.float64)
-        half = 0.5 * np.asarray(dx, dtype=np.float64)
-        lo = np.maximum(x - half, self.x[0])
-        hi = np.minimum(x + half, self.x[-1])
-        z, zlo, zhi = np.interp(np.concatenate([x, lo, hi]), self.x, self.z).reshape(3, -1)
-        span = hi - lo
-        ok = span > 0
-        if ok.all():
-            return z, (zhi - zlo) / span
-        i = np.minimum(np.maximum(np.searchsorted(self.x, x, side="right") - 1, 0), len(self.x) - 2)
-        local = (self.z[i + 1] - self.z[i]) / (self.x[i + 1] - self.x[i])
-        return z, np.where(ok, (zhi - zlo) / np.where(ok, span, 1.0), local)
+        z = np.interp(x, self.x, self.z)
+        mid, slopes = self._facets
+        return z, np.interp(x, mid, slopes)
+
+    @property
+    def _facets(self) -> tuple[np.ndarray, np.ndarray]:
+        facets = self.__dict__.get("_facet_cache")
+        if facets is None:
+            facets = (0.5 * (self.x[1:] + self.x[:-1]), np.diff(self.z) / np.diff(self.x))
+            object.__setattr__(self, "_facet_cache", facets)
+        return facets
 
     def below(self, level: float) -> tuple[float, float] | None:
         """The ``x`` range where the keel is below ``level`` (relative), or None."""

@@ -128,7 +128,7 @@ class Sections:
     chine_wetted : (n,) bool
         The water has reached the station's widest point (chine or deck) on either side.
     keel_slope : (n,) float
-        Slope ``dZ/dX`` of the body's keel line (earth frame), its mean over the slice.
+        Slope ``dZ/dX`` of the body's keel line at the station (earth frame).
     keel_z : (n,) float
         Earth height of the station's lowest point, m.
     y_keel : (n,) float
@@ -422,7 +422,7 @@ def _assemble(
     """:class:`Sections` from per-station positions and per-entry properties; ``keel`` is
     the keel line's height and slope at the stations when already known."""
     st = props["station"]
-    keel_z, slope = fr.keel.at(rel, dx) if keel is None else keel
+    keel_z, slope = fr.keel.at(rel) if keel is None else keel
     if scale is None:
         penetration, half_beam = props["penetration"], props["half_beam"]
         port, stbd = props["half_beam_port"], props["half_beam_stbd"]
@@ -506,7 +506,7 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     borrow = ~full & ~wet_mid[k]
     source[borrow] = np.minimum(np.maximum(k[borrow] + inward[borrow], 0), n - 1)
     fresh = ~full & ~wet_mid[source]
-    keel = fr.keel.at(x, hi - lo)
+    keel = fr.keel.at(x)
     ratio = np.ones(len(x))
     part = ~full & ~fresh
     if part.any():

@@ -68,12 +68,15 @@ def test_forward_speed_velocity_follows_the_keel_slope(paper_hull):
     alpha = np.arctan((p["h_start"] - p["h_end"]) / p["length"])
     theta, u, w = np.radians(4.0), 6.0, -2.0
     r = hs.compute_force(paper_hull, hs.Pose(0.03, theta), hs.Motion(w, u), slices=40)
-    inner = slice(5, -1)  # away from the transom at x = 0, whose face is tilted
+    # the first station lies on the tilted transom face at x = 0, where the keel line is the
+    # face itself (rising aft): its section is leaving the water
+    assert r.sections.keel_slope[0] < 0 and r.loads.force_per_metre[0] == 0.0
+    inner = slice(1, None)
     slope = np.tan(alpha + theta)
     # the mesh file is single precision (STL): its keel vertices, 0.25 mm apart, are within
-    # 6e-9 m of the exact line, so their slopes are good to a few 1e-6
-    np.testing.assert_allclose(r.sections.keel_slope[inner], slope, rtol=2e-5)
-    np.testing.assert_allclose(r.velocity[inner], w - u * slope, rtol=2e-5)
+    # 6e-9 m of the exact line, so each facet's slope is good to about 5e-5
+    np.testing.assert_allclose(r.sections.keel_slope[inner], slope, rtol=1e-4)
+    np.testing.assert_allclose(r.velocity[inner], w - u * slope, rtol=1e-4)
     # the horizontal force is the slice forces' drag along the keel
     assert r.total_x == pytest.approx(-(r.force * r.sections.keel_slope).sum(), rel=1e-12)
 
