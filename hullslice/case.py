@@ -284,6 +284,16 @@ def validate_case(
                 raise CaseError(f"{where}key {name!r} ({key.help}) {why}: {value!r}{unit}")
         if key.kind == "path":
             value = Path(os.path.normpath(Path(base, value))) if base is not None else Path(value)
+        elif name == "solver_options" and base is not None:
+            # a solver's file (a curve table) is named relative to the case, like the mesh
+            value = {
+                k: (
+                    os.path.normpath(Path(base, v))
+                    if isinstance(v, str) and Path(base, v).is_file()
+                    else v
+                )
+                for k, v in value.items()
+            }
         elif key.kind == "text" and key.check is not None:
             value = value.strip().lower()
         out[name] = value

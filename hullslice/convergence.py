@@ -103,13 +103,19 @@ def richardson(counts: Sequence[int], values: Sequence[float]) -> Richardson:
         return Richardson(math.nan, math.nan, math.inf, (n1, n2, n3), (f1, f2, f3), "divergent")
     s = 1.0 if ratio > 0 else -1.0
     p = abs(math.log(abs(ratio))) / math.log(r21)
+    settled = r21 == r32  # q = 0: no iteration needed
     for _ in range(200):
         q = math.log((r21**p - s) / (r32**p - s)) if p > 0 else 0.0
         p_new = abs(math.log(abs(ratio)) + q) / math.log(r21)
         if abs(p_new - p) < 1e-12 * max(1.0, p):
-            p = p_new
+            p, settled = p_new, True
             break
         p = p_new
+    if not settled:
+        raise InputError(
+            f"the observed order of convergence over {n1}, {n2}, {n3} slices does not settle "
+            "(uneven refinement ratios): give slice counts in a constant ratio, e.g. 16, 32, 64"
+        )
     rp = r21**p
     ext = (rp * f1 - f2) / (rp - 1.0)
     gci = SAFETY_FACTOR * abs((f1 - f2) / f1) / (rp - 1.0) if f1 != 0 else math.inf

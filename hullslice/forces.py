@@ -24,7 +24,7 @@ station halfway between the keel and the waterline. Friction is not modelled.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -47,6 +47,10 @@ __all__ = [
 ]
 
 CHINE_REASON = "water at or above the section's chine/widest point"
+MASSLESS_REASON = "no mass per metre at this station (the mass distribution puts none here)"
+#: Smallest deadrise a solver is given, rad: a flat bottom is computed as this, flagged.
+MIN_DEADRISE = float(np.radians(1.0))
+FLAT_REASON = "deadrise below 1 deg (a flat bottom): computed at 1 deg, outside the wedge theory"
 
 
 @dataclass(frozen=True, eq=False)
@@ -178,8 +182,10 @@ def evaluate(
 ) -> SectionLoads:
     """Run a solver on the wetted sections and check what it returns.
 
-    Dry sections get zero force. The result covers every section; its ``valid`` and
-    ``reason`` include the geometric check that the water is below each section's chine.
+    Dry sections, and wetted ones that carry no mass, get zero force; a deadrise below
+    :data:`MIN_DEADRISE` (a flat bottom) is given to the solver as that. The result covers
+    every section; its ``valid`` and ``reason`` include these geometric checks and that the
+    water is below each section's chine.
     Floating-point warnings inside the solver are silenced: what it returns is checked.
 
     Raises
@@ -197,6 +203,22 @@ def evaluate(
     valid = np.ones(n, dtype=bool)
     reason = np.full(n, "", dtype=object)
     diagnostics: dict[str, np.ndarray] = {}
+    # a wetted section that carries no mass (between a distribution's point masses, or
+    # beyond its line) is in no free fall: it gets no force, flagged
+    massless = wet & (sections.mass_per_metre <= 0.0)
+    if massless.any():
+        wet = wet & ~massless
+        valid[massless] = False
+        reason[massless] = MASSLESS_REASON
+    # a flat bottom (zero deadrise) has no wedge: computed at the smallest deadrise, flagged
+    flat = wet & ~(sections.deadrise >= MIN_DEADRISE)
+    if flat.any():
+        sections = replace(
+            sections,
+            deadrise=np.where(flat, MIN_DEADRISE, sections.deadrise),
+            deadrise_port=np.fmax(sections.deadrise_port, MIN_DEADRISE),
+            deadrise_stbd=np.fmax(sections.deadrise_stbd, MIN_DEADRISE),
+        )
     if wet.any():
         sub = sections if wet.all() else sections.subset(wet)
         try:
@@ -216,10 +238,10 @@ def evaluate(
             full = np.full(n, np.nan)
             full[wet] = arr
             diagnostics[k] = full
-    chine = sections.chine_wetted
-    if chine.any():
-        valid &= ~chine
-        reason[chine] = [f"{r}; {CHINE_REASON}" if r else CHINE_REASON for r in reason[chine]]
+    for mask, why in ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)):
+        if mask.any():
+            valid &= ~mask
+            reason[mask] = [f"{r}; {why}" if r else why for r in reason[mask]]
     return SectionLoads(force, valid, reason, diagnostics)
 
 

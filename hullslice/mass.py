@@ -132,6 +132,27 @@ class MassDistribution:
             out = out + np.where(inside, pm / length, 0.0)
         return out
 
+    def on_planes(self, x_rel, pitch: float, cg, line_z: float) -> np.ndarray:
+        """Mass per metre of earth ``X`` on the planes ``X - X_g = x_rel`` (m) of a body pitched
+        by ``pitch`` (rad, nose up) about ``cg = (x, z)`` (m), kg/m.
+
+        Each part of the distribution lies at its own height ``z``: a plane meets it at body
+        ``x = x_g + (x_rel + (z - z_g) sin(pitch)) / cos(pitch)``, and a density of ``m`` per
+        metre of body counts ``m / cos(pitch)`` per metre of earth.
+        """
+        x_rel = np.asarray(x_rel, dtype=np.float64)
+        c, s = np.cos(pitch), np.sin(pitch)
+        xg, zg = float(cg[0]), float(cg[1])
+        zl = self.line_z if self.line_z is not None else line_z
+        out = np.zeros_like(x_rel)
+        if len(self.x):
+            x = xg + (x_rel + (zl - zg) * s) / c
+            out += np.interp(x, self.x, self.mass_per_metre, left=0.0, right=0.0)
+        for px, pz, pm, length in self.points:
+            x = xg + (x_rel + (pz - zg) * s) / c
+            out += np.where(np.abs(x - px) <= length / 2, pm / length, 0.0)
+        return out / c
+
 
 def _moment1(x: np.ndarray, m: np.ndarray) -> float:
     """Integral of x m(x) dx for m linear between stations (exact)."""

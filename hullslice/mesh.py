@@ -382,22 +382,6 @@ class Hull:
         """Mean density in kg/m^3 (mass / volume), or None without a mass."""
         return None if self.mass is None else self.mass / self.volume
 
-    @functools.cached_property
-    def _slicer(self):
-        # The hull moved so that its bounding-box centre is the origin, with axes permuted
-        # cyclically (y, z, x) -> (X, Y, Z): manifold3d slices at constant Z, so a slice at
-        # Z = x - xc is the body's station x, in (y - yc, z - zc). Centring keeps
-        # manifold3d's single-precision cross sections accurate for any placement.
-        c = self.bounds.mean(axis=0)
-        m = np.array(
-            [
-                [0.0, 1.0, 0.0, -c[1]],
-                [0.0, 0.0, 1.0, -c[2]],
-                [1.0, 0.0, 0.0, -c[0]],
-            ]
-        )
-        return self._manifold.transform(m), c
-
     def __repr__(self) -> str:
         mass = "no mass" if self.mass is None else f"{self.mass:g} kg"
         L, B, H = self.extents

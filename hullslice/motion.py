@@ -60,7 +60,15 @@ STOP_RULES: dict[str, str] = {
     "velocity": "the body stopped sinking (vertical velocity >= 0)",
     "chine": "the water reached a section's chine or deck (its widest point)",
     "validity": "a slice left the 2D solver's range of validity",
+    "pitch": "the pitch reached 80 deg, past what a 2D+t model describes (a run always ends there)",
 }
+
+#: Largest pitch a run may reach, rad.
+MAX_PITCH = math.radians(80.0)
+
+
+class _PitchLimit(Exception):
+    """The pitch reached :data:`MAX_PITCH` during a run."""
 
 
 #: Largest part of the body's height it may move in one time step of a free fall.
@@ -293,8 +301,16 @@ class _Recorder:
         self.first: dict[str, float | None] = dict.fromkeys(STOP_RULES)
         self.stop: str | None = None
 
-    def add(self, t: float, r: ForceResult, hull: Hull, acceleration: float) -> bool:
-        """Record an instant; True when a stop rule ends the run here."""
+    def add(
+        self,
+        t: float,
+        r: ForceResult,
+        hull: Hull,
+        acceleration: float,
+        draft: float | None = None,
+    ) -> bool:
+        """Record an instant; True when a stop rule ends the run here. ``draft`` is the
+        body's own when the force was computed at a draft clipped to its height."""
         solver_invalid = ~r.loads.valid & ~r.sections.chine_wetted
         reasons = sorted({part for text in r.loads.reason if text for part in text.split("; ")})
         w = r.motion.velocity
@@ -312,7 +328,7 @@ class _Recorder:
         self.rows.append(
             {
                 "t": t,
-                "penetration": r.pose.draft,
+                "penetration": r.pose.draft if draft is None else draft,
                 "velocity": w,
                 "acceleration": acceleration,
                 "force": r.total,
@@ -336,6 +352,11 @@ class _Recorder:
             if hit and rule in self.stop_on and self.stop is None:
                 self.stop = rule
         return self.stop is not None
+
+    def end(self, rule: str, t: float) -> None:
+        """End the run here by ``rule`` (a limit the run cannot go past)."""
+        self.first[rule] = t if self.first[rule] is None else self.first[rule]
+        self.stop = self.stop or rule
 
     def history(self, end: str, mode: str, settings: dict) -> History:
         def col(name, dtype):
@@ -480,6 +501,8 @@ def simulate(
 
     def state_pose(y) -> tuple[Pose, Motion]:
         z, th, u, w, q = y
+        if abs(th) >= MAX_PITCH:
+            raise _PitchLimit
         return Pose(model.draft(z, th), th), Motion(w, u, q)
 
     def rate(y, r: ForceResult | None = None):
@@ -495,13 +518,21 @@ def simulate(
     steps = math.ceil(t_end / dt - 1e-9)
     t = 0.0
     for k in range(steps + 1):
-        k1, r = rate(y)
-        if rec.add(t, r, hull, k1[3]) or k == steps:
+        try:
+            k1, r = rate(y)
+        except _PitchLimit:  # past what the model describes: the run ends, whatever stop_on
+            rec.end("pitch", t)
+            break
+        if rec.add(t, r, hull, k1[3], model.draft(y[0], y[1])) or k == steps:
             break
         h = min(dt, t_end - t)
-        k2, _ = rate(y + 0.5 * h * k1)
-        k3, _ = rate(y + 0.5 * h * k2)
-        k4, _ = rate(y + h * k3)
+        try:
+            k2, _ = rate(y + 0.5 * h * k1)
+            k3, _ = rate(y + 0.5 * h * k2)
+            k4, _ = rate(y + h * k3)
+        except _PitchLimit:
+            rec.end("pitch", t)
+            break
         y = y + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
         t = (k + 1) * dt if k + 1 < steps else t_end
         if progress is not None:

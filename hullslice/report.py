@@ -199,7 +199,8 @@ def _records(columns: Mapping[str, np.ndarray]) -> list[dict[str, Any]]:
 
 
 def section_records(sections) -> list[dict[str, Any]]:
-    """One dict per station of a :class:`~hullslice.sections.Sections` (SI, deadrise in deg)."""
+    """One dict per entry (wetted piece, or dry station) of a
+    :class:`~hullslice.sections.Sections`, numbered ``j`` from 1 (SI, deadrise in deg)."""
     return _records(sections.as_dict())
 
 

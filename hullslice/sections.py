@@ -411,9 +411,10 @@ def _station_mass(hull: Hull, fr, area: np.ndarray, rel: np.ndarray) -> np.ndarr
         return np.full(len(rel), np.nan)
     if hull.mass_distribution is None:
         return hull.mass / hull.volume * area
-    # a line density along the body's axis through the cg, crossed by the tilted plane
-    c = np.cos(fr.pitch)
-    return hull.mass_per_metre_at(fr.cg[0] + rel / c) / c
+    # the distribution's parts, each at its own height, crossed by the tilted planes
+    return hull.mass_distribution.on_planes(
+        rel, fr.pitch, (fr.cg[0], fr.cg[2]), float(hull.centroid[2])
+    )
 
 
 def _assemble(
@@ -792,12 +793,6 @@ def _group_min(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-def _group_max(keys: np.ndarray, values: np.ndarray, n: int) -> np.ndarray:
-    out = np.full(n, -np.inf)
-    np.maximum.at(out, keys, values)
-    return out
-
-
 def section_properties(
     polygons: Sequence[Polygons], tol: float, deadrise: str = "wedge"
 ) -> dict[str, np.ndarray]:
@@ -865,10 +860,12 @@ def wetted_properties(
     pts_piece = np.concatenate([seg_piece, seg_piece])
     pts_y = np.concatenate([y1, y2])
     pts_z = np.concatenate([z1, z2])
-    # the keel: where the lowest point of each piece is (any one where several are)
-    at_keel = pts_z == zk[pts_piece]
-    yk = np.full(m, np.nan)
-    yk[pts_piece[at_keel]] = pts_y[at_keel]
+    # the keel: where the lowest point of each piece is; on a flat bottom, its middle (the
+    # points level with it to manifold3d's single precision, a fifth of the tolerance: a
+    # finely faceted round bottom must not count as flat)
+    at_keel = pts_z <= zk[pts_piece] + tol / 5
+    keel_piece, keel_y = pts_piece[at_keel], pts_y[at_keel]
+    yk = 0.5 * (_group_min(keel_piece, keel_y, m) - _group_min(keel_piece, -keel_y, m))
     p = np.maximum(-zk, 0.0)
     c_port = yr - yk
     c_stbd = yk - yl
@@ -1013,4 +1010,4 @@ def _keel_fit(piece, y1, z1, y2, z2, m):
     num_s = np.bincount(pc[~port], weights=iyz[~port], minlength=m)
     den_s = np.bincount(pc[~port], weights=iyy[~port], minlength=m)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return num_p / den_p, -num_s / den_s
+        return np.abs(num_p / den_p), np.abs(num_s / den_s)

@@ -253,3 +253,29 @@ def test_console_script_and_version():
     )
     assert bad.returncode == 2 and len(bad.stderr.strip().splitlines()) == 1
     assert "Traceback" not in bad.stderr
+
+
+def test_report_refuses_a_folder_holding_its_inputs(capsys, tmp_path):
+    import shutil
+
+    shutil.copy(MESHES / "paper_prism.stl", tmp_path / "hull.stl")
+    case = tmp_path / "case.toml"
+    case.write_text('mesh = "hull.stl"\nmass = 1.0\ndraft = 0.02\nvelocity = -3.0\n')
+    code, _, err = run(capsys, "report", str(case), "-o", str(tmp_path), "--overwrite")
+    assert code == 2 and "holds the input" in err
+    assert (tmp_path / "hull.stl").exists() and case.exists()
+
+
+def test_a_solver_file_in_a_case_is_relative_to_the_case(capsys, tmp_path):
+    import shutil
+
+    shutil.copy(ROOT / "plugins" / "curves" / "examples" / "paper_curves.csv", tmp_path / "c.csv")
+    case = tmp_path / "case.toml"
+    case.write_text(
+        f'mesh = "{PRISM}"\nmass = 1.0\ndraft = 0.0383\nvelocity = -3.4943\nslices = [16]\n'
+        'solver = "curves"\n[solver_options]\ntable = "c.csv"\n'
+    )
+    code, out, err = run(capsys, "run", str(case), "--format", "json")
+    assert code == 0, err
+    default = hs.compute_force(hs.load_hull(PRISM, mass=1.0), 0.0383, -3.4943, slices=16)
+    assert json.loads(out)["force"] == pytest.approx(default.total, rel=1e-4)  # same curves

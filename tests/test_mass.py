@@ -130,3 +130,33 @@ def test_uniform_prism_centroid_and_inertia_closed_form():
     hull = hs.Hull.from_arrays(v, f, mass=6.0)
     assert hull.pitch_inertia == pytest.approx(6.0 * (4.0 + 1.0) / 12, rel=1e-12)
     assert hull.cg == pytest.approx([1.0, 0.0, 0.5])
+
+
+def test_pitched_distribution_puts_each_mass_at_its_own_height(wedge_hull):
+    # masses at different heights: on earth planes of a pitched body, the sections' mass
+    # must sit where the masses are, so its centroid along X is the centre of gravity's X
+    pts = np.array([[0.2, -0.05, 4.0, 0.1], [0.7, 0.4, 6.0, 0.2]])
+    hull = wedge_hull.with_mass(mass_distribution=MassDistribution(points=pts))
+    theta = np.radians(10.0)
+    height = hs.sections._height_at(hull, theta)
+    s = hs.cut(hull, hs.Pose(height, theta), 2000)
+    m = s.mass_per_metre * s.dx
+    assert m.sum() == pytest.approx(10.0, rel=2e-3)
+    assert (m * s.x).sum() / m.sum() == pytest.approx(hull.cg[0], abs=2e-3)
+    # the upper mass (0.45 m above the cg) lands ahead of its body x by (z - z_g) tan(pitch)
+    zg = hull.cg[2]
+    x_upper = hull.cg[0] + (0.7 - hull.cg[0]) * np.cos(theta) - (0.4 - zg) * np.sin(theta)
+    upper = np.abs(s.x - x_upper) < 0.1 * np.cos(theta) - 1e-3
+    np.testing.assert_allclose(s.mass_per_metre[upper], 6.0 / 0.2 / np.cos(theta), rtol=1e-9)
+
+
+def test_sections_without_mass_get_no_force_and_are_flagged(wedge_hull):
+    # point masses leave stations between them without mass: no free fall there
+    pts = np.array([[0.2, 0.0, 5.0, 0.2], [0.8, 0.0, 5.0, 0.2]])
+    hull = wedge_hull.with_mass(mass_distribution=MassDistribution(points=pts))
+    r = hs.compute_force(hull, 0.03, -4.0, slices=10)
+    empty = r.sections.mass_per_metre == 0
+    assert empty.any() and (~empty).any()
+    assert np.all(r.force[empty] == 0) and not r.valid[empty].any()
+    assert "no mass per metre" in r.loads.reason[np.flatnonzero(empty)[0]]
+    assert np.all(np.isfinite(r.force)) and r.total > 0

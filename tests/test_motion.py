@@ -162,3 +162,27 @@ def test_bad_kinematics(tmp_path, paper_hull, text, message):
     path.write_text(text)
     with pytest.raises(hs.CaseError, match=message):
         prescribed(paper_hull, read_kinematics(path))
+
+
+def test_draft_past_the_body_height_is_recorded_as_it_is(wedge_hull):
+    # a heavy wedge going under: the force is computed at the height (fully wetted, flagged)
+    # but the history keeps the body's own draft, the integral of its velocity
+    heavy = wedge_hull.with_mass(100.0)
+    h = simulate(heavy, -5.0, 0.05, dt=2e-4, slices=4, stop_on=())
+    height = heavy.extents[2]
+    assert h.penetration.max() > 1.5 * height
+    travel = np.concatenate(
+        [[0.0], np.cumsum(-0.5 * (h.velocity[1:] + h.velocity[:-1]) * np.diff(h.t))]
+    )
+    np.testing.assert_allclose(h.penetration, travel, rtol=1e-3, atol=1e-6)
+    assert h.chine_wetted[h.penetration > height].all()
+
+
+def test_a_run_ends_when_the_pitch_reaches_80_degrees(paper_hull):
+    h = simulate(
+        paper_hull, -4.0, 0.2, dt=1e-3, pitch=np.radians(75.0), pitch_rate=np.radians(300.0),
+        slices=8, stop_on=(),
+    )  # fmt: skip
+    assert h.stop_reason == "pitch"
+    assert np.degrees(h.pitch[-1]) < 80.0 <= np.degrees(h.pitch[-1]) + 300.0 * 1e-3 + 1e-9
+    assert h.first_crossed["pitch"] == pytest.approx(h.t[-1])

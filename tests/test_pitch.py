@@ -81,13 +81,27 @@ def test_forward_speed_velocity_follows_the_keel_slope(paper_hull):
     assert r.total_x == pytest.approx(-(r.force * r.sections.keel_slope).sum(), rel=1e-12)
 
 
-def test_pitch_rate_velocity(paper_hull):
-    # a pure pitch rate q moves each section's keel at q times its distance from the cg
-    q = 2.0
-    r = hs.compute_force(paper_hull, 0.03, hs.Motion(-1.0, 0.0, q), slices=16)
-    s = r.sections
-    expected = -1.0 + q * (s.x - paper_hull.cg[0]) + q * (s.keel_z - s.z_cg) * s.keel_slope
-    np.testing.assert_allclose(r.velocity, expected, rtol=1e-12)
+def test_section_velocity_is_the_keel_rate_at_fixed_planes(paper_hull):
+    # an independent reference: move the body for a short time (heave w, forward speed u,
+    # pitch rate q about the cg) and watch how fast the keel sinks at fixed earth planes
+    from hullslice.geometry import frame
+
+    theta, draft, dt = np.radians(4.0), 0.03, 1e-6
+    w, u, q = -2.0, 5.0, 1.5
+    r = hs.compute_force(paper_hull, hs.Pose(draft, theta), hs.Motion(w, u, q), slices=24)
+    stations = r.sections.x[2:]  # away from the transom at x = 0
+
+    def keel_at(t):
+        th = theta + q * t
+        z_cg = frame(paper_hull, theta).z_cg(draft) + w * t
+        d = -(frame(paper_hull, th).lowest + z_cg)
+        # the stations follow the cg along X: a plane fixed in the earth falls back by u t
+        return hs.cut(paper_hull, hs.Pose(d, th), stations=stations - u * t).keel_z
+
+    rate = (keel_at(dt) - keel_at(-dt)) / (2 * dt)
+    # the keel's facets, 0.25 mm apart in a single-precision STL, have slopes good to
+    # about 5e-5 (see above); the keel line's slope blends them
+    np.testing.assert_allclose(r.velocity[2:], rate, rtol=1e-4)
 
 
 def test_free_pitch_history_obeys_its_equations(paper_hull):
@@ -206,3 +220,19 @@ def test_a_w_section_has_two_pieces_and_a_hole_is_ignored():
     # keels (0.4 m^2)
     area_outer = 2.0 * 1.5 - 0.25 - 0.25 - 0.4
     assert props["area"][0] == pytest.approx(area_outer - 0.4 * 0.3, rel=1e-12)
+
+
+def test_a_flat_bottom_is_computed_at_one_degree_and_flagged():
+    # a box: the keel-fit deadrise of its flat bottom is zero, where the wedge theory has no
+    # answer; the section is computed at 1 degree and flagged, never a NaN
+    v, f = shapes.prism_from_sections(
+        np.array([0.0, 1.0]),
+        np.broadcast_to([[-0.2, 0.0], [0.2, 0.0], [0.2, 0.3], [-0.2, 0.3]], (2, 4, 2)),
+    )
+    box = hs.Hull.from_arrays(v, f, mass=20.0)
+    r = hs.compute_force(box, 0.02, -3.0, slices=4, deadrise="keel-fit")
+    assert np.all(r.sections.deadrise == 0.0)
+    assert np.all(np.isfinite(r.force)) and not r.valid.any()
+    assert all("a flat bottom" in why for why in r.loads.reason)
+    # the keel of a flat bottom is its middle
+    np.testing.assert_allclose(r.sections.y_keel, 0.0, atol=1e-9)

@@ -38,9 +38,9 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         "force",
         help="the vertical force at one draft and velocity, per slice and in total",
-        description="The 2D+t force on a level hull at one state (draft and vertical "
-        "velocity), for one or more slice counts; with three or more, the Richardson-"
-        "extrapolated force and its GCI error band (Roache).",
+        description="The 2D+t force on a hull at one state (draft, pitch, vertical velocity, "
+        "forward speed, pitch rate), for one or more slice counts; with three or more, the "
+        "Richardson-extrapolated force and its GCI error band (Roache).",
     )
     add_mesh_options(p, mass_required=True)
     g = p.add_argument_group("state and method")
@@ -175,18 +175,23 @@ def _table(hull, args, study, summary, records) -> str:
         f"force {finest.total:.4f} N at {study.counts[-1]} slices",
     ]
     rich = study.richardson
-    if rich is not None:
+    if finest.sections.wetted_length == 0.0:
+        lines.append("no part of the body is in the water at this draft: no force")
+    elif rich is not None:
         if rich.behaviour == "divergent":
             lines.append("extrapolated force: none, the forces do not converge")
+        elif rich.behaviour == "converged":
+            lines.append(f"extrapolated force {rich.extrapolated:.4f} N (the same at every count)")
         else:
             lines.append(
                 f"extrapolated force {rich.extrapolated:.4f} N (Richardson, order "
                 f"{rich.order:.2f}, GCI {100 * rich.gci:.4f} %, {rich.behaviour})"
             )
     invalid = int((~finest.valid).sum())
-    lines.append(
-        "all slices inside the method's validity range"
-        if invalid == 0
-        else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
-    )
+    if finest.sections.wetted_length > 0.0:
+        lines.append(
+            "all slices inside the method's validity range"
+            if invalid == 0
+            else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
+        )
     return "\n".join(lines)

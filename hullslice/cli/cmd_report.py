@@ -62,6 +62,7 @@ def run(args: argparse.Namespace) -> int:
     if not parent.is_dir():
         raise InputError(f"the folder {str(parent)!r} does not exist; create it first")
     case = load_case(args.case)
+    _refuse_inputs_inside(target, args.case, case)
     command = case_command(case)
     argv = [a for a in case_argv(case) if not a.startswith(("--output=", "--plot=", "--format="))]
     cmd_args = _parse(argv)
@@ -91,6 +92,24 @@ def run(args: argparse.Namespace) -> int:
         raise
     print(f"wrote {target / name}", file=sys.stderr)
     return 0
+
+
+def _refuse_inputs_inside(target: Path, case_path: str, case) -> None:
+    """The report folder must not hold the case or its inputs: it is replaced whole."""
+    folder = target.resolve()
+    inputs = [Path(case_path), *(v for v in case.values() if isinstance(v, Path))]
+    for path in inputs:
+        p = path.resolve()
+        if p == folder or folder in p.parents:
+            raise InputError(
+                f"report folder {str(target)!r} holds the input {str(path)!r}, and the folder "
+                "is written anew: give a report folder of its own"
+            )
+    if folder == Path.cwd().resolve() or folder in Path.cwd().resolve().parents:
+        raise InputError(
+            f"report folder {str(target)!r} is the working folder or holds it: give a folder "
+            "of its own"
+        )
 
 
 _INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",

@@ -26,9 +26,9 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         "sections",
         help="cut a hull into the 2D+t slices at one draft and list them",
-        description="Cut the wetted length of a level hull into equal slices and list each "
-        "mid-station's penetration, half-beam at the waterline, deadrise, area and mass "
-        "per metre.",
+        description="Cut the wetted length of a hull at a draft and pitch into equal slices and "
+        "list each mid-station's wetted pieces: penetration, half-beam at the waterline, "
+        "deadrise, area and mass per metre.",
     )
     add_mesh_options(p)
     g = p.add_argument_group("pose and slicing")
