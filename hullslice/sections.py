@@ -133,6 +133,9 @@ class Sections:
         Earth height of the station's lowest point, m.
     y_keel : (n,) float
         Lateral position ``y`` of the piece's keel, m.
+    part_half_beam : (n,) float
+        Half the largest width of the separate part of the section that the piece belongs
+        to (its float, for a catamaran), m; NaN for a dry entry.
     polygons : sequence of tuples of (k, 2) float
         Contours of each **station** in the earth ``(Y, Z)`` plane, m; the waterline is
         ``Z = 0``; outer contours counter-clockwise.
@@ -160,6 +163,7 @@ class Sections:
     keel_slope: np.ndarray
     keel_z: np.ndarray
     y_keel: np.ndarray
+    part_half_beam: np.ndarray
     polygons: Sequence[Polygons] = field(repr=False, default=())
     deadrise_method: str = "wedge"
     draft: float = 0.0
@@ -184,6 +188,7 @@ class Sections:
         "keel_slope",
         "keel_z",
         "y_keel",
+        "part_half_beam",
     )
 
     def __post_init__(self) -> None:
@@ -451,6 +456,7 @@ def _assemble(
         keel_slope=slope[st],
         keel_z=(keel_z + z_cg)[st],
         y_keel=props["y_keel"],
+        part_half_beam=props["part_half_beam"],
         polygons=ShiftedPolygons(polys, shift, fr.scale),
         deadrise_method=deadrise,
         draft=pose.draft,
@@ -911,6 +917,7 @@ def wetted_properties(
         "deadrise_port": col(np.arctan(t_port), nan_d),
         "deadrise_stbd": col(np.arctan(t_stbd), nan_d),
         "y_keel": col(yk, nan_d),
+        "part_half_beam": col(0.5 * (outline.part_ymax - outline.part_ymin)[part], nan_d),
         "mass_share": col(share, 1.0),
         "chine_wetted": col(chine_station[ps], False).astype(bool),
     }

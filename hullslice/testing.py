@@ -80,6 +80,7 @@ def wedge_sections(
         keel_slope=np.zeros(n),
         keel_z=-p.ravel(),
         y_keel=np.zeros(n),
+        part_half_beam=b.ravel().copy(),
         polygons=polys,
         deadrise_method="wedge",
         draft=float(p.max()),

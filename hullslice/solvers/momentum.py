@@ -146,17 +146,9 @@ def pile_up_law(spec: str | float) -> PileUp:
 
 
 def chine_half_width(sections: Sections) -> np.ndarray:
-    """Half the width of each entry's whole station section at its widest point, in m.
-
-    From the station's contours (``(max y - min y) / 2``); NaN where it has no contour.
-    """
-    per_station = np.full(sections.n_stations, np.nan)
-    for i, contours in enumerate(sections.polygons):
-        ys = [c[:, 0] for c in contours if len(c)]
-        if ys:
-            y = np.concatenate(ys)
-            per_station[i] = 0.5 * (y.max() - y.min())
-    return per_station[sections.station]
+    """Half the width, at its widest point, of the separate part of the section that each
+    entry belongs to (one float of a catamaran), in m."""
+    return np.asarray(sections.part_half_beam, dtype=np.float64)
 
 
 def momentum_curves(
