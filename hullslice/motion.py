@@ -129,6 +129,20 @@ class ForceModel:
         )
         return force_on(sections, motion, self.solver, self.fluid, float(self.hull.cg[0]))
 
+    def settings(self) -> dict[str, object]:
+        """The model's inputs, for a history's settings."""
+        return {
+            "hull": self.hull.name,
+            "mass": self.hull.mass,
+            "slices": self.slices,
+            "solver": self.solver.name,
+            "solver_options": dict(self.solver.settings),
+            "rho": self.fluid.rho,
+            "g": self.fluid.g,
+            "deadrise": self.deadrise,
+            "slicing": self.slicing,
+        }
+
     def draft(self, z_cg: float, pitch: float) -> float:
         """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m)."""
         return max(0.0, -(frame(self.hull, pitch).lowest + z_cg))
@@ -539,8 +553,7 @@ def simulate(
             progress(t, t_end)
     level = pose0.pitch == 0.0 and q0 == 0.0 and forward_speed == 0.0 and not free_pitch
     settings = {
-        "hull": hull.name,
-        "mass": m,
+        **model.settings(),
         "initial_velocity": w0,
         "initial_draft": pose0.draft,
         "initial_pitch_deg": math.degrees(pose0.pitch),
@@ -552,13 +565,6 @@ def simulate(
         "cg": [float(hull.cg[0]), float(hull.cg[2])],
         "t_end": t_end,
         "dt": dt,
-        "slices": model.slices,
-        "solver": model.solver.name,
-        "solver_options": dict(model.solver.settings),
-        "rho": model.fluid.rho,
-        "g": g,
-        "deadrise": model.deadrise,
-        "slicing": model.slicing,
         "scheme": "classical Runge-Kutta, 4th order, fixed step",
         "stop_on": list(rec.stop_on),
     }
@@ -612,15 +618,7 @@ def prescribed(
         if progress is not None:
             progress(float(t), float(t_all[-1]))
     settings = {
-        "hull": hull.name,
-        "mass": hull.mass,
-        "slices": model.slices,
-        "solver": model.solver.name,
-        "solver_options": dict(model.solver.settings),
-        "rho": model.fluid.rho,
-        "g": g,
-        "deadrise": model.deadrise,
-        "slicing": model.slicing,
+        **model.settings(),
         "stop_on": list(rec.stop_on),
         "rows": len(t_all),
     }

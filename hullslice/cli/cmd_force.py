@@ -14,7 +14,6 @@ from ..report import (
     force_records,
     table_text,
 )
-from ..sections import DEADRISE_ESTIMATORS
 from ..state import Motion, Pose
 from .common import (
     Outcome,
@@ -22,7 +21,7 @@ from .common import (
     add_mesh_options,
     add_output_options,
     add_pose_options,
-    add_slicing_option,
+    add_section_options,
     add_solver_options,
     finish,
     fluid,
@@ -68,13 +67,7 @@ def add_parser(sub) -> None:
         "force (default: 16,32,64)",
     )
     add_solver_options(g)
-    g.add_argument(
-        "--deadrise",
-        choices=list(DEADRISE_ESTIMATORS),
-        default="wedge",
-        help="local deadrise estimator (default: wedge)",
-    )
-    add_slicing_option(g)
+    add_section_options(g)
     add_fluid_options(p)
     add_output_options(
         p,

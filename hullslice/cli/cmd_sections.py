@@ -7,14 +7,14 @@ import math
 
 from .. import plots
 from ..report import SECTION_COLUMNS, section_records, table_text
-from ..sections import DEADRISE_ESTIMATORS, cut
+from ..sections import cut
 from ..state import Pose
 from .common import (
     Outcome,
     add_mesh_options,
     add_output_options,
     add_pose_options,
-    add_slicing_option,
+    add_section_options,
     finish,
     load,
     number,
@@ -47,13 +47,7 @@ def add_parser(sub) -> None:
         metavar="N",
         help="number of slices over the wetted length (default: 32)",
     )
-    g.add_argument(
-        "--deadrise",
-        choices=list(DEADRISE_ESTIMATORS),
-        default="wedge",
-        help="local deadrise estimator (default: wedge, the equivalent wedge p / c)",
-    )
-    add_slicing_option(g)
+    add_section_options(g)
     add_output_options(p, plot="the cut: the side view with the stations and the section outlines")
     p.set_defaults(func=run)
 

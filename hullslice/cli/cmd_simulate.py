@@ -16,7 +16,6 @@ from ..report import (
     history_summary,
     table_text,
 )
-from ..sections import DEADRISE_ESTIMATORS
 from .common import (
     Outcome,
     UsageError,
@@ -24,7 +23,7 @@ from .common import (
     add_mesh_options,
     add_output_options,
     add_pose_options,
-    add_slicing_option,
+    add_section_options,
     add_solver_options,
     finish,
     fluid,
@@ -105,13 +104,7 @@ def add_parser(sub) -> None:
         help="slices over the wetted length at each instant (default: 32)",
     )
     add_solver_options(m)
-    m.add_argument(
-        "--deadrise",
-        choices=list(DEADRISE_ESTIMATORS),
-        default="wedge",
-        help="local deadrise estimator (default: wedge)",
-    )
-    add_slicing_option(m)
+    add_section_options(m)
     add_fluid_options(p)
     add_output_options(p, plot="the history (force, acceleration, velocity, draft, pitch)")
     p.set_defaults(func=run)

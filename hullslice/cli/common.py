@@ -208,10 +208,17 @@ def angle(unit: str):
     return parse
 
 
-def add_slicing_option(g) -> None:
-    """``--slicing wetted|fixed``."""
-    from ..sections import SLICINGS
+def add_section_options(g) -> None:
+    """``--deadrise ESTIMATOR`` and ``--slicing wetted|fixed``."""
+    from ..sections import DEADRISE_ESTIMATORS, SLICINGS
 
+    g.add_argument(
+        "--deadrise",
+        choices=list(DEADRISE_ESTIMATORS),
+        default="wedge",
+        help="local deadrise estimator: wedge (the equivalent wedge p / c), waterline-slope "
+        "or keel-fit (default: wedge)",
+    )
     g.add_argument(
         "--slicing",
         choices=list(SLICINGS),
