@@ -14,6 +14,15 @@ For one pitch, three things do not depend on the draft and are computed once
 (:class:`Frame`): the lowest point, the keel line (the lower edge of the body's side view,
 ``Z_k(X)``, exact as a polyline) and the manifold3d object that cuts the body along earth
 planes ``X = const``.
+
+Turning a mesh for a new pitch costs manifold3d time in proportion to its vertices (about
+0.1 s for a million faces), so a large hull is cut through a **region**: the body trimmed
+to a band of its own ``x`` that holds every face the planes to cut can cross (the planes'
+reach along ``x`` at the pitch, widened by the longest face). Only that band is turned.
+Trimming leaves the faces inside the band as they are, so a section cut through a region
+has the same points as one cut through the whole body. A region is kept on the hull and
+serves every pitch whose planes it holds; a larger one is made when the wetted part
+outgrows it.
 """
 
 from __future__ import annotations
@@ -105,10 +114,12 @@ class Frame:
     lowest: float
     highest: float
     keel: KeelLine
-    _slicer: object
-    _offset: np.ndarray  # (Y, Z, X) of the slicer's origin, relative to the cg
+    _hull: object = field(repr=False)
+    _matrix: np.ndarray = field(repr=False)  # body point -> cutter (Y, Z, X), 3 x 4
+    _offset: np.ndarray = field(repr=False)  # (Y, Z, X) of the cutter's origin, rel. cg
+    _scale: float = 1.0  # the cutter's coordinates are metres times this
+    _slicers: OrderedDict = field(default_factory=OrderedDict, repr=False)
     _fixed: dict = field(default_factory=dict, repr=False)
-    _scale: float = 1.0  # the slicer's coordinates are metres times this
 
     def fixed_stations(self, n: int) -> tuple[float, np.ndarray]:
         """Thickness and mid-stations (relative to the cg) of ``n`` equal slices over the
@@ -117,16 +128,37 @@ class Frame:
         d = (xb - xa) / n
         return d, xa + (np.arange(n) + 0.5) * d
 
-    def fixed_outline(self, n: int, tol: float):
-        """The outline of ``n`` fixed stations over the body's length (mid-stations of
-        equal slices), cut once and kept: ``(Outline, polygons)`` relative to the cg."""
+    def fixed_outline(self, n: int, tol: float, k0: int = 0, k1: int | None = None):
+        """The outline of fixed stations ``k0`` to ``k1 - 1`` of ``n`` (mid-stations of
+        equal slices over the body's length), cut once and kept.
+
+        Returns ``(outline, polygons, c0)``: the outline and contours (relative to the cg)
+        of stations ``c0`` to ``c0 + len(polygons) - 1``, a range holding the ones asked
+        for. Stations are cut when first asked for, a couple beyond the range on either
+        side once the range has had to grow, so that a wetted part growing along the body
+        is cut a few stations at a time.
+        """
         from .sections import Outline
 
-        key = (int(n), float(tol))
-        if key not in self._fixed:
-            polys = self.cut(self.fixed_stations(n)[1])
-            self._fixed[key] = (Outline.of(polys, tol, self.origin, self.scale), polys)
-        return self._fixed[key]
+        k1 = n if k1 is None else k1
+        store = self._fixed.setdefault((int(n), float(tol)), {"polys": {}, "range": None})
+        held = store["range"]
+        if held is None or k0 < held[0] or k1 > held[1]:
+            if held is None:  # a new pitch: only what is asked for
+                lo, hi = k0, k1
+            else:  # the wetted part grows at this pitch: some stations ahead
+                lo = max(min(k0, held[0]) - FIXED_PAD, 0)
+                hi = min(max(k1, held[1]) + FIXED_PAD, n)
+            polys = store["polys"]
+            missing = np.array([k for k in range(lo, hi) if k not in polys], dtype=np.int64)
+            if len(missing):
+                cuts = self.cut(self.fixed_stations(n)[1][missing])
+                polys.update(zip(missing.tolist(), cuts, strict=True))
+            rows = [polys[k] for k in range(lo, hi)]
+            store["range"] = (lo, hi)
+            store["outline"] = Outline.of(rows, tol, self.origin, self.scale)
+            store["rows"] = rows
+        return store["outline"], store["rows"], store["range"][0]
 
     def z_cg(self, draft: float) -> float:
         """Earth height of the centre of gravity for a draft (m)."""
@@ -137,8 +169,35 @@ class Frame:
         them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
         in the cutter's coordinates: divide by :attr:`scale` and add :attr:`origin` (and
         ``Z_g``) for earth coordinates in m."""
+        x_rel = np.asarray(x_rel, dtype=np.float64)
+        if len(x_rel) == 0:
+            return []
+        slicer = self._slicer(*self._reach(x_rel))
         ox, k = self._offset[2], self._scale
-        return [tuple(self._slicer.slice(float((xi - ox) * k)).to_polygons()) for xi in x_rel]
+        return [tuple(slicer.slice(float((xi - ox) * k)).to_polygons()) for xi in x_rel]
+
+    def _reach(self, x_rel: np.ndarray) -> tuple[float, float]:
+        """The body's ``x`` range (m) that the planes at ``x_rel`` cross."""
+        c, s = np.cos(self.pitch), np.sin(self.pitch)
+        bounds = self._hull.bounds
+        rz = bounds[:, 2] - self.cg[2]
+        # a plane X = x_rel holds the body points with r_x c - r_z s = x_rel
+        rx = (np.array([x_rel.min(), x_rel.max()])[:, None] + rz[None, :] * s) / c
+        return float(self.cg[0] + rx.min()), float(self.cg[0] + rx.max())
+
+    def _slicer(self, lo: float, hi: float):
+        """The cutter turned to this pitch, through a region of the hull holding the faces
+        between body ``x = lo`` and ``hi`` (the whole hull when small)."""
+        key, body = region(self._hull, lo, hi)
+        slicer = self._slicers.get(key)
+        if slicer is None:
+            slicer = body.transform(self._matrix)
+            self._slicers[key] = slicer
+            while len(self._slicers) > REGION_CACHE:
+                self._slicers.popitem(last=False)
+        else:
+            self._slicers.move_to_end(key)
+        return slicer
 
     @property
     def scale(self) -> float:
@@ -159,8 +218,18 @@ class Frame:
         return np.stack([X, r[:, 1] + self.cg[1], Z], axis=1)
 
 
-#: How many pitches' frames a hull keeps (each holds a transformed copy of the mesh).
+#: How many pitches' frames a hull keeps.
 FRAME_CACHE = 4
+#: Fixed stations cut beyond the ones asked for, on either side (see Frame.fixed_outline).
+FIXED_PAD = 2
+#: Hulls with fewer faces are always cut whole (turning them is cheap).
+REGION_MIN_FACES = 50_000
+#: A region longer than this share of the body is not worth trimming: the whole is cut.
+REGION_MAX_SHARE = 0.6
+#: Room to grow given to a new region on either side, as a share of the range asked for.
+REGION_ROOM = 0.25
+#: How many regions a hull keeps (and turned copies of them a frame keeps).
+REGION_CACHE = 2
 
 
 def frame(hull, pitch: float) -> Frame:
@@ -177,12 +246,60 @@ def frame(hull, pitch: float) -> Frame:
     return fr
 
 
+def region(hull, lo: float, hi: float) -> tuple[tuple[float, float] | None, object]:
+    """A manifold3d body holding every face of the hull that reaches between body
+    ``x = lo`` and ``hi`` (m) unchanged: ``(key, manifold)``, key None for the whole hull.
+
+    The hull trimmed by two planes ``x = const`` beyond that range by the longest face's
+    length along ``x`` and some room to grow (:data:`REGION_ROOM` of the range's length,
+    at least 2 % of the body's); kept on the hull. Small hulls, and ranges over most of
+    the body, get the whole hull.
+    """
+    xa, xb = (float(v) for v in hull.bounds[:, 0])
+    length = xb - xa
+    if len(hull.faces) < REGION_MIN_FACES:
+        return None, hull.manifold
+    reach = _face_reach(hull)
+    need_lo, need_hi = lo - reach, hi + reach
+    regions: OrderedDict = hull.__dict__.setdefault("_regions", OrderedDict())
+    for key in regions:
+        if key[0] < need_lo and need_hi < key[1]:
+            regions.move_to_end(key)
+            return key, regions[key]
+    room = max(REGION_ROOM * (hi - lo), 0.02 * length)
+    a, b = need_lo - room, need_hi + room
+    if b - a > REGION_MAX_SHARE * length:
+        return None, hull.manifold
+    body = hull.manifold
+    if a > xa:
+        body = body.trim_by_plane((1.0, 0.0, 0.0), a)
+    if b < xb:
+        body = body.trim_by_plane((-1.0, 0.0, 0.0), -b)
+    regions[(a, b)] = body
+    while len(regions) > REGION_CACHE:
+        regions.popitem(last=False)
+    return (a, b), body
+
+
+def _face_reach(hull) -> float:
+    """The longest extent of a face along ``x``, m (kept on the hull)."""
+    reach = hull.__dict__.get("_face_reach")
+    if reach is None:
+        x = hull.vertices[:, 0][hull.faces]
+        reach = float((x.max(axis=1) - x.min(axis=1)).max())
+        hull.__dict__["_face_reach"] = reach
+    return reach
+
+
 def _frame(hull, pitch: float) -> Frame:
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
-    v = hull.vertices
-    zrel = (v[:, 0] - g[0]) * s + (v[:, 2] - g[2]) * c
-    lowest, highest = float(zrel.min()), float(zrel.max())
+    # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
+    # the lowest and highest points at any pitch are on them
+    a, b = silhouette_edges(hull)
+    ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+    lowest = float(min(ta[:, 1].min(), tb[:, 1].min()))
+    highest = float(max(ta[:, 1].max(), tb[:, 1].max()))
     # centre the cutter's coordinates on the body (manifold3d's sections are single
     # precision): the bounding-box centre, in the pitched frame relative to the cg
     box = hull.bounds.mean(axis=0) - g
@@ -200,11 +317,8 @@ def _frame(hull, pitch: float) -> Frame:
             [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
         ]
     )
-    slicer = hull.manifold.transform(cut_matrix)
-    # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg
-    a, b = silhouette_edges(hull)
-    keel = _lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
-    return Frame(pitch, g, lowest, highest, keel, slicer, np.array([oy, oz, ox]), _scale=scale)
+    keel = _lower_envelope(ta, tb)
+    return Frame(pitch, g, lowest, highest, keel, hull, cut_matrix, np.array([oy, oz, ox]), scale)
 
 
 def _turn(r: np.ndarray, c: float, s: float) -> np.ndarray:
@@ -218,7 +332,8 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     An edge is on the outline seen along ``y`` when one of its two faces faces port and the
     other starboard (or either is edge-on). Turning the body about ``y`` (its pitch) does not
     change which faces face which way, so these edges serve every pitch: the keel line at
-    any pitch is the lower envelope of their side views. Kept on the hull.
+    any pitch is the lower envelope of their side views, and the body's lowest and highest
+    points are among their ends. Kept on the hull.
     """
     cached = hull.__dict__.get("_silhouette")
     if cached is not None:
@@ -227,7 +342,7 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     lo, hi = directed.min(axis=1), directed.max(axis=1)
-    order = np.argsort(lo * len(v) + hi, kind="stable")
+    order = np.argsort(lo.astype(np.int64) * len(v) + hi)
     face = np.repeat(np.arange(len(f)), 3)[order]
     # a closed manifold uses each edge twice: the two uses are neighbours once sorted
     side = (np.sign(ny[face[0::2]]) * np.sign(ny[face[1::2]])) <= 0

@@ -477,7 +477,6 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     """
     xa = float(fr.keel.x[0])
     d, mids = fr.fixed_stations(n)
-    outline, polys = fr.fixed_outline(n, tol) if cache else _outline_of(fr, mids, tol)
     if extent is None:
         return _assemble(
             hull,
@@ -501,7 +500,11 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     k, lo, hi = k[keep], lo[keep], hi[keep]
     # only the stations of the wetted slices and their neighbours matter
     w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
-    props = wetted_properties(outline.window(w0, w1), level, tol, deadrise)
+    if cache:
+        outline, polys, c0 = fr.fixed_outline(n, tol, w0, w1)
+    else:
+        (outline, polys), c0 = _outline_of(fr, mids, tol), 0
+    props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
     props["station"] = props["station"] + w0
     wet_mid = np.zeros(n, dtype=bool)
     wet_mid[props["station"][props["penetration"] > 0]] = True
@@ -527,7 +530,7 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     sel = {key: val[take] for key, val in props.items() if key != "area"}
     sel["station"] = slot
     sel["area"] = props["area"][source - w0]
-    slice_polys = [polys[src] for src in source]
+    slice_polys = [polys[src - c0] for src in source]
     if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
         sel, slice_polys = _with_fresh(fr, sel, slice_polys, fresh, x, level, tol, deadrise)
     return _assemble(

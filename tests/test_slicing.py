@@ -3,11 +3,17 @@ same limit as the paper's slicing of the wetted length."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
 import hullslice as hs
+from hullslice import geometry
+from hullslice.geometry import frame
 from hullslice.motion import ForceModel, simulate
+
+MESHES = Path(__file__).resolve().parents[1] / "meshes"
 
 
 @pytest.mark.parametrize("pitch_deg", [0.0, 5.0])
@@ -65,3 +71,55 @@ def test_first_contact_with_fixed_slicing(paper_hull):
 def test_unknown_slicing(paper_hull):
     with pytest.raises(hs.InputError, match="slicing 'even' is unknown"):
         hs.compute_force(paper_hull, 0.02, -3.0, slicing="even")
+
+
+# -- regions: a large hull is turned and cut through a band of it -------------------------
+
+
+@pytest.fixture(scope="module")
+def fuselage_model():
+    # 128k faces: above geometry.REGION_MIN_FACES, so cut through regions
+    return hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+
+
+def _points(polygons) -> np.ndarray:
+    p = np.concatenate([np.asarray(c) for c in polygons])
+    return p[np.lexsort(p.T)]
+
+
+@pytest.mark.parametrize("pitch_deg", [0.0, 6.0])
+def test_region_cut_has_the_same_points_as_the_whole_hull(fuselage_model, pitch_deg):
+    hull = fuselage_model.with_mass(60.0)  # frames and regions of its own
+    fr = frame(hull, np.radians(pitch_deg))
+    x = fr.fixed_stations(128)[1][20:30]  # a tenth of the body, near the tail
+    through_region = fr.cut(x)
+    assert len(hull.__dict__["_regions"]) == 1  # a region was made ...
+    (key,) = hull.__dict__["_regions"]
+    span = key[1] - key[0]
+    assert span < 0.3 * hull.extents[0]  # ... and it is a band of the body
+    whole = hull.manifold.transform(fr._matrix)
+    for xi, cut in zip(x, through_region, strict=True):
+        ref = whole.slice(float((xi - fr._offset[2]) * fr.scale)).to_polygons()
+        # the faces the plane crosses are untouched by the trim: the very same points
+        np.testing.assert_array_equal(_points(cut), _points(ref))
+
+
+def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
+    motion = hs.Motion(-1.5, forward_speed=6.0, pitch_rate=0.2)
+    poses = [hs.Pose(d, np.radians(p)) for p in (4.0, 4.5) for d in (0.005, 0.02, 0.04)]
+
+    def run(model):
+        return [model(pose, motion) for pose in poses]
+
+    banded_hull = fuselage_model.with_mass(60.0)
+    banded = run(ForceModel(banded_hull, slices=96, slicing="fixed"))
+    assert banded_hull.__dict__["_regions"]
+    monkeypatch.setattr(geometry, "REGION_MIN_FACES", 10**9)
+    whole_hull = fuselage_model.with_mass(60.0)
+    whole = run(ForceModel(whole_hull, slices=96, slicing="fixed", cache=False))
+    assert "_regions" not in whole_hull.__dict__
+    for a, b in zip(banded, whole, strict=True):
+        assert len(a.sections) == len(b.sections) > 3
+        # the same points in another order: sums may differ in the last bits only
+        np.testing.assert_allclose(a.force, b.force, rtol=1e-12, atol=0)
+        assert a.moment == pytest.approx(b.moment, rel=1e-12)
