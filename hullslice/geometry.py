@@ -22,7 +22,8 @@ reach along ``x`` at the pitch, widened by the longest face). Only that band is 
 Trimming leaves the faces inside the band as they are, so a section cut through a region
 has the same points as one cut through the whole body. A region is kept on the hull and
 serves every pitch whose planes it holds; a larger one is made when the wetted part
-outgrows it.
+outgrows it. A hull cut at one pitch only is cut whole: making a region costs more than
+turning the whole once.
 """
 
 from __future__ import annotations
@@ -187,8 +188,15 @@ class Frame:
 
     def _slicer(self, lo: float, hi: float):
         """The cutter turned to this pitch, through a region of the hull holding the faces
-        between body ``x = lo`` and ``hi`` (the whole hull when small)."""
-        key, body = region(self._hull, lo, hi)
+        between body ``x = lo`` and ``hi``.
+
+        The whole hull while it has been cut at one pitch only: a region costs more to make
+        than turning the whole once, and pays off only over several pitches.
+        """
+        if len(self._hull.__dict__.get("_frames", ())) > 1:
+            key, body = region(self._hull, lo, hi)
+        else:
+            key, body = None, self._hull.manifold
         slicer = self._slicers.get(key)
         if slicer is None:
             slicer = body.transform(self._matrix)

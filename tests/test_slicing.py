@@ -91,6 +91,8 @@ def _points(polygons) -> np.ndarray:
 def test_region_cut_has_the_same_points_as_the_whole_hull(fuselage_model, pitch_deg):
     hull = fuselage_model.with_mass(60.0)  # frames and regions of its own
     fr = frame(hull, np.radians(pitch_deg))
+    assert fr.cut(fr.fixed_stations(8)[1]) and "_regions" not in hull.__dict__  # one pitch
+    frame(hull, 0.1)  # a second pitch: regions from now on
     x = fr.fixed_stations(128)[1][20:30]  # a tenth of the body, near the tail
     through_region = fr.cut(x)
     assert len(hull.__dict__["_regions"]) == 1  # a region was made ...
