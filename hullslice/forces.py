@@ -195,7 +195,9 @@ def evaluate(
         the message names the solver and its distribution.
     """
     n = len(sections)
-    velocity = np.broadcast_to(np.asarray(velocity, dtype=np.float64), (n,))
+    velocity = np.asarray(velocity, dtype=np.float64)
+    if velocity.shape != (n,):
+        velocity = np.broadcast_to(velocity, (n,))
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
         raise InputError("the hull has no mass: give its mass in kg (mass=...)")
@@ -220,24 +222,31 @@ def evaluate(
             deadrise_stbd=np.fmax(sections.deadrise_stbd, MIN_DEADRISE),
         )
     if wet.any():
-        sub = sections if wet.all() else sections.subset(wet)
+        every = bool(wet.all())
+        sub = sections if every else sections.subset(wet)
         try:
             with np.errstate(all="ignore"):
-                loads = solver.section_loads(sub, velocity[wet], fluid)
+                loads = solver.section_loads(sub, velocity if every else velocity[wet], fluid)
         except HullsliceError:
             raise
         except Exception as exc:
             raise SolverError(
                 f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}"
             ) from exc
-        _check_loads(solver, loads, sub, velocity[wet])
-        force[wet] = loads.force_per_metre
-        valid[wet] = loads.valid
-        reason[wet] = loads.reason
-        for k, arr in loads.diagnostics.items():
-            full = np.full(n, np.nan)
-            full[wet] = arr
-            diagnostics[k] = full
+        _check_loads(solver, loads, sub, velocity if every else velocity[wet])
+        if every and not massless.any():  # the solver's arrays cover every section
+            force = np.array(loads.force_per_metre)
+            valid = np.array(loads.valid)
+            reason = np.array(loads.reason)
+            diagnostics = dict(loads.diagnostics)
+        else:
+            force[wet] = loads.force_per_metre
+            valid[wet] = loads.valid
+            reason[wet] = loads.reason
+            for k, arr in loads.diagnostics.items():
+                full = np.full(n, np.nan)
+                full[wet] = arr
+                diagnostics[k] = full
     for mask, why in ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)):
         if mask.any():
             valid &= ~mask

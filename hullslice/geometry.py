@@ -81,16 +81,19 @@ class KeelLine:
         """The ``x`` range where the keel is below ``level`` (relative), or None."""
         x, z = self.x, self.z
         under = z < level
-        xs = [x[under]]
-        cross = under[:-1] != under[1:]
-        if cross.any():
-            i = np.flatnonzero(cross)
-            t = (level - z[i]) / (z[i + 1] - z[i])
-            xs.append(x[i] + t * (x[i + 1] - x[i]))
-        allx = np.concatenate(xs)
-        if len(allx) == 0:
+        first = int(under.argmax())
+        if not under[first]:
             return None
-        return float(allx.min()), float(allx.max())
+        last = len(z) - 1 - int(under[::-1].argmax())
+
+        def crossing(i: int) -> float:  # where the segment i, i + 1 meets the level
+            t = (level - z[i]) / (z[i + 1] - z[i])
+            return float(x[i] + t * (x[i + 1] - x[i]))
+
+        # the first and last points under the level, or where the line goes under it
+        lo = crossing(first - 1) if first > 0 else float(x[0])
+        hi = crossing(last) if last < len(z) - 1 else float(x[-1])
+        return min(lo, float(x[first])), max(hi, float(x[last]))
 
 
 @dataclass(frozen=True, eq=False)

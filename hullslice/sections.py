@@ -500,11 +500,14 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     k, lo, hi = k[keep], lo[keep], hi[keep]
     # only the stations of the wetted slices and their neighbours matter
     w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
+    props = None
     if cache:
         outline, polys, c0 = fr.fixed_outline(n, tol, w0, w1)
+        props = _tabulated(fr._fixed[(n, tol)], outline, level, tol, deadrise, w0 - c0, w1 - c0)
     else:
         (outline, polys), c0 = _outline_of(fr, mids, tol), 0
-    props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
+    if props is None:
+        props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
     props["station"] = props["station"] + w0
     wet_mid = np.zeros(n, dtype=bool)
     wet_mid[props["station"][props["penetration"] > 0]] = True
@@ -547,6 +550,35 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
         scale=ratio,
         keel=keel,
     )
+
+
+#: A kept outline gets a waterline table from its this many-th evaluation on (a table
+#: costs some evaluations' time to make: it pays off over a time history, not at once).
+TABLE_AFTER = 8
+
+
+def _tabulated(store, outline, level, tol, deadrise, k0, k1):
+    """The properties of stations ``k0 .. k1 - 1`` of a kept outline from its waterline
+    table (made, or made higher, when needed); None where a table does not serve."""
+    from .waterline import TABULATED, WaterlineTable
+
+    store["evaluations"] = count = store.get("evaluations", 0) + 1
+    if deadrise not in TABULATED or count < TABLE_AFTER:
+        return None
+    tables = store.setdefault("tables", {})
+    table = tables.get(deadrise)
+    if table is None or table.outline is not outline or level > table.top:
+        # none where one was too costly for this outline at a lower water
+        too_high = store.setdefault("too_high", {}).get(deadrise)
+        if too_high is not None and too_high[0] is outline and level >= too_high[1]:
+            return None
+        table = WaterlineTable.of(outline, level, tol, deadrise)
+        if table is None:
+            store["too_high"][deadrise] = (outline, level)
+            tables.pop(deadrise, None)
+            return None
+        tables[deadrise] = table
+    return table.at(level, k0, k1)
 
 
 def _outline_of(fr, rel: np.ndarray, tol: float):

@@ -132,6 +132,9 @@ def join_reasons(n: int, checks: Sequence[tuple[np.ndarray, str]]) -> np.ndarray
     """
     reason = np.full(n, "", dtype=object)
     for mask, msg in checks:
-        mask = np.broadcast_to(np.asarray(mask, dtype=bool), (n,))
-        reason[mask] = [f"{r}; {msg}" if r else msg for r in reason[mask]]
+        mask = np.asarray(mask, dtype=bool)
+        if mask.shape != (n,):
+            mask = np.broadcast_to(mask, (n,))
+        if mask.any():
+            reason[mask] = [f"{r}; {msg}" if r else msg for r in reason[mask]]
     return reason

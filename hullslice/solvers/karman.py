@@ -121,10 +121,9 @@ class CharacteristicCurves:
             pa, pv = np.polynomial.Polynomial(ca), np.polynomial.Polynomial(cv)
             object.__setattr__(self, "a_coeffs", tuple(float(c) for c in pa.coef))
             object.__setattr__(self, "v_coeffs", tuple(float(c) for c in pv.coef))
-            polyval = np.polynomial.polynomial.polyval  # the plain function: no domain maps
-            ka, kv = pa.coef.copy(), pv.coef.copy()
-            object.__setattr__(self, "_a", lambda zt: polyval(zt, ka))
-            object.__setattr__(self, "_v", lambda zt: polyval(zt, kv))
+            ka, kv = tuple(pa.coef.tolist()), tuple(pv.coef.tolist())
+            object.__setattr__(self, "_a", lambda zt: _horner(zt, ka))
+            object.__setattr__(self, "_v", lambda zt: _horner(zt, kv))
             default_range = None
         if self.z_range is None:
             rng = default_range if default_range is not None else (_fit_floor(pa), 0.0)
@@ -284,6 +283,15 @@ PAPER_CURVES = CharacteristicCurves(
     rho=1000.0,
     source="2D+t method based on extended von Karman's momentum theory, Eqs. 5-6",
 )
+
+
+def _horner(x: np.ndarray, c: tuple[float, ...]) -> np.ndarray:
+    """The polynomial of ascending coefficients ``c`` at ``x``: numpy's ``polyval`` without
+    its checks (the same operations, the same numbers)."""
+    y = c[-1] + x * 0.0
+    for ci in c[-2::-1]:
+        y = ci + y * x
+    return y
 
 
 def peak_values(

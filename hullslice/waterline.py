@@ -1,0 +1,271 @@
+"""Each station's wetted properties against the height of the water, tabulated once.
+
+Between two consecutive heights of a section's vertices the water crosses the same edges
+of its contour, so the section's wetted pieces do not change: their keel, their parts and
+the slopes where they meet the water are fixed, and the penetration and the distances from
+the keel to the waterline are affine in the water's height. A :class:`WaterlineTable`
+evaluates the sections (with :func:`~hullslice.sections.wetted_properties`, the same code
+as a fresh evaluation) at two heights inside every such interval, once, and keeps the
+affine fits: an evaluation at another height then looks its interval up and evaluates the
+fits, a few array operations for all stations at once, whatever the mesh.
+
+The intervals' ends are the vertices' heights and the same heights raised by a fifth of the
+tolerance (where the waterline points stop counting as a flat keel). An interval where
+anything but the affine quantities changes (a part shared by two pieces, whose mass shares
+follow their widths; too narrow an interval to sample) is marked: an evaluation there, or
+with the ``keel-fit`` estimator (cubic in the height), is left to the fresh evaluation.
+The table covers the heights up to a top, and is rebuilt higher when the water rises past
+it. Its cost grows with the square of a section's vertices under the water, so it is
+bounded (:data:`BUDGET`): where the water stands high on finely meshed sections there is
+no table, and the fresh evaluation serves.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .sections import Outline, _prefix_index, wetted_properties
+
+__all__ = ["WaterlineTable"]
+
+#: Quantities evaluated from affine fits in the water's height (the penetration is the
+#: water's height above the piece's keel, a vertex: exact).
+AFFINE = ("half_beam", "half_beam_port", "half_beam_stbd")
+#: Quantities constant over an interval (checked at both samples), by estimator.
+CONSTANT = {
+    "wedge": ("y_keel", "part_half_beam", "mass_share"),
+    "waterline-slope": (
+        "y_keel", "part_half_beam", "mass_share", "deadrise", "deadrise_port",
+        "deadrise_stbd",
+    ),
+}  # fmt: skip
+#: Estimators a table serves (``keel-fit`` is cubic in the height).
+TABULATED = ("wedge", "waterline-slope")
+#: At most this many edges are evaluated to make a table (a tenth of a second or so): a
+#: table reaching higher is made lower, and none is made where the water alone needs more.
+BUDGET = 300_000
+
+
+@dataclass(frozen=True, eq=False)
+class WaterlineTable:
+    """The wetted properties of an :class:`~hullslice.sections.Outline`'s stations against
+    the water's height ``level`` (same frame as the outline's heights), up to ``top``.
+
+    Build with :meth:`of`; evaluate with :meth:`at`.
+    """
+
+    outline: Outline
+    deadrise: str
+    tol: float
+    top: float
+    bp: np.ndarray  # break points under the top, sorted by station then height
+    bp_start: np.ndarray  # (s + 1,) each station's first break point
+    v_start: np.ndarray  # (s + 1,) each station's first interval (virtual station)
+    v_count: np.ndarray  # (s,) intervals tabulated per station
+    e_start: np.ndarray  # (v + 1,) each interval's first entry
+    exact: np.ndarray  # (v,) bool: the interval's fits hold
+    station: np.ndarray  # (e,) entries' stations
+    wet: np.ndarray  # (e,) bool: the entry is a wetted piece (else its station is dry)
+    keel: np.ndarray  # (e,) height of the piece's keel (a vertex's), inf when dry
+    slope: np.ndarray  # (e, 3) the AFFINE quantities: value = intercept + slope * level
+    intercept: np.ndarray
+    const: np.ndarray  # (e, c) the CONSTANT quantities of the estimator
+    one_each: bool  # every interval has one entry (one piece, or dry)
+
+    @classmethod
+    def of(
+        cls, outline: Outline, level: float, tol: float, deadrise: str, budget: int = BUDGET
+    ) -> WaterlineTable | None:
+        """The table of ``outline`` up to a little above ``level`` (as high again as the
+        water is deep, less if that would evaluate more than ``budget`` edges); None if
+        the water's own height needs more."""
+        s = outline.n_stations
+        # break points: vertex heights (each edge starts at one), and raised by tol / 5
+        z = np.concatenate([outline.za, outline.za + tol / 5])
+        st = np.concatenate([outline.station, outline.station])
+        order = np.lexsort((z, st))
+        z, st = z[order], st[order]
+        keep = np.ones(len(z), dtype=bool)
+        keep[1:] = (z[1:] != z[:-1]) | (st[1:] != st[:-1])
+        z, st = z[keep], st[keep]
+        bp_start = np.searchsorted(st, np.arange(s + 1))
+        top = _top(outline, z, st, level, tol, budget)
+        if top is None:
+            return None
+        n_bp = np.diff(bp_start)
+        # intervals (virtual stations) j = 0 .. below each station's break point j, the
+        # last one above them all; kept while their lower end is under the top
+        below_top = np.bincount(st[z < top], minlength=s)
+        v_count = below_top + 1
+        v_start = np.concatenate([[0], np.cumsum(v_count)])
+        nv = int(v_start[-1])
+        v_station = np.repeat(np.arange(s), v_count)
+        j = np.arange(nv) - v_start[v_station]
+        first = bp_start[v_station]
+        has_lo = j > 0
+        has_hi = j < n_bp[v_station]
+        lo = np.where(has_lo, z[np.maximum(first + j - 1, 0)], np.nan)
+        hi = np.where(has_hi, z[np.minimum(first + j, len(z) - 1)], np.nan)
+        unit = _span(outline, tol)
+        h_a = np.where(has_lo & has_hi, lo + (hi - lo) / 3.0, np.nan)
+        h_b = np.where(has_lo & has_hi, lo + 2.0 * (hi - lo) / 3.0, np.nan)
+        h_a = np.where(~has_lo, hi - 2.0 * unit, np.where(~has_hi, lo + unit, h_a))
+        h_b = np.where(~has_lo, hi - unit, np.where(~has_hi, lo + 2.0 * unit, h_b))
+        # a station without vertices (empty section): one dry interval
+        empty = ~has_lo & ~has_hi
+        h_a[empty], h_b[empty] = -2.0, -1.0
+        sampled = (h_a < h_b) & ~(has_lo & (h_a <= lo)) & ~(has_hi & (h_b >= hi))
+        pa = wetted_properties(_virtual(outline, v_station, h_a), 0.0, tol, deadrise)
+        pb = wetted_properties(_virtual(outline, v_station, h_b), 0.0, tol, deadrise)
+        exact = sampled.copy()
+        differ = np.bincount(pa["station"], minlength=nv) != np.bincount(
+            pb["station"], minlength=nv
+        )
+        if differ.any():  # other pieces at the two samples: not tabulated there
+            exact &= ~differ
+            h_b = np.where(differ, h_a, h_b)
+            pb = wetted_properties(_virtual(outline, v_station, h_b), 0.0, tol, deadrise)
+        ev = pa["station"]  # virtual station of each entry, sorted
+        e_start = np.searchsorted(ev, np.arange(nv + 1))
+        ha, hb = h_a[ev], h_b[ev]
+        # affine quantities as columns: value = intercept + slope * level
+        ya = np.stack([pa[key] for key in AFFINE], axis=1)
+        yb = np.stack([pb[key] for key in AFFINE], axis=1)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            slope = (yb - ya) / (hb - ha)[:, None]
+        slope = np.where(np.isfinite(slope), slope, 0.0)
+        intercept = ya - slope * ha[:, None]
+        # the keel: the vertex height nearest to the one the sample implies
+        wet = pa["penetration"] > 0.0
+        keel = _nearest(z, bp_start, v_station[ev], ha - pa["penetration"])
+        # only the break points under the top are looked up
+        under_top = z < top
+        z_top = z[under_top]
+        top_start = np.searchsorted(st[under_top], np.arange(s + 1))
+        keel = np.where(wet, keel, np.inf)
+        const = np.stack([pa[key] for key in CONSTANT[deadrise]], axis=1)
+        changed = np.zeros(len(ev), dtype=bool)
+        for key in CONSTANT[deadrise]:  # to rounding: heights are taken from the level
+            a, b = pa[key], pb[key]
+            changed |= ~np.isclose(a, b, rtol=1e-13, atol=1e-13 * unit, equal_nan=True)
+        exact[ev[changed]] = False
+        return cls(
+            outline, deadrise, tol, top, z_top, top_start, v_start, v_count, e_start, exact,
+            v_station[ev], wet, keel, slope, intercept, const,
+            bool(np.all(np.diff(e_start) == 1)),
+        )  # fmt: skip
+
+    def at(self, level: float, k0: int, k1: int) -> dict[str, np.ndarray] | None:
+        """The properties of stations ``k0`` to ``k1 - 1`` with the water at ``level``, as
+        :func:`~hullslice.sections.wetted_properties` gives them for
+        ``outline.window(k0, k1)``; None where the table does not serve (above its top, or
+        an interval marked inexact)."""
+        if level > self.top:
+            return None
+        b0, b1 = int(self.bp_start[k0]), int(self.bp_start[k1])
+        under = np.concatenate([[0], np.cumsum(self.bp[b0:b1] < level)])
+        j = np.diff(under[self.bp_start[k0 : k1 + 1] - b0])
+        v = self.v_start[k0:k1] + j
+        if not self.exact[v].all():
+            return None
+        first = self.e_start[v]
+        idx = first if self.one_each else _prefix_index(first, self.e_start[v + 1] - first)
+        affine = self.intercept[idx] + self.slope[idx] * level
+        const = self.const[idx]
+        out = {key: affine[:, i] for i, key in enumerate(AFFINE)}
+        out.update({key: const[:, i] for i, key in enumerate(CONSTANT[self.deadrise])})
+        # as a fresh evaluation computes it: the keel's height measured from the water (the
+        # keel of a dry entry is infinitely high: no penetration)
+        p = out["penetration"] = np.maximum(-(self.keel[idx] - level), 0.0)
+        if self.deadrise == "wedge":  # a dry entry's 0 / 0 gives its NaN
+            with np.errstate(divide="ignore", invalid="ignore"):
+                t_port = p / out["half_beam_port"]
+                t_stbd = p / out["half_beam_stbd"]
+                t_mean = 2.0 / (1.0 / t_port + 1.0 / t_stbd)
+            out["deadrise"] = np.arctan(t_mean)
+            out["deadrise_port"] = np.arctan(t_port)
+            out["deadrise_stbd"] = np.arctan(t_stbd)
+        station = self.station[idx] - k0
+        chine = self.outline.z_chine[k0:k1] - level <= self.tol
+        out["chine_wetted"] = chine[station] & self.wet[idx]
+        out["station"] = station
+        out["area"] = self.outline.area[k0:k1]
+        return out
+
+
+def _top(outline, z, st, level, tol, budget) -> float | None:
+    """The highest top, up to as high again as the water is deep, whose table evaluates at
+    most ``budget`` edges (bounded by: each station's intervals under the top times its
+    edges under it); None when not even the water's height fits."""
+    s = outline.n_stations
+    finite = outline.zmin[np.isfinite(outline.zmin)]
+    bottom = min(float(finite.min()), level) if len(finite) else level
+    depth = max(level - bottom, 1e-3 * _span(outline, tol))
+    for share in (1.0, 0.5, 0.25, 0.1, 0.0):
+        top = level + share * depth
+        intervals = np.bincount(st[z < top], minlength=s) + 1
+        edges = np.bincount(outline.station[outline.zlo < top], minlength=s)
+        if int(np.dot(intervals, edges)) <= budget:
+            return top
+    return None
+
+
+def _nearest(z, start, station, value) -> np.ndarray:
+    """The break point of each ``station`` nearest to ``value``."""
+    if len(z) == 0:
+        return np.full(len(value), np.nan)
+    lo = np.minimum(start[station], len(z) - 1)
+    hi = np.maximum(start[station + 1] - 1, lo)
+    # search each station's sorted run: a bisection in all runs at once
+    a, b = lo.copy(), hi.copy()
+    v = np.where(np.isfinite(value), value, z[lo])
+    while np.any(a < b):
+        active = a < b
+        mid = (a + b) // 2
+        right = z[mid] < v
+        a = np.where(active & right, mid + 1, a)
+        b = np.where(active & ~right, mid, b)
+    below = np.maximum(a - 1, lo)
+    return np.where(np.abs(z[below] - v) < np.abs(z[a] - v), z[below], z[a])
+
+
+def _span(outline: Outline, tol: float) -> float:
+    """A height larger than the sections', m."""
+    finite = np.isfinite(outline.zmin)
+    if not finite.any():
+        return 1.0
+    return float(np.ptp(np.concatenate([outline.za, outline.zb])) + 1.0 + tol)
+
+
+def _virtual(outline: Outline, v_station: np.ndarray, h: np.ndarray) -> Outline:
+    """An outline with one station per interval: its station's edges that reach below
+    ``h``, heights measured from ``h``."""
+    o = outline
+    s = o.n_stations
+    # each station's edges below h: a prefix (edges sorted by their lower end); searched
+    # in a key combining the station and the height scaled into [0, 1)
+    lo, span = (o.zlo.min(), np.ptp(o.zlo)) if len(o.zlo) else (0.0, 0.0)
+    scale = span * (1.0 + 1e-9) + 1e-300
+    key = 2.0 * o.station + (o.zlo - lo) / scale
+    hk = 2.0 * v_station + np.clip((h - lo) / scale, 0.0, 1.0 - 1e-12)
+    count = np.searchsorted(key, hk, side="left") - o.start[v_station]
+    count = np.clip(count, 0, np.diff(o.start)[v_station])
+    idx = _prefix_index(o.start[v_station], count)
+    ev = np.repeat(np.arange(len(v_station)), count)
+    dz = h[ev]
+    # separate parts, renumbered per interval
+    c_start = np.searchsorted(o.part_station, np.arange(s + 1))
+    n_parts = np.diff(c_start)[v_station]
+    p_idx = _prefix_index(c_start[v_station], n_parts)
+    p_base = np.concatenate([[0], np.cumsum(n_parts)])[:-1]
+    pv = np.repeat(np.arange(len(v_station)), n_parts)
+    contour = o.contour[idx] - c_start[v_station][ev] + p_base[ev]
+    return Outline(
+        ev, o.ya[idx], o.za[idx] - dz, o.yb[idx], o.zb[idx] - dz, o.zlo[idx] - dz,
+        np.concatenate([[0], np.cumsum(count)]), o.area[v_station], contour,
+        o.part_area[p_idx], pv, o.part_zmax[p_idx] - h[pv], o.part_ymin[p_idx],
+        o.part_ymax[p_idx], o.zmin[v_station] - h, o.ymin[v_station], o.ymax[v_station],
+        o.z_chine[v_station] - h,
+    )  # fmt: skip

@@ -1,0 +1,204 @@
+"""Waterline tables: each station's wetted properties against the water's height, from affine
+fits between the heights of its vertices, against a fresh evaluation at the same height.
+
+Reference: :func:`hullslice.sections.wetted_properties` on the same outline (the path a
+fresh cut takes). Between two vertex heights the waterline crosses the same edges, so the
+penetration and the half-beams are affine in the height and the rest is constant: the
+table must agree to rounding (1e-12 relative) wherever it serves, and decline (None) where
+it cannot be exact (pieces of one part sharing its mass by width).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import manifold3d
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.constants import TOL
+from hullslice.geometry import frame
+from hullslice.motion import ForceModel
+from hullslice.sections import TABLE_AFTER, wetted_properties
+from hullslice.waterline import WaterlineTable
+
+MESHES = Path(__file__).resolve().parents[1] / "meshes"
+FIELDS = ("half_beam", "half_beam_port", "half_beam_stbd", "y_keel", "part_half_beam",
+          "mass_share")  # fmt: skip
+
+
+def outline_of(hull, pitch_deg, n):
+    fr = frame(hull, np.radians(pitch_deg))
+    tol = TOL.coordinate * hull.size
+    outline, _, c0 = fr.fixed_outline(n, tol)
+    assert c0 == 0 and outline.n_stations == n
+    return outline, tol, fr
+
+
+def levels(outline, fr, count=60):
+    """Heights from below the keel to above the deck: on vertex heights exactly, just
+    beside them, and in between."""
+    rng = np.random.default_rng(7)
+    z = np.unique(outline.za)
+    picks = rng.choice(z, size=min(count // 3, len(z)), replace=False)
+    span = fr.highest - fr.lowest
+    between = rng.uniform(fr.lowest - 0.05 * span, fr.highest + 0.05 * span, count // 3)
+    beside = picks + rng.choice([-1.0, 1.0], size=len(picks)) * 1e-9 * span
+    return np.sort(np.concatenate([picks, between, beside]))
+
+
+def compare(table, outline, level, tol, deadrise):
+    got = table.at(level, 0, outline.n_stations)
+    if got is None:
+        return False
+    ref = wetted_properties(outline, level, tol, deadrise)
+    np.testing.assert_array_equal(got["station"], ref["station"])
+    np.testing.assert_array_equal(got["chine_wetted"], ref["chine_wetted"])
+    np.testing.assert_array_equal(got["area"], ref["area"])
+    # the penetration as a fresh evaluation computes it: to the last bit
+    np.testing.assert_array_equal(got["penetration"], ref["penetration"])
+    size = max(float(np.ptp(outline.za)), 1.0)
+    for key in FIELDS:
+        np.testing.assert_allclose(
+            got[key], ref[key], rtol=1e-12, atol=1e-12 * size, err_msg=f"{key} at {level!r}"
+        )
+    # angles from ratios of lengths: a rounding error of a half-beam c is a part 1e-16
+    # size / c of it; 1e-9 (the bound the cached path keeps to) from a micrometre up
+    c = np.minimum(ref["half_beam_port"], ref["half_beam_stbd"])
+    wide = c > 1e-6 * size
+    for key in ("deadrise", "deadrise_port", "deadrise_stbd"):
+        np.testing.assert_allclose(got[key][wide], ref[key][wide], rtol=1e-9, atol=0)
+    return True
+
+
+def wedge_hull():
+    return hs.load_hull(MESHES / "wedge_prism.stl", mass=1.0)
+
+
+def fuselage_hull():
+    return hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+
+
+def asymmetric_hull():
+    v, f = shapes.asymmetric_wedge_prism()
+    return hs.Hull.from_arrays(v, f, mass=5.0)
+
+
+def round_hull(points=180):
+    v, f = shapes.circular_cylinder(points=points)
+    return hs.Hull.from_arrays(v, f, mass=5.0)
+
+
+@pytest.mark.parametrize("deadrise", ["wedge", "waterline-slope"])
+@pytest.mark.parametrize(
+    "make, pitch_deg, n",
+    [
+        (wedge_hull, 0.0, 8),
+        (wedge_hull, 5.0, 8),
+        (asymmetric_hull, 3.0, 6),
+        (round_hull, 0.0, 4),
+        (fuselage_hull, 6.0, 24),
+    ],
+)
+def test_table_agrees_with_a_fresh_evaluation(make, pitch_deg, n, deadrise):
+    hull = make()
+    outline, tol, fr = outline_of(hull, pitch_deg, n)
+    table = None
+    declined = []
+    for level in levels(outline, fr):
+        if table is None or level > table.top:
+            table = WaterlineTable.of(outline, level, tol, deadrise, budget=10**8)
+        if not compare(table, outline, level, tol, deadrise):
+            declined.append(level)
+    # one part per section: the table serves every height but those within a fifth of the
+    # tolerance above a keel vertex, where the waterline's ends count as a flat keel and
+    # the keel's lateral position moves with the water
+    z = np.unique(outline.za)
+    for level in declined:
+        i = np.searchsorted(z, level) - 1
+        assert 0.0 < level - z[i] <= tol / 5 * (1 + 1e-9)
+
+
+def test_the_paper_prism_against_its_fresh_evaluation(paper_hull):
+    outline, tol, fr = outline_of(paper_hull, 0.0, 32)
+    table = WaterlineTable.of(outline, 0.0, tol, "wedge")  # covers up to the chines
+    assert table.top >= fr.lowest + 0.09
+    for level in np.linspace(fr.lowest + 1e-4, fr.lowest + 0.09, 23):
+        assert compare(table, outline, level, tol, "wedge")
+
+
+def test_a_catamaran_is_tabulated_per_float():
+    vs, fs = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    vp, fp = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    vs = vs - np.array([0.0, 0.3, vs[:, 2].min()])
+    vp = vp + np.array([0.0, 0.3, -vp[:, 2].min() + 0.01])  # port keel 1 cm higher
+    hull = hs.Hull.from_arrays(np.vstack([vs, vp]), np.vstack([fs, fp + len(vs)]), mass=2.0)
+    outline, tol, fr = outline_of(hull, 0.0, 4)
+    table = WaterlineTable.of(outline, fr.highest, tol, "wedge")
+    served = [compare(table, outline, h, tol, "wedge") for h in levels(outline, fr)]
+    assert all(served)  # separate parts carry their own mass: constant shares
+
+
+def test_twin_keels_of_one_part_are_left_to_the_fresh_evaluation():
+    # a W bottom: between its keels' and its middle's heights the water meets one part in
+    # two pieces, which share the part's mass by their widths (not constant): declined
+    w = [[-0.3, 0.05], [-0.2, -0.1], [-0.1, 0.0], [0.1, 0.0], [0.2, -0.1], [0.3, 0.05]]
+    mesh = manifold3d.CrossSection([w]).extrude(1.0).to_mesh()
+    v = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
+    hull = hs.Hull.from_arrays(v, np.asarray(mesh.tri_verts), forward="+z", up="+y", mass=10.0)
+    outline, tol, fr = outline_of(hull, 0.0, 4)
+    table = WaterlineTable.of(outline, fr.highest, tol, "wedge")
+    keel = fr.lowest
+    assert table.at(keel + 0.05, 0, 4) is None  # two pieces, shares by width
+    assert compare(table, outline, keel + 0.15, tol, "wedge")  # one piece again
+    assert compare(table, outline, keel - 0.01, tol, "wedge")  # dry
+
+
+def test_above_its_top_a_table_declines(paper_hull):
+    outline, tol, fr = outline_of(paper_hull, 0.0, 8)
+    table = WaterlineTable.of(outline, fr.lowest + 0.01, tol, "wedge")
+    assert table.top > fr.lowest + 0.01
+    assert table.at(table.top + 1e-6, 0, 8) is None
+    assert compare(table, outline, table.top, tol, "wedge")
+
+
+def evaluate_often(hull, deadrise, drafts):
+    model = ForceModel(hull, slices=32, slicing="fixed", deadrise=deadrise)
+    fresh = ForceModel(hull, slices=32, slicing="fixed", deadrise=deadrise, cache=False)
+    motion = hs.Motion(-3.0)
+    for d in drafts:
+        a, b = model(hs.Pose(d), motion), fresh(hs.Pose(d), motion)
+        assert a.total == pytest.approx(b.total, rel=1e-12)
+    return frame(hull, 0.0)._fixed[(32, TOL.coordinate * hull.size)]
+
+
+def test_tables_are_made_for_time_histories_only(paper_hull):
+    hull = paper_hull.with_mass(1.0)  # frames of its own
+    drafts = np.linspace(0.01, 0.03, 3 * TABLE_AFTER)
+    store = evaluate_often(hull, "wedge", drafts[: TABLE_AFTER - 1])
+    assert "tables" not in store  # a few evaluations: none (it would cost more than it saves)
+    store = evaluate_often(hull, "wedge", drafts)
+    assert store["tables"]["wedge"].top >= drafts[-1] + frame(hull, 0.0).lowest
+
+
+def test_keel_fit_is_not_tabulated(paper_hull):
+    # its slopes are ratios of cubics in the height: the fixed slicing evaluates it afresh
+    hull = paper_hull.with_mass(1.0)
+    store = evaluate_often(hull, "keel-fit", np.linspace(0.01, 0.03, 3 * TABLE_AFTER))
+    assert "keel-fit" not in store.get("tables", {})
+
+
+def test_a_costly_table_is_not_made():
+    # 720 points around a circle: with the water at half its height, a table would
+    # evaluate some 3 million edges; the fresh evaluation serves instead
+    hull = round_hull(points=720)
+    outline, tol, fr = outline_of(hull, 0.0, 3)
+    half = 0.5 * (fr.lowest + fr.highest)
+    assert WaterlineTable.of(outline, half, tol, "wedge") is None
+    low = WaterlineTable.of(outline, fr.lowest + 0.01, tol, "wedge")  # a little water: fits
+    assert low is not None and low.top < half
+    store = evaluate_often(hull, "wedge", np.linspace(0.45, 0.5, 2 * TABLE_AFTER))
+    assert store["too_high"]["wedge"][1] <= half + 0.05
+    assert "wedge" not in store.get("tables", {})
