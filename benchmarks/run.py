@@ -7,12 +7,14 @@ Meshes: the generic fuselage of ``hullslice.shapes`` at about 10k, 100k and 1M f
 it at 200 stations with the sections' properties, against manifold3d's own 200 ``slice``
 calls and trimesh's ``section_multiplane`` on the same planes; the cost of one force
 evaluation (a stage of a time step) with 128 slices at a fixed pitch, with the fixed
-slicing cut once (cached) against re-cutting the 3D hull at every step (naive); the cost
-of an evaluation at a new pitch (the cut must be redone). Then: the cached cost against
-the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a 2,000-step free
-fall of the 1M-face fuselage in a process of its own (time and peak memory), the paper's
-free-fall case from process start to printed report, and the time of ``import
-hullslice`` and ``hullslice --help``. Times are medians of ``--repeat`` runs on this
+slicing cut once (cached, with its waterline table) against re-cutting the 3D hull at
+every step (naive); the cost of an evaluation at a new pitch (the cut must be redone),
+once the hull has its first region, and the cost of making that region. Then: the cached
+cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
+2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
+step, peak memory) and 100 steps of it with free pitch, the paper's free-fall case from
+process start to printed report, and the time of ``import hullslice`` and ``hullslice
+--help``. Times are medians of ``--repeat`` runs on this
 machine; ratios compare figures measured in the same run.
 """
 
@@ -129,7 +131,8 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
     drafts = np.linspace(0.05, 0.3, 50)
     cached = ForceModel(hull, slices=128, slicing="fixed")
     naive = ForceModel(hull, slices=128, slicing="fixed", cache=False)
-    cached(hs.Pose(0.1, 0.08), motion)
+    for d in drafts:  # its cut, and its waterline table (made from the 8th evaluation)
+        cached(hs.Pose(d, 0.08), motion)
     t_cached = per_call(lambda i: cached(hs.Pose(drafts[i % 50], 0.08), motion), 50, repeat)
     t_naive = per_call(lambda i: naive(hs.Pose(drafts[i % 50], 0.08), motion), 5, repeat)
     wetted = ForceModel(hull, slices=128)
@@ -144,15 +147,24 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
     table.add(f"{size}: ratio naive / cached", f"{t_naive / t_cached:.0f}")
     table.add(f"{size}: same, slices over the wetted length (re-cut)", fmt(t_wetted))
 
-    # a step at a new pitch: everything that depends on the pitch is redone
-    pitches = np.radians(np.linspace(6.0, 7.0, 7))
-    t_pitch = per_call(lambda i: cached(hs.Pose(0.1, pitches[i % 7] + 1e-6 * i), motion), 7, 1)
+    # an evaluation at a new pitch: everything that depends on the pitch is redone. A
+    # second pitch makes the hull's first region (a band of it, turned at each pitch
+    # after); its cost is shown apart, then the steady cost of new pitches
+    turning = ForceModel(hull.with_mass(60000.0), slices=128, slicing="fixed")
+    turning(hs.Pose(0.1, 0.08), motion)
+    t_region = median_time(lambda: turning(hs.Pose(0.1, 0.09), motion), 1)
+    pitches = np.radians(np.linspace(6.0, 7.0, 15))
+    t_pitch = per_call(lambda i: turning(hs.Pose(0.1, pitches[i % 15] + 1e-7 * i), motion), 15, 1)
+    regions = turning.hull.__dict__.get("_regions", {})
+    band = ", ".join(f"x {a:.1f} to {b:.1f} m" for a, b in regions) or "the whole hull"
+    table.add(f"{size}: first evaluation at a second pitch (makes a region: {band})", fmt(t_region))
     table.add(
-        f"{size}: step with a changing pitch, 128 slices",
+        f"{size}: evaluation at a new pitch, 128 slices",
         fmt(t_pitch),
         "< 30 ms" if size == "1M" else "",
         (t_pitch < 0.03) if size == "1M" else None,
     )
+    table.add(f"{size}: ratio new pitch / cached evaluation", f"{t_pitch / t_cached:.0f}")
     return {"hull": hull, "load": t_load, "path": path}
 
 
@@ -190,7 +202,12 @@ CHILD = textwrap.dedent(
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    print(t_load, t_sim, len(h), peak)
+    # then free pitch: every stage of every step at a new pitch
+    t0 = time.perf_counter()
+    f = hs.simulate(hull, -1.5, 0.02, dt=0.0002, pitch=0.08, forward_speed=60.0,
+                    slices=128, slicing="fixed", stop_on=(), free_pitch=True)
+    t_free = time.perf_counter() - t0
+    print(t_load, t_sim, len(h), peak, t_free, len(f))
     """
 )
 
@@ -199,7 +216,7 @@ def bench_big_simulation(table: Table, path: Path) -> None:
     out = subprocess.run(
         [sys.executable, "-c", CHILD, str(path)], capture_output=True, text=True, check=True
     )
-    t_load, t_sim, steps, peak = (float(v) for v in out.stdout.split())
+    t_load, t_sim, steps, peak, t_free, free_steps = (float(v) for v in out.stdout.split())
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -208,7 +225,12 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         t_sim < 1.5 * t_load,
     )
     table.add("1M: ratio simulation / load", f"{t_sim / t_load:.2f}")
+    table.add("1M: time step of that free fall (4 evaluations)", fmt(t_sim / (steps - 1)))
     table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
+    table.add(
+        f"1M: time step with free pitch (4 new pitches), {int(free_steps) - 1} steps",
+        fmt(t_free / (free_steps - 1)),
+    )
 
 
 def bench_process(table: Table, repeat: int) -> None:

@@ -14,10 +14,12 @@ tolerance (where the waterline points stop counting as a flat keel). An interval
 anything but the affine quantities changes (a part shared by two pieces, whose mass shares
 follow their widths; too narrow an interval to sample) is marked: an evaluation there, or
 with the ``keel-fit`` estimator (cubic in the height), is left to the fresh evaluation.
-The table covers the heights up to a top, and is rebuilt higher when the water rises past
-it. Its cost grows with the square of a section's vertices under the water, so it is
-bounded (:data:`BUDGET`): where the water stands high on finely meshed sections there is
-no table, and the fresh evaluation serves.
+Where each part of a section meets the water in two edges at most (a V, a U, a round
+bottom: one wetted piece per part), an interval is evaluated with only the edges the
+waterline crosses and those at the keel, so a table costs in proportion to the vertices.
+Elsewhere every edge under the water is needed, a cost growing with their square; it is
+bounded (:data:`BUDGET`). The table covers the heights up to a top, and is made again
+higher when the water rises past it.
 """
 
 from __future__ import annotations
@@ -91,14 +93,11 @@ class WaterlineTable:
         keep[1:] = (z[1:] != z[:-1]) | (st[1:] != st[:-1])
         z, st = z[keep], st[keep]
         bp_start = np.searchsorted(st, np.arange(s + 1))
-        top = _top(outline, z, st, level, tol, budget)
-        if top is None:
+        plan = _plan(outline, z, st, bp_start, level, tol, budget)
+        if plan is None:
             return None
+        top, v_count, entry_v, entry_edge = plan
         n_bp = np.diff(bp_start)
-        # intervals (virtual stations) j = 0 .. below each station's break point j, the
-        # last one above them all; kept while their lower end is under the top
-        below_top = np.bincount(st[z < top], minlength=s)
-        v_count = below_top + 1
         v_start = np.concatenate([[0], np.cumsum(v_count)])
         nv = int(v_start[-1])
         v_station = np.repeat(np.arange(s), v_count)
@@ -117,8 +116,12 @@ class WaterlineTable:
         empty = ~has_lo & ~has_hi
         h_a[empty], h_b[empty] = -2.0, -1.0
         sampled = (h_a < h_b) & ~(has_lo & (h_a <= lo)) & ~(has_hi & (h_b >= hi))
-        pa = wetted_properties(_virtual(outline, v_station, h_a), 0.0, tol, deadrise)
-        pb = wetted_properties(_virtual(outline, v_station, h_b), 0.0, tol, deadrise)
+
+        def sample(h):
+            virtual = _virtual(outline, v_station, h, entry_v, entry_edge)
+            return wetted_properties(virtual, 0.0, tol, deadrise)
+
+        pa, pb = sample(h_a), sample(h_b)
         exact = sampled.copy()
         differ = np.bincount(pa["station"], minlength=nv) != np.bincount(
             pb["station"], minlength=nv
@@ -126,7 +129,7 @@ class WaterlineTable:
         if differ.any():  # other pieces at the two samples: not tabulated there
             exact &= ~differ
             h_b = np.where(differ, h_a, h_b)
-            pb = wetted_properties(_virtual(outline, v_station, h_b), 0.0, tol, deadrise)
+            pb = sample(h_b)
         ev = pa["station"]  # virtual station of each entry, sorted
         e_start = np.searchsorted(ev, np.arange(nv + 1))
         ha, hb = h_a[ev], h_b[ev]
@@ -195,21 +198,72 @@ class WaterlineTable:
         return out
 
 
-def _top(outline, z, st, level, tol, budget) -> float | None:
-    """The highest top, up to as high again as the water is deep, whose table evaluates at
-    most ``budget`` edges (bounded by: each station's intervals under the top times its
-    edges under it); None when not even the water's height fits."""
-    s = outline.n_stations
-    finite = outline.zmin[np.isfinite(outline.zmin)]
+def _plan(outline, z, st, bp_start, level, tol, budget):
+    """Which edges each interval evaluates, and up to which top.
+
+    An interval (virtual station) ``j`` of a station lies between its break points
+    ``j - 1`` and ``j``. Where every part of a station meets each of its intervals in at
+    most two edges (one wetted piece per part: a V, a U, a round bottom), an interval needs
+    only the edges the waterline crosses and the edges at its parts' keels (within a fifth
+    of the tolerance of their lowest points): the rest lies under the water and changes
+    nothing the table keeps. Other stations need all their edges under the water. The top
+    is as high again as the water is deep, or lower if that takes more than ``budget``
+    edges.
+
+    Returns ``(top, v_count, entry_v, entry_edge)`` (intervals per station; for each
+    evaluated edge its interval and its index in the outline, sorted by interval then
+    lower end), or None when not even the water's height fits.
+    """
+    o = outline
+    s = o.n_stations
+    finite = o.zmin[np.isfinite(o.zmin)]
     bottom = min(float(finite.min()), level) if len(finite) else level
-    depth = max(level - bottom, 1e-3 * _span(outline, tol))
+    depth = max(level - bottom, 1e-3 * _span(o, tol))
+    # each edge's ends as indices into its station's break points (exact: integer keys)
+    heights = np.unique(z)
+    n_h = len(heights) + 1
+    bp_key = st * n_h + np.searchsorted(heights, z)
+    zhi = np.maximum(o.za, o.zb)
+    i_lo = np.searchsorted(bp_key, o.station * n_h + np.searchsorted(heights, o.zlo))
+    i_hi = np.searchsorted(bp_key, o.station * n_h + np.searchsorted(heights, zhi))
+    i_lo, i_hi = i_lo - bp_start[o.station], i_hi - bp_start[o.station]
+    # the keel edges of each part
+    n_parts = len(o.part_area)
+    part_low = np.full(n_parts, np.inf)
+    np.minimum.at(part_low, o.contour, o.zlo)
+    keel = o.zlo <= part_low[o.contour] + tol / 5
     for share in (1.0, 0.5, 0.25, 0.1, 0.0):
         top = level + share * depth
-        intervals = np.bincount(st[z < top], minlength=s) + 1
-        edges = np.bincount(outline.station[outline.zlo < top], minlength=s)
-        if int(np.dot(intervals, edges)) <= budget:
-            return top
-    return None
+        v_count = np.bincount(st[z < top], minlength=s) + 1
+        last = v_count[o.station] - 1  # the station's highest interval
+        first = i_lo + 1  # an edge is under the water from the interval above its lower end
+        # crossings per part and interval: at most two makes a station simple
+        cross_end = np.minimum(i_hi, last)
+        n_cross = np.maximum(cross_end - first + 1, 0)
+        cv = np.repeat(first, n_cross) + _ranges(n_cross)
+        cp = np.repeat(o.contour, n_cross)
+        simple = np.ones(s, dtype=bool)
+        if len(cv):
+            pair, count = np.unique(cp * (int(last.max()) + 2) + cv, return_counts=True)
+            crowded = pair[count > 2] // (int(last.max()) + 2)
+            simple[o.part_station[crowded]] = False
+        end = np.where(simple[o.station] & ~keel, cross_end, last)
+        n = np.maximum(end - first + 1, 0)
+        if int(n.sum()) <= budget:
+            break
+    else:
+        return None
+    v_start = np.concatenate([[0], np.cumsum(v_count)])
+    edge = np.repeat(np.arange(len(n)), n)
+    entry_v = v_start[o.station[edge]] + np.repeat(first, n) + _ranges(n)
+    order = np.lexsort((o.zlo[edge], entry_v))
+    return top, v_count, entry_v[order], edge[order]
+
+
+def _ranges(n: np.ndarray) -> np.ndarray:
+    """``0 .. n[i] - 1`` for every ``i``, concatenated."""
+    total = int(n.sum())
+    return np.arange(total) - np.repeat(np.cumsum(n) - n, n)
 
 
 def _nearest(z, start, station, value) -> np.ndarray:
@@ -239,22 +293,14 @@ def _span(outline: Outline, tol: float) -> float:
     return float(np.ptp(np.concatenate([outline.za, outline.zb])) + 1.0 + tol)
 
 
-def _virtual(outline: Outline, v_station: np.ndarray, h: np.ndarray) -> Outline:
-    """An outline with one station per interval: its station's edges that reach below
-    ``h``, heights measured from ``h``."""
+def _virtual(outline: Outline, v_station, h, entry_v, entry_edge) -> Outline:
+    """An outline with one station per interval, ``v_station`` the station of each: the
+    edges :func:`_plan` chose for it, heights measured from ``h`` (one per interval)."""
     o = outline
     s = o.n_stations
-    # each station's edges below h: a prefix (edges sorted by their lower end); searched
-    # in a key combining the station and the height scaled into [0, 1)
-    lo, span = (o.zlo.min(), np.ptp(o.zlo)) if len(o.zlo) else (0.0, 0.0)
-    scale = span * (1.0 + 1e-9) + 1e-300
-    key = 2.0 * o.station + (o.zlo - lo) / scale
-    hk = 2.0 * v_station + np.clip((h - lo) / scale, 0.0, 1.0 - 1e-12)
-    count = np.searchsorted(key, hk, side="left") - o.start[v_station]
-    count = np.clip(count, 0, np.diff(o.start)[v_station])
-    idx = _prefix_index(o.start[v_station], count)
-    ev = np.repeat(np.arange(len(v_station)), count)
+    idx, ev = entry_edge, entry_v
     dz = h[ev]
+    count = np.bincount(ev, minlength=len(v_station))
     # separate parts, renumbered per interval
     c_start = np.searchsorted(o.part_station, np.arange(s + 1))
     n_parts = np.diff(c_start)[v_station]

@@ -190,15 +190,39 @@ def test_keel_fit_is_not_tabulated(paper_hull):
     assert "keel-fit" not in store.get("tables", {})
 
 
+def wavy_hull(points=1200):
+    """A bottom of 12 waves (one part, many pieces at mid-height), finely sampled."""
+    y = np.linspace(-0.3, 0.3, points)
+    bottom = np.stack([y, -0.1 + 0.01 * np.cos(2 * np.pi * 12 * y / 0.6)], axis=1)
+    section = np.vstack([bottom, [[0.3, 0.05], [-0.3, 0.05]]])  # counter-clockwise
+    mesh = manifold3d.CrossSection([section]).extrude(1.0).to_mesh()
+    v = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
+    return hs.Hull.from_arrays(v, np.asarray(mesh.tri_verts), forward="+z", up="+y", mass=10.0)
+
+
 def test_a_costly_table_is_not_made():
-    # 720 points around a circle: with the water at half its height, a table would
-    # evaluate some 3 million edges; the fresh evaluation serves instead
+    # one part meeting the water in many pieces needs every edge under the water in
+    # every interval: with the water over the waves, a table would evaluate millions of
+    # edges; the fresh evaluation serves instead
+    hull = wavy_hull()
+    outline, tol, fr = outline_of(hull, 0.0, 3)
+    assert len(outline.za) > 3000
+    high = fr.lowest + 0.05
+    assert WaterlineTable.of(outline, high, tol, "wedge") is None
+    low = WaterlineTable.of(outline, fr.lowest + 0.001, tol, "wedge")  # a little: fits
+    assert low is not None and low.top < high
+    store = evaluate_often(hull, "wedge", np.linspace(0.045, 0.05, 2 * TABLE_AFTER))
+    assert fr.lowest + 0.045 <= store["too_high"]["wedge"][1] <= high
+    assert "wedge" not in store.get("tables", {})
+
+
+def test_simple_stations_evaluate_few_edges():
+    # a round bottom meets every waterline in two edges: a table evaluates those and the
+    # keel's, not every edge under the water: 720 points, some 1,400 intervals per
+    # station, within a budget of 50,000 edges (all edges under the water: over a million)
     hull = round_hull(points=720)
     outline, tol, fr = outline_of(hull, 0.0, 3)
-    half = 0.5 * (fr.lowest + fr.highest)
-    assert WaterlineTable.of(outline, half, tol, "wedge") is None
-    low = WaterlineTable.of(outline, fr.lowest + 0.01, tol, "wedge")  # a little water: fits
-    assert low is not None and low.top < half
-    store = evaluate_often(hull, "wedge", np.linspace(0.45, 0.5, 2 * TABLE_AFTER))
-    assert store["too_high"]["wedge"][1] <= half + 0.05
-    assert "wedge" not in store.get("tables", {})
+    table = WaterlineTable.of(outline, fr.highest, tol, "wedge", budget=50_000)
+    assert table is not None and table.top >= fr.highest
+    for level in np.linspace(fr.lowest + 0.01, fr.highest - 0.01, 9):
+        assert compare(table, outline, level, tol, "wedge")
