@@ -105,8 +105,9 @@ class WaterlineTable:
         first = bp_start[v_station]
         has_lo = j > 0
         has_hi = j < n_bp[v_station]
-        lo = np.where(has_lo, z[np.maximum(first + j - 1, 0)], np.nan)
-        hi = np.where(has_hi, z[np.minimum(first + j, len(z) - 1)], np.nan)
+        z_end = np.concatenate([z, [np.nan]])  # one past the last, for empty sections
+        lo = np.where(has_lo, z_end[np.maximum(first + j - 1, 0)], np.nan)
+        hi = np.where(has_hi, z_end[first + j], np.nan)
         unit = _span(outline, tol)
         h_a = np.where(has_lo & has_hi, lo + (hi - lo) / 3.0, np.nan)
         h_b = np.where(has_lo & has_hi, lo + 2.0 * (hi - lo) / 3.0, np.nan)

@@ -21,7 +21,7 @@ from hullslice import shapes
 from hullslice.constants import TOL
 from hullslice.geometry import frame
 from hullslice.motion import ForceModel
-from hullslice.sections import TABLE_AFTER, wetted_properties
+from hullslice.sections import TABLE_AFTER, Outline, wetted_properties
 from hullslice.waterline import WaterlineTable
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
@@ -226,3 +226,13 @@ def test_simple_stations_evaluate_few_edges():
     assert table is not None and table.top >= fr.highest
     for level in np.linspace(fr.lowest + 0.01, fr.highest - 0.01, 9):
         assert compare(table, outline, level, tol, "wedge")
+
+
+def test_empty_sections_are_dry_at_every_height():
+    # a station beyond the body's ends has no contour: one dry interval
+    square = np.array([[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]])
+    outline = Outline.of([(), (square,)], 1e-6)
+    table = WaterlineTable.of(outline, 0.0, 1e-6, "wedge")
+    for level in (-2.0, 0.0, 0.5):
+        assert compare(table, outline, level, 1e-6, "wedge")
+    assert table.at(0.5, 0, 2)["penetration"] == pytest.approx([0.0, 1.5], abs=1e-15)
