@@ -192,12 +192,16 @@ class Sections:
     )
 
     def __post_init__(self) -> None:
-        n = len(self.x)
+        fields = self.__dict__  # frozen: set once here, read-only arrays
+        n = len(fields["x"])
         for name in self._ARRAYS:
-            arr = np.asarray(getattr(self, name))
-            if arr.shape != (n,):
-                raise ValueError(f"Sections.{name} has shape {arr.shape}, expected ({n},)")
-            object.__setattr__(self, name, _readonly(arr))
+            arr = fields[name]
+            if not (type(arr) is np.ndarray and arr.shape == (n,) and arr.flags.c_contiguous):
+                arr = np.ascontiguousarray(arr)
+                if arr.shape != (n,):
+                    raise ValueError(f"Sections.{name} has shape {arr.shape}, expected ({n},)")
+            arr.flags.writeable = False
+            fields[name] = arr
 
     def __len__(self) -> int:
         return len(self.x)

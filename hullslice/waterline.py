@@ -62,7 +62,8 @@ class WaterlineTable:
     deadrise: str
     tol: float
     top: float
-    bp: np.ndarray  # break points under the top, sorted by station then height
+    heights: np.ndarray  # the break points' heights under the top, sorted, unique
+    bp_key: np.ndarray  # break points under the top as station * (h + 1) + height's rank
     bp_start: np.ndarray  # (s + 1,) each station's first break point
     v_start: np.ndarray  # (s + 1,) each station's first interval (virtual station)
     v_count: np.ndarray  # (s,) intervals tabulated per station
@@ -146,8 +147,10 @@ class WaterlineTable:
         keel = _nearest(z, bp_start, v_station[ev], ha - pa["penetration"])
         # only the break points under the top are looked up
         under_top = z < top
-        z_top = z[under_top]
-        top_start = np.searchsorted(st[under_top], np.arange(s + 1))
+        z_top, st_top = z[under_top], st[under_top]
+        top_start = np.searchsorted(st_top, np.arange(s + 1))
+        heights = np.unique(z_top)
+        bp_key = st_top * (len(heights) + 1) + np.searchsorted(heights, z_top)
         keel = np.where(wet, keel, np.inf)
         const = np.stack([pa[key] for key in CONSTANT[deadrise]], axis=1)
         changed = np.zeros(len(ev), dtype=bool)
@@ -156,7 +159,8 @@ class WaterlineTable:
             changed |= ~np.isclose(a, b, rtol=1e-13, atol=1e-13 * unit, equal_nan=True)
         exact[ev[changed]] = False
         return cls(
-            outline, deadrise, tol, top, z_top, top_start, v_start, v_count, e_start, exact,
+            outline, deadrise, tol, top, heights, bp_key, top_start, v_start, v_count, e_start,
+            exact,
             v_station[ev], wet, keel, slope, intercept, const,
             bool(np.all(np.diff(e_start) == 1)),
         )  # fmt: skip
@@ -168,9 +172,11 @@ class WaterlineTable:
         an interval marked inexact)."""
         if level > self.top:
             return None
-        b0, b1 = int(self.bp_start[k0]), int(self.bp_start[k1])
-        under = np.concatenate([[0], np.cumsum(self.bp[b0:b1] < level)])
-        j = np.diff(under[self.bp_start[k0 : k1 + 1] - b0])
+        # each station's break points under the level, counted by a search in integer keys
+        # (station, rank of the height among all the table's heights): exact
+        rank = int(np.searchsorted(self.heights, level, side="left"))
+        keys = np.arange(k0, k1) * (len(self.heights) + 1) + rank
+        j = np.searchsorted(self.bp_key, keys, side="left") - self.bp_start[k0:k1]
         v = self.v_start[k0:k1] + j
         if not self.exact[v].all():
             return None

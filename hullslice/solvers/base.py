@@ -39,20 +39,17 @@ class SectionLoads:
     diagnostics: Mapping[str, np.ndarray] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        f = np.asarray(self.force_per_metre, dtype=np.float64)
-        v = np.asarray(self.valid, dtype=bool)
-        r = np.asarray(self.reason, dtype=object)
-        for a in (f, v, r):
+        fields = self.__dict__  # frozen: set once here, read-only arrays
+        for name, dtype in (("force_per_metre", np.float64), ("valid", bool), ("reason", object)):
+            a = np.asarray(fields[name], dtype=dtype)  # no copy when it is one already
             a.flags.writeable = False
-        object.__setattr__(self, "force_per_metre", f)
-        object.__setattr__(self, "valid", v)
-        object.__setattr__(self, "reason", r)
+            fields[name] = a
         diags = {}
         for k, a in dict(self.diagnostics).items():
             arr = np.asarray(a, dtype=np.float64)  # no copy: the solver's own arrays
             arr.flags.writeable = False
             diags[str(k)] = arr
-        object.__setattr__(self, "diagnostics", diags)
+        fields["diagnostics"] = diags
 
     def __len__(self) -> int:
         return len(self.force_per_metre)

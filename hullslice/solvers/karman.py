@@ -351,9 +351,10 @@ def peak_froude(
     the impact). Parameters as for :func:`peak_values`, with ``g`` the gravitational
     acceleration in m/s^2; infinite for ``g = 0``.
     """
-    peak = peak_values(v_z0, mass_per_metre, deadrise, gamma, rho)
+    # v_z* and z* as peak_values gives them, without its other peak values
+    z_star = np.sqrt(2.0 * mass_per_metre / (5.0 * np.pi * rho * gamma**2)) * np.tan(deadrise)
     with np.errstate(divide="ignore"):
-        return np.abs(peak["v_star"]) / np.sqrt(g * peak["z_star"])
+        return np.abs(5.0 / 6.0 * v_z0) / np.sqrt(g * z_star)
 
 
 class CurveSolver(Solver):
