@@ -1,0 +1,47 @@
+"""The keel line's wetted range, found from its first and last points under the water,
+against a brute force over all its points and crossings of the water's height."""
+
+from __future__ import annotations
+
+import numpy as np
+from hypothesis import given
+from hypothesis import strategies as st
+
+from hullslice.geometry import KeelLine
+
+
+def brute_force(x: np.ndarray, z: np.ndarray, level: float):
+    """Every point under the level and every crossing of it: their lowest and highest x."""
+    xs = [xi for xi, zi in zip(x, z, strict=True) if zi < level]
+    for i in range(len(x) - 1):
+        if (z[i] < level) != (z[i + 1] < level):
+            t = (level - z[i]) / (z[i + 1] - z[i])
+            xs.append(x[i] + t * (x[i + 1] - x[i]))
+    return (min(xs), max(xs)) if xs else None
+
+
+heights = st.floats(-1.0, 1.0, allow_nan=False)
+
+
+@given(
+    steps=st.lists(st.floats(1e-3, 1.0), min_size=1, max_size=25),
+    z=st.lists(heights, min_size=26, max_size=26),
+    level=heights,
+)
+def test_wetted_range_matches_the_brute_force(steps, z, level):
+    x = np.concatenate([[0.0], np.cumsum(steps)])
+    zz = np.asarray(z[: len(x)])
+    got = KeelLine(x, zz).below(level)
+    want = brute_force(x, zz, level)
+    if want is None:
+        assert got is None
+    else:
+        assert got is not None
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
+
+
+def test_a_keel_under_the_water_everywhere_is_wetted_end_to_end():
+    line = KeelLine(np.array([0.0, 1.0, 2.0]), np.array([-0.3, -0.5, -0.2]))
+    assert line.below(0.0) == (0.0, 2.0)
+    assert line.below(-0.4) == (0.5, 1.0 + 0.1 / 0.3)
+    assert line.below(-0.6) is None
