@@ -198,6 +198,9 @@ def evaluate(
     velocity = np.asarray(velocity, dtype=np.float64)
     if velocity.shape != (n,):
         velocity = np.broadcast_to(velocity, (n,))
+    else:  # the solver may not write into the caller's array
+        velocity = velocity.view()
+        velocity.flags.writeable = False
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
         raise InputError("the hull has no mass: give its mass in kg (mass=...)")

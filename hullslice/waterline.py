@@ -11,8 +11,8 @@ fits, a few array operations for all stations at once, whatever the mesh.
 
 The intervals' ends are the vertices' heights and the same heights raised by a fifth of the
 tolerance (where the waterline points stop counting as a flat keel). An interval where
-anything but the affine quantities changes (a part shared by two pieces, whose mass shares
-follow their widths; too narrow an interval to sample) is marked: an evaluation there, or
+anything but the affine quantities may change (a part meeting the water in two pieces or
+more; too narrow an interval to sample) is marked: an evaluation there, or
 with the ``keel-fit`` estimator (cubic in the height), is left to the fresh evaluation.
 Where each part of a section meets the water in two edges at most (a V, a U, a round
 bottom: one wetted piece per part), an interval is evaluated with only the edges the
@@ -97,7 +97,7 @@ class WaterlineTable:
         plan = _plan(outline, z, st, bp_start, level, tol, budget)
         if plan is None:
             return None
-        top, v_count, entry_v, entry_edge = plan
+        top, v_count, entry_v, entry_edge, crowded = plan
         n_bp = np.diff(bp_start)
         v_start = np.concatenate([[0], np.cumsum(v_count)])
         nv = int(v_start[-1])
@@ -124,7 +124,10 @@ class WaterlineTable:
             return wetted_properties(virtual, 0.0, tol, deadrise)
 
         pa, pb = sample(h_a), sample(h_b)
-        exact = sampled.copy()
+        # a part in several pieces: its submerged edges go to the piece whose waterline
+        # interval holds their middle, which moves with the water; and its mass is shared
+        # by the pieces' widths: not tabulated
+        exact = sampled & ~crowded
         differ = np.bincount(pa["station"], minlength=nv) != np.bincount(
             pb["station"], minlength=nv
         )
@@ -201,6 +204,10 @@ class WaterlineTable:
         chine = self.outline.z_chine[k0:k1] - level <= self.tol
         out["chine_wetted"] = chine[station] & self.wet[idx]
         out["station"] = station
+        if not self.one_each:  # pieces in order along the waterline, as a fresh evaluation
+            left = out["y_keel"] - out["half_beam_stbd"]
+            order = np.lexsort((np.where(self.wet[idx], left, 0.0), station))
+            out = {key: val[order] for key, val in out.items()}
         out["area"] = self.outline.area[k0:k1]
         return out
 
@@ -217,9 +224,10 @@ def _plan(outline, z, st, bp_start, level, tol, budget):
     is as high again as the water is deep, or lower if that takes more than ``budget``
     edges.
 
-    Returns ``(top, v_count, entry_v, entry_edge)`` (intervals per station; for each
-    evaluated edge its interval and its index in the outline, sorted by interval then
-    lower end), or None when not even the water's height fits.
+    Returns ``(top, v_count, entry_v, entry_edge, crowded)`` (intervals per station; for
+    each evaluated edge its interval and its index in the outline, sorted by interval then
+    lower end; the intervals where a part meets the water in more than one piece), or None
+    when not even a tenth of the water's depth above it fits.
     """
     o = outline
     s = o.n_stations
@@ -239,7 +247,7 @@ def _plan(outline, z, st, bp_start, level, tol, budget):
     part_low = np.full(n_parts, np.inf)
     np.minimum.at(part_low, o.contour, o.zlo)
     keel = o.zlo <= part_low[o.contour] + tol / 5
-    for share in (1.0, 0.5, 0.25, 0.1, 0.0):
+    for share in (1.0, 0.5, 0.25, 0.1):
         top = level + share * depth
         v_count = np.bincount(st[z < top], minlength=s) + 1
         last = v_count[o.station] - 1  # the station's highest interval
@@ -250,21 +258,24 @@ def _plan(outline, z, st, bp_start, level, tol, budget):
         cv = np.repeat(first, n_cross) + _ranges(n_cross)
         cp = np.repeat(o.contour, n_cross)
         simple = np.ones(s, dtype=bool)
+        v_start = np.concatenate([[0], np.cumsum(v_count)])
+        crowded = np.zeros(int(v_start[-1]), dtype=bool)  # a part in two pieces or more
         if len(cv):
-            pair, count = np.unique(cp * (int(last.max()) + 2) + cv, return_counts=True)
-            crowded = pair[count > 2] // (int(last.max()) + 2)
-            simple[o.part_station[crowded]] = False
+            span = int(last.max()) + 2
+            pair, count = np.unique(cp * span + cv, return_counts=True)
+            many = pair[count > 2]
+            simple[o.part_station[many // span]] = False
+            crowded[v_start[o.part_station[many // span]] + many % span] = True
         end = np.where(simple[o.station] & ~keel, cross_end, last)
         n = np.maximum(end - first + 1, 0)
         if int(n.sum()) <= budget:
             break
     else:
         return None
-    v_start = np.concatenate([[0], np.cumsum(v_count)])
     edge = np.repeat(np.arange(len(n)), n)
     entry_v = v_start[o.station[edge]] + np.repeat(first, n) + _ranges(n)
     order = np.lexsort((o.zlo[edge], entry_v))
-    return top, v_count, entry_v[order], edge[order]
+    return top, v_count, entry_v[order], edge[order], crowded
 
 
 def _ranges(n: np.ndarray) -> np.ndarray:

@@ -159,6 +159,21 @@ def test_dry_sections_get_no_force_and_are_not_passed_to_the_solver(paper_hull):
     assert np.all(loads.force_per_metre[~secs.wetted] == 0.0)
 
 
+def test_a_solver_cannot_write_into_the_callers_velocities(paper_hull):
+    from .fake_solvers import ConstantSolver
+
+    class Scribbler(ConstantSolver):
+        def section_loads(self, sections, velocity, fluid):
+            velocity *= 2.0  # not allowed: the caller's array
+            return super().section_loads(sections, velocity, fluid)
+
+    secs = hs.cut(paper_hull, 0.02, 4)
+    velocity = np.full(len(secs), -3.0)
+    with pytest.raises(hs.SolverError, match="read-only"):
+        hs.forces.evaluate(Scribbler(), secs, velocity, hs.Fluid())
+    assert np.all(velocity == -3.0)
+
+
 def test_no_warning_on_a_clean_registry():
     registry.refresh()
     with warnings.catch_warnings():

@@ -236,3 +236,27 @@ def test_empty_sections_are_dry_at_every_height():
     for level in (-2.0, 0.0, 0.5):
         assert compare(table, outline, level, 1e-6, "wedge")
     assert table.at(0.5, 0, 2)["penetration"] == pytest.approx([0.0, 1.5], abs=1e-15)
+
+
+def test_a_part_in_two_pieces_is_left_to_the_fresh_evaluation():
+    # a symmetric W in one part: the pieces' widths keep their ratio, so their mass shares
+    # do not change, but the submerged edges each piece gets (and so its keel) move with
+    # the water: the table declines every interval where the part is in two pieces
+    w = np.array([[-0.5, -0.2], [-0.4, -0.2], [-0.1, 0.1], [0.1, 0.1], [0.4, -0.2],
+                  [0.5, -0.2], [0.2, 0.3], [-0.2, 0.3]])  # fmt: skip
+    outline = Outline.of([(w,)], 1e-4)
+    table = WaterlineTable.of(outline, 0.25, 1e-4, "wedge")  # up to 0.7
+    assert table.at(-0.15, 0, 1) is None
+    for level in (-0.25, -0.2, 0.15, 0.25):  # dry, and one piece above the W's middle
+        assert compare(table, outline, level, 1e-4, "wedge")
+
+
+def test_pieces_come_in_order_along_the_waterline():
+    # a V with a bulb under water to its left: the bulb's left end is fixed, the V's moves
+    # with the water; the entries are ordered by their left ends, as a fresh evaluation
+    v = np.array([[0.0, 0.0], [0.5, 0.5], [-0.5, 0.5]])
+    bulb = np.array([[-0.1, -0.3], [0.1, -0.3], [0.1, -0.2], [-0.1, -0.2]])
+    outline = Outline.of([(v, bulb)], 1e-4)
+    table = WaterlineTable.of(outline, 0.4, 1e-4, "wedge")
+    for level in (0.05, 0.15, 0.3):
+        assert compare(table, outline, level, 1e-4, "wedge")
