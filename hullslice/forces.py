@@ -237,7 +237,7 @@ def evaluate(
                 f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}"
             ) from exc
         _check_loads(solver, loads, sub, velocity if every else velocity[wet])
-        if every and not massless.any():  # the solver's arrays cover every section
+        if every:  # the solver's arrays cover every section (none massless)
             force = np.array(loads.force_per_metre)
             valid = np.array(loads.valid)
             reason = np.array(loads.reason)

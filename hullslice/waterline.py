@@ -62,8 +62,8 @@ class WaterlineTable:
     deadrise: str
     tol: float
     top: float
-    heights: np.ndarray  # the break points' heights under the top, sorted, unique
-    bp_key: np.ndarray  # break points under the top as station * (h + 1) + height's rank
+    heights: np.ndarray  # the break points' heights, sorted, unique
+    bp_key: np.ndarray  # break points as station * (h + 1) + their height's rank
     bp_start: np.ndarray  # (s + 1,) each station's first break point
     v_start: np.ndarray  # (s + 1,) each station's first interval (virtual station)
     v_count: np.ndarray  # (s,) intervals tabulated per station
@@ -94,7 +94,10 @@ class WaterlineTable:
         keep[1:] = (z[1:] != z[:-1]) | (st[1:] != st[:-1])
         z, st = z[keep], st[keep]
         bp_start = np.searchsorted(st, np.arange(s + 1))
-        plan = _plan(outline, z, st, bp_start, level, tol, budget)
+        # break points as exact integer keys: station * (h + 1) + rank of the height
+        heights = np.unique(z)
+        bp_key = st * (len(heights) + 1) + np.searchsorted(heights, z)
+        plan = _plan(outline, z, st, heights, bp_key, bp_start, level, tol, budget)
         if plan is None:
             return None
         top, v_count, entry_v, entry_edge, crowded = plan
@@ -147,13 +150,7 @@ class WaterlineTable:
         intercept = ya - slope * ha[:, None]
         # the keel: the vertex height nearest to the one the sample implies
         wet = pa["penetration"] > 0.0
-        keel = _nearest(z, bp_start, v_station[ev], ha - pa["penetration"])
-        # only the break points under the top are looked up
-        under_top = z < top
-        z_top, st_top = z[under_top], st[under_top]
-        top_start = np.searchsorted(st_top, np.arange(s + 1))
-        heights = np.unique(z_top)
-        bp_key = st_top * (len(heights) + 1) + np.searchsorted(heights, z_top)
+        keel = _nearest(z, heights, bp_key, bp_start, v_station[ev], ha - pa["penetration"])
         keel = np.where(wet, keel, np.inf)
         const = np.stack([pa[key] for key in CONSTANT[deadrise]], axis=1)
         changed = np.zeros(len(ev), dtype=bool)
@@ -162,7 +159,7 @@ class WaterlineTable:
             changed |= ~np.isclose(a, b, rtol=1e-13, atol=1e-13 * unit, equal_nan=True)
         exact[ev[changed]] = False
         return cls(
-            outline, deadrise, tol, top, heights, bp_key, top_start, v_start, v_count, e_start,
+            outline, deadrise, tol, top, heights, bp_key, bp_start, v_start, v_count, e_start,
             exact,
             v_station[ev], wet, keel, slope, intercept, const,
             bool(np.all(np.diff(e_start) == 1)),
@@ -177,9 +174,8 @@ class WaterlineTable:
             return None
         # each station's break points under the level, counted by a search in integer keys
         # (station, rank of the height among all the table's heights): exact
-        rank = int(np.searchsorted(self.heights, level, side="left"))
-        keys = np.arange(k0, k1) * (len(self.heights) + 1) + rank
-        j = np.searchsorted(self.bp_key, keys, side="left") - self.bp_start[k0:k1]
+        stations = np.arange(k0, k1)
+        j = _under(self.heights, self.bp_key, stations, level) - self.bp_start[k0:k1]
         v = self.v_start[k0:k1] + j
         if not self.exact[v].all():
             return None
@@ -212,7 +208,7 @@ class WaterlineTable:
         return out
 
 
-def _plan(outline, z, st, bp_start, level, tol, budget):
+def _plan(outline, z, st, heights, bp_key, bp_start, level, tol, budget):
     """Which edges each interval evaluates, and up to which top.
 
     An interval (virtual station) ``j`` of a station lies between its break points
@@ -234,14 +230,9 @@ def _plan(outline, z, st, bp_start, level, tol, budget):
     finite = o.zmin[np.isfinite(o.zmin)]
     bottom = min(float(finite.min()), level) if len(finite) else level
     depth = max(level - bottom, 1e-3 * _span(o, tol))
-    # each edge's ends as indices into its station's break points (exact: integer keys)
-    heights = np.unique(z)
-    n_h = len(heights) + 1
-    bp_key = st * n_h + np.searchsorted(heights, z)
-    zhi = np.maximum(o.za, o.zb)
-    i_lo = np.searchsorted(bp_key, o.station * n_h + np.searchsorted(heights, o.zlo))
-    i_hi = np.searchsorted(bp_key, o.station * n_h + np.searchsorted(heights, zhi))
-    i_lo, i_hi = i_lo - bp_start[o.station], i_hi - bp_start[o.station]
+    # each edge's ends as indices into its station's break points (its heights are some)
+    i_lo = _under(heights, bp_key, o.station, o.zlo) - bp_start[o.station]
+    i_hi = _under(heights, bp_key, o.station, np.maximum(o.za, o.zb)) - bp_start[o.station]
     # the keel edges of each part
     n_parts = len(o.part_area)
     part_low = np.full(n_parts, np.inf)
@@ -284,23 +275,24 @@ def _ranges(n: np.ndarray) -> np.ndarray:
     return np.arange(total) - np.repeat(np.cumsum(n) - n, n)
 
 
-def _nearest(z, start, station, value) -> np.ndarray:
+def _under(heights, bp_key, station, value) -> np.ndarray:
+    """For each ``station`` and ``value``, the index of the station's first break point not
+    below the value (its count of break points below it, plus the station's start): a
+    search in the exact integer keys."""
+    return np.searchsorted(
+        bp_key, station * (len(heights) + 1) + np.searchsorted(heights, value), side="left"
+    )
+
+
+def _nearest(z, heights, bp_key, start, station, value) -> np.ndarray:
     """The break point of each ``station`` nearest to ``value``."""
     if len(z) == 0:
         return np.full(len(value), np.nan)
     lo = np.minimum(start[station], len(z) - 1)
     hi = np.maximum(start[station + 1] - 1, lo)
-    # search each station's sorted run: a bisection in all runs at once
-    a, b = lo.copy(), hi.copy()
-    v = np.where(np.isfinite(value), value, z[lo])
-    while np.any(a < b):
-        active = a < b
-        mid = (a + b) // 2
-        right = z[mid] < v
-        a = np.where(active & right, mid + 1, a)
-        b = np.where(active & ~right, mid, b)
-    below = np.maximum(a - 1, lo)
-    return np.where(np.abs(z[below] - v) < np.abs(z[a] - v), z[below], z[a])
+    above = np.clip(_under(heights, bp_key, station, value), lo, hi)
+    below = np.clip(above - 1, lo, hi)
+    return np.where(np.abs(z[below] - value) < np.abs(z[above] - value), z[below], z[above])
 
 
 def _span(outline: Outline, tol: float) -> float:
