@@ -15,6 +15,7 @@ References:
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -179,6 +180,10 @@ def test_section_acceleration_is_the_time_derivative_of_its_velocity():
         return section_velocity(secs, motion, x_cg)
 
     secs, motion = state(0.0)
+    # the formula with the keel line's local curvature (the sections carry it averaged over
+    # their slices, which these five planes far apart are not)
+    local = frame(hull, th0).keel.curvature(secs.x - x_cg)
+    secs = dataclasses.replace(secs, keel_curvature=local)
     jac, bias = section_kinematics(secs, motion, x_cg, section_velocity(secs, motion, x_cg))
     formula = jac @ np.array([dw, dq, du]) + bias
     h = 1e-5
@@ -186,6 +191,24 @@ def test_section_acceleration_is_the_time_derivative_of_its_velocity():
     assert np.abs(bias).max() > 10.0  # the terms without an acceleration matter here
     # measured 5e-9 of the largest term (truncation and rounding of the difference)
     np.testing.assert_allclose(numeric, formula, atol=1e-6 * np.abs(formula).max())
+
+
+def test_slice_averaged_keel_curvature_converges_to_the_local_one():
+    # the curvature a slice carries is its slope's change over its thickness: on the 1:10
+    # fuselage's tail cone it tends to the keel line's own as the slices get thin
+    hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    keel = frame(hull, 0.0).keel
+    x = np.linspace(-1.9, -1.0, 10)  # relative to the centre of gravity: the tail cone
+    smooth = keel.mean_curvature(x, 0.05)
+    assert np.all(smooth > 0.2)  # the keel sweeps up towards the tail, ever more steeply
+    # over 5, 2 and 1 cm: measured within 3.3 % of each other (the mesh's facets, 3-6 mm)
+    for dx in (0.02, 0.01):
+        np.testing.assert_allclose(keel.mean_curvature(x, dx), smooth, rtol=0.05)
+    # its integral over the tail cone is the change of slope, whatever the slicing
+    edges = np.linspace(-1.9, -0.6, 29)
+    mids, widths = 0.5 * (edges[1:] + edges[:-1]), np.diff(edges)
+    total = (keel.mean_curvature(mids, widths) * widths).sum()
+    assert total == pytest.approx(keel.at(-0.6)[1] - keel.at(-1.9)[1], rel=1e-12)
 
 
 def test_added_mass_matrix_is_symmetric_and_positive():
