@@ -28,7 +28,7 @@ from hullslice.geometry import frame
 from hullslice.mass import MassDistribution
 from hullslice.motion.integrate import ForceModel
 
-from .conftest import MESHES
+from .conftest import MESHES, ROOT
 
 RHO = 1000.0
 GAMMA = {"wagner": math.pi / 2, "von-karman": 1.0}
@@ -238,3 +238,18 @@ def test_ditching_with_free_pitch_runs_with_the_added_mass_on_the_left():
     assert h.added_mass.max() > 0.5 * hull.mass
     assert h.pitch[-1] < h.pitch[0] - math.radians(0.5)
     assert h.forward_speed[-1] < h.forward_speed[0]
+
+
+def test_the_readme_plugin_example_is_a_working_momentum_solver(paper_hull):
+    # the README's worked example of a momentum-form plugin, run as it is written: with
+    # gamma = pi / 2 it is the wagner plugin
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    section = readme.split("**A momentum-form solver** implements", 1)[1]
+    code = section.split("```python\n", 1)[1].split("```", 1)[0]
+    namespace: dict = {}
+    exec(compile(code, "README.md", "exec"), namespace)
+    mine = namespace["FlatPlate"](gamma=math.pi / 2)
+    assert mine.kind == "momentum"
+    ref = hs.compute_force(paper_hull, 0.0383, -3.4943, slices=16, solver="wagner")
+    got = hs.compute_force(paper_hull, 0.0383, -3.4943, slices=16, solver=mine)
+    assert got.total == pytest.approx(ref.total, rel=1e-12)
