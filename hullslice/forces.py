@@ -391,7 +391,10 @@ def evaluate_added_mass(
             full = np.full(n, np.nan)
             full[wet] = arr
             diagnostics[k] = full
-    _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
+    chine = sections.chine_wetted
+    if getattr(solver, "models_separation", False):
+        chine = np.zeros(n, dtype=bool)
+    _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics)
 
 

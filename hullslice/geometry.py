@@ -36,6 +36,11 @@ import numpy as np
 __all__ = ["Frame", "KeelLine", "frame"]
 
 
+#: Slope of the side view beyond which a facet at an end of the keel line is an end face
+#: (a transom, a blunt bow or tail; tan 75 deg), not the bottom.
+END_FACE_SLOPE = float(np.tan(np.radians(75.0)))
+
+
 @dataclass(frozen=True, eq=False)
 class KeelLine:
     """The lower edge of the body's side view at one pitch: ``Z_k(X)`` as a polyline.
@@ -61,13 +66,23 @@ class KeelLine:
         moving forward turns every jump into a jump of penetration velocity (60 m/s times a
         slope change of 0.01 is 0.6 m/s). The slope is therefore taken continuous: each
         facet's slope stands at the facet's middle, linearly in between. It is exact on a
-        straight keel, and a kink (a transom's edge) blends over the two facets beside it
-        only, however thin the slices.
+        straight keel, and a kink blends over the two facets beside it only, however thin
+        the slices. An end face (a transom, a blunt bow or tail: facets at an end of the
+        keel line steeper than :data:`END_FACE_SLOPE`) keeps its own slope over its own
+        extent and does not blend into the bottom's.
         """
         x = np.asarray(x, dtype=np.float64)
         z = np.interp(x, self.x, self.z)
         mid, slopes = self._facets
-        return z, np.interp(x, mid, slopes)
+        slope = np.interp(x, mid, slopes)
+        (x0, x1), faces = self._end_faces
+        for (lo, hi), (fmid, fslopes) in zip(
+            ((self.x[0], x0), (x1, self.x[-1])), faces, strict=True
+        ):
+            inside = (x >= lo) & (x < hi) if hi > lo else None
+            if inside is not None and inside.any():
+                slope = np.where(inside, np.interp(x, fmid, fslopes), slope)
+        return z, slope
 
     def curvature(self, x: np.ndarray) -> np.ndarray:
         """The keel line's ``d^2 Z_k / dX^2`` at relative stations ``x``, 1/m.
@@ -105,11 +120,34 @@ class KeelLine:
 
     @property
     def _facets(self) -> tuple[np.ndarray, np.ndarray]:
+        """Middles and slopes of the bottom's facets: the keel line without its end faces
+        (its first or last facets steeper than :data:`END_FACE_SLOPE`: a transom, a blunt
+        bow or tail), whose slopes do not blend into the bottom's."""
         facets = self.__dict__.get("_facet_cache")
         if facets is None:
-            facets = (0.5 * (self.x[1:] + self.x[:-1]), np.diff(self.z) / np.diff(self.x))
+            mid = 0.5 * (self.x[1:] + self.x[:-1])
+            slopes = np.diff(self.z) / np.diff(self.x)
+            steep = np.abs(slopes) > END_FACE_SLOPE
+            lo, hi = 0, len(slopes)
+            while lo < hi - 1 and steep[lo]:
+                lo += 1
+            while hi - 1 > lo and steep[hi - 1]:
+                hi -= 1
+            facets = (mid[lo:hi], slopes[lo:hi])
+            ends = (
+                (float(self.x[lo]), float(self.x[hi])),
+                ((mid[:lo], slopes[:lo]), (mid[hi:], slopes[hi:])),
+            )
             object.__setattr__(self, "_facet_cache", facets)
+            object.__setattr__(self, "_end_cache", ends)
         return facets
+
+    @property
+    def _end_faces(self):
+        """The bottom's extent ``(x0, x1)`` and the end faces' facet middles and slopes,
+        before and after it."""
+        self._facets  # noqa: B018 (fills the cache)
+        return self.__dict__["_end_cache"]
 
     def below(self, level: float) -> tuple[float, float] | None:
         """The ``x`` range where the keel is below ``level`` (relative), or None."""

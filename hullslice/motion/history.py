@@ -248,7 +248,8 @@ class _Recorder:
         w = r.motion.velocity
         crossed = {
             "velocity": w >= 0.0,
-            "chine": bool(r.sections.chine_wetted.any()),
+            # a solver that models the separation at the chine does not flag it
+            "chine": bool((r.sections.chine_wetted & ~r.loads.valid).any()),
             "validity": 1.0 - share > self.max_flagged_share,
             "slender": slender < MIN_SLENDERNESS,
         }
@@ -274,7 +275,7 @@ class _Recorder:
                 "slices": len(np.unique(s.station[wet])),
                 "valid": r.all_valid,
                 "valid_share": share,
-                "chine_wetted": crossed["chine"],
+                "chine_wetted": bool(r.sections.chine_wetted.any()),
                 "reason": "; ".join(reasons),
                 "footprint": fp,
                 "added_mass": r.added_mass,

@@ -238,6 +238,10 @@ class MomentumFormSolver(SolverBase):
     """
 
     kind: ClassVar[str] = MOMENTUM
+    #: True when the solver models the flow's separation at the chine (a cross-flow drag
+    #: after it): hullslice then does not flag sections whose water reaches their chine,
+    #: and the ``chine`` stop rule does not apply.
+    models_separation: ClassVar[bool] = False
 
     @abc.abstractmethod
     def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:

@@ -75,6 +75,7 @@ from ..errors import InputError
 from ..sections import Sections
 from ..state import Fluid
 from .base import AddedMass, MomentumFormSolver, SectionLoads, Solver, join_reasons
+from .contour import SECTION_METHODS, contour_half_widths
 from .karman import CharacteristicCurves, dobrovolskaya_pile_up, peak_froude
 
 __all__ = [
@@ -313,6 +314,13 @@ class MomentumSolver(MomentumFormSolver):
         The pile-up law: ``"wagner"`` (``pi / 2``), ``"von-karman"`` (1),
         ``"dobrovolskaya"`` (the paper's ``-0.0114 beta_deg + 1.5669``) or a number (see
         :func:`pile_up_law`).
+    section_method : str, optional
+        How the wetted half-width is found (:data:`~hullslice.solvers.contour.SECTION_METHODS`):
+        ``"auto"`` (default: the closed form where a section is a wedge, its own contour
+        elsewhere, by Wagner's condition with ``pile_up="wagner"`` or the calm-water
+        crossing with ``"von-karman"``; another pile-up law takes the equivalent wedge
+        everywhere), ``"wedge"`` or ``"contour"``. The diagnostic ``contour`` says which
+        (1: from the contour). See :mod:`hullslice.solvers.contour`.
     froude_min : float, optional
         Smallest section Froude number ``Fr = |v| / sqrt(g p)`` inside the range (default
         2.0). The section's own velocity and depth give it: for a wedge the hydrostatic
@@ -328,37 +336,85 @@ class MomentumSolver(MomentumFormSolver):
     options: ClassVar[Mapping[str, Any]] = {
         "pile_up": "von-karman",
         "froude_min": SECTION_FROUDE_MIN,
+        "section_method": "auto",
     }
 
     def __init__(self, **options: Any) -> None:
         super().__init__(**options)
         self._law = pile_up_law(self.settings["pile_up"])
-        self.settings["froude_min"] = _positive_option(self, "froude_min")
+        if "froude_min" in self.options:
+            self.settings["froude_min"] = _positive_option(self, "froude_min")
+        method = self.settings["section_method"]
+        if method not in SECTION_METHODS:
+            raise InputError(
+                f"solver {self.name!r}: option section_method={method!r} is unknown; choose "
+                f"one of {', '.join(SECTION_METHODS)}"
+            )
+        spec = self.settings["pile_up"]
+        self._contour_law = spec.strip().lower() if isinstance(spec, str) else None
+        if self._contour_law not in ("wagner", "von-karman"):
+            if method == "contour":
+                raise InputError(
+                    f"solver {self.name!r}: section_method=contour needs pile_up=wagner "
+                    f"(Wagner's condition) or von-karman (the calm-water crossing), not "
+                    f"{spec!r}; use section_method=wedge for another pile-up"
+                )
+            self._contour_law = None  # another law: the equivalent wedge everywhere
+
+    def _half_widths(self, sections: Sections, gam: np.ndarray):
+        """Per side, the wetted half-width ``c`` and ``dc/dp`` (NaN: past the chine), and
+        the entries computed from their contour."""
+        p = sections.penetration
+        c_sides, dc_sides = [], []
+        for beta in (sections.deadrise_port, sections.deadrise_stbd):
+            dc = gam / np.tan(beta)  # dc/dp of a wedge side
+            c_sides.append(dc * p)
+            dc_sides.append(dc)
+        method = self.settings["section_method"]
+        used = np.zeros(len(p), dtype=bool)
+        if method != "wedge" and self._contour_law is not None and len(p):
+            c_ct, dc_ct, used = contour_half_widths(sections, self._contour_law, method)
+            for k in range(2):
+                c_sides[k] = np.where(used, c_ct[k], c_sides[k])
+                dc_sides[k] = np.where(used, dc_ct[k], dc_sides[k])
+        return c_sides, dc_sides, used
 
     def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
         """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
         return self._law(deadrise)
 
-    def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:
+    def momentum_terms(self, sections: Sections, fluid: Fluid) -> dict[str, np.ndarray]:
+        """The closed form's arrays for wetted sections: ``added_mass`` (kg/m), ``rate``
+        (kg/m^2), ``past_chine`` (bool, either side), ``gamma``, ``wetted_half_width`` and
+        ``chine_half_width`` (m), ``contour`` (bool). For solvers built on this one."""
         n = len(sections)
-        p = sections.penetration
-        v = np.asarray(velocity, dtype=np.float64)
         gam = np.asarray(self.pile_up(sections.deadrise), dtype=np.float64)
         if gam.shape != (n,):
             gam = np.broadcast_to(gam, (n,))
         chine = chine_half_width(sections)
+        c_raw, dc_raw, contour = self._half_widths(sections, gam)
         c_sides, dc_sides = [], []
-        for beta in (sections.deadrise_port, sections.deadrise_stbd):
-            dc = gam / np.tan(beta)  # dc/dp of a wedge side
-            c = dc * p
-            past = c > chine
+        for c, dc in zip(c_raw, dc_raw, strict=True):
+            past = ~(c <= chine)  # NaN: the contour's spray root past the side's extent
             c_sides.append(np.where(past, chine, c))
             dc_sides.append(np.where(past, 0.0, dc))
         width = c_sides[0] + c_sides[1]
         k = fluid.rho * np.pi / 8.0
-        m_a = k * width**2
-        rate = 2.0 * k * width * (dc_sides[0] + dc_sides[1])
-        past_chine = (dc_sides[0] == 0.0) | (dc_sides[1] == 0.0)
+        return {
+            "added_mass": k * width**2,
+            "rate": 2.0 * k * width * (dc_sides[0] + dc_sides[1]),
+            "past_chine": (dc_sides[0] == 0.0) | (dc_sides[1] == 0.0),
+            "gamma": gam,
+            "wetted_half_width": width / 2.0,
+            "chine_half_width": chine,
+            "contour": contour,
+        }
+
+    def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:
+        n = len(sections)
+        p = sections.penetration
+        v = np.asarray(velocity, dtype=np.float64)
+        t = self.momentum_terms(sections, fluid)
         froude = np.abs(v) / np.sqrt(fluid.g * p) if fluid.g > 0 else np.full(n, np.inf)
         fr_min = self.settings["froude_min"]
         reason = join_reasons(
@@ -366,21 +422,22 @@ class MomentumSolver(MomentumFormSolver):
             [
                 (froude <= fr_min, f"Fr = |v| / sqrt(g p) <= {fr_min:g} (gravity not negligible)"),
                 (
-                    past_chine,
+                    t["past_chine"],
                     "spray root past the chine: added mass kept at its chine value "
                     "(flow separation not modelled)",
                 ),
             ],
         )
         return AddedMass(
-            added_mass=m_a,
-            rate=rate,
+            added_mass=t["added_mass"],
+            rate=t["rate"],
             valid=reason == "",
             reason=reason,
             diagnostics={
-                "gamma": gam,
-                "wetted_half_width": width / 2.0,
-                "chine_half_width": chine,
+                "gamma": t["gamma"],
+                "wetted_half_width": t["wetted_half_width"],
+                "chine_half_width": t["chine_half_width"],
                 "froude": froude,
+                "contour": t["contour"].astype(np.float64),
             },
         )

@@ -1,0 +1,286 @@
+"""Wetted half-widths and submerged areas from a section's own contour.
+
+A momentum-form solver needs, for each side of a wetted section, the half-width ``c`` that
+the water wets (with the pile-up) and its rate ``dc/dp``. For a wedge they are
+``gamma p / tan(beta)`` and ``gamma / tan(beta)``. For a section that is not a wedge (a
+fuselage's round bottom) they come from the contour ``f(y)``, the height of the section's
+bottom above its keel at the distance ``y`` from it:
+
+``wagner``
+    Wagner's condition (METHOD section 7; Wagner 1932),
+
+        integral_0^{pi/2} f(c sin t) dt = (pi / 2) p,
+
+    solved for ``c`` on each side, and its derivative
+    ``dc/dp = (pi / 2) / integral_0^{pi/2} f'(c sin t) sin t dt``. A wedge gives
+    ``c = (pi/2) p / tan(beta)``; a circle of radius ``R``, ``c^2 = 4 R p`` at small ``p``:
+    at constant speed ``V`` the force per metre is ``2 pi rho R V^2`` (slamming coefficient
+    ``2 pi``).
+``von-karman``
+    No pile-up: ``c`` is where the contour meets the calm water, ``f(c) = p``, and
+    ``dc/dp = 1 / f'(c)``. A circle gives ``c^2 = 2 R p`` and the slamming coefficient ``pi``.
+
+The contour is read from the station's polygons (the lowest crossing of each vertical
+line, sampled at :data:`SAMPLES` points from the keel to a little past where Wagner's
+``c`` can reach). A section whose contour at half its calm-water half-width is within
+:data:`WEDGE_TOLERANCE` of a straight side is a wedge: ``auto`` uses the closed form there.
+So does an entry whose polygon is not at its keel's depth (a partial slice at an end of the
+wetted part that borrows its neighbour's section under the fixed slicing).
+
+The submerged area (for a buoyancy force) is the area of the station's polygons below the
+water ``z = 0``, by the shoelace formula of the polygons clipped to that half-plane.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from ..errors import InputError
+
+__all__ = [
+    "SAMPLES",
+    "SECTION_METHODS",
+    "WEDGE_TOLERANCE",
+    "contour_half_widths",
+    "submerged_areas",
+]
+
+#: How the wetted half-width of a section is found, by name.
+SECTION_METHODS: dict[str, str] = {
+    "auto": "the closed form where a section is a wedge, its own contour elsewhere",
+    "wedge": "the equivalent wedge of the section (closed form, gamma p / tan(beta))",
+    "contour": "the section's own contour (Wagner's condition, or the calm-water crossing)",
+}
+
+#: Points at which each side's contour is sampled.
+SAMPLES = 96
+#: A side is a wedge when its height at half the calm-water half-width is within this
+#: share of half the penetration.
+WEDGE_TOLERANCE = 0.1
+#: Gauss-Legendre nodes over ``t`` in ``(0, pi/2)`` for Wagner's condition.
+_NODES, _WEIGHTS = np.polynomial.legendre.leggauss(32)
+_T = (_NODES + 1.0) * np.pi / 4.0
+_W = _WEIGHTS * np.pi / 4.0
+_SIN = np.sin(_T)
+
+
+def _edges(contours: Sequence[np.ndarray]) -> np.ndarray:
+    """(m, 4) segments ``y1, z1, y2, z2`` of closed contours."""
+    parts = []
+    for c in contours:
+        c = np.asarray(c, dtype=np.float64)
+        if len(c) >= 2:
+            parts.append(np.column_stack([c, np.roll(c, -1, axis=0)]))
+    return np.concatenate(parts) if parts else np.empty((0, 4))
+
+
+def _lowest(edges: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Lowest ``z`` of the contours on the vertical lines ``y`` (NaN where none crosses)."""
+    y1, z1, y2, z2 = (edges[:, i : i + 1] for i in range(4))
+    lo, hi = np.minimum(y1, y2), np.maximum(y1, y2)
+    span = (lo <= y) & (y <= hi) & (hi > lo)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = z1 + (y - y1) * (z2 - z1) / (y2 - y1)
+    z = np.where(span, z, np.inf)
+    out = z.min(axis=0)
+    return np.where(np.isfinite(out), out, np.nan)
+
+
+def submerged_areas(polygons: Sequence[Sequence[np.ndarray]], stations: np.ndarray) -> np.ndarray:
+    """Area of each listed station's polygons below the water ``z = 0``, m^2.
+
+    Parameters
+    ----------
+    polygons : sequence of sequences of (k, 2) float
+        Contours of every station in the earth ``(y, z)`` plane (outer ones
+        counter-clockwise, holes clockwise).
+    stations : (n,) int
+        The stations to measure.
+
+    Returns
+    -------
+    (n,) float
+    """
+    out = np.zeros(len(stations))
+    cache: dict[int, float] = {}
+    for i, st in enumerate(np.asarray(stations, dtype=int)):
+        if st not in cache:
+            total = 0.0
+            for c in polygons[st]:
+                total += _clipped_area(np.asarray(c, dtype=np.float64))
+            cache[st] = max(total, 0.0)
+        out[i] = cache[st]
+    return out
+
+
+def _clipped_area(c: np.ndarray) -> float:
+    """Signed area of one closed contour clipped to ``z <= 0`` (Sutherland-Hodgman)."""
+    if len(c) < 3:
+        return 0.0
+    p1, p2 = c, np.roll(c, -1, axis=0)
+    in1, in2 = p1[:, 1] <= 0.0, p2[:, 1] <= 0.0
+    if not in1.any():
+        return 0.0
+    cross = in1 != in2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = p1[:, 1] / (p1[:, 1] - p2[:, 1])
+    xing = p1 + t[:, None] * (p2 - p1)
+    pts = np.empty((2 * len(c), 2))
+    pts[0::2], pts[1::2] = p1, xing
+    keep = np.empty(2 * len(c), dtype=bool)
+    keep[0::2], keep[1::2] = in1, cross
+    q = pts[keep]
+    y, z = q[:, 0], q[:, 1]
+    return 0.5 * float(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1)))
+
+
+def contour_half_widths(
+    sections, law: str, method: str
+) -> tuple[list[np.ndarray], list[np.ndarray], np.ndarray]:
+    """Wetted half-width ``c`` and ``dc/dp`` of each side of each wetted entry.
+
+    Parameters
+    ----------
+    sections : Sections
+        The wetted entries.
+    law : str
+        ``"wagner"`` or ``"von-karman"`` (module notes).
+    method : str
+        ``"contour"`` (every entry from its contour) or ``"auto"`` (wedges left to the
+        caller: their ``c`` is NaN).
+
+    Returns
+    -------
+    c : [port, starboard] of (n,) float
+        Wetted half-widths in m, NaN where the entry is a wedge (``auto``) or where the
+        water passes the side's extent (the caller caps it at the chine).
+    dc : [port, starboard] of (n,) float
+        ``dc/dp``, 1.
+    contour : (n,) bool
+        Entries computed from their contour.
+
+    Raises
+    ------
+    InputError
+        ``contour`` asked for on a section with no keel (a flat bottom).
+    """
+    n = len(sections)
+    p = np.asarray(sections.penetration, dtype=np.float64)
+    calm = np.stack([sections.half_beam_port, sections.half_beam_stbd])  # (2, n)
+    reach = 2.5 * np.maximum(calm, 0.0)
+    unit = np.linspace(0.0, 1.0, SAMPLES)
+    heights = np.full((2, n, SAMPLES), np.nan)
+    by_station: dict[int, np.ndarray] = {}
+    for i in range(n):
+        st = int(sections.station[i])
+        edges = by_station.get(st)
+        if edges is None:
+            edges = by_station[st] = _edges(sections.polygons[st])
+        yk = float(sections.y_keel[i])
+        y = yk + np.concatenate([reach[0, i] * unit, -reach[1, i] * unit])
+        # only the edges below the keel's height plus the reach, over the sampled width
+        lo_y, hi_y = yk - reach[1, i], yk + reach[0, i]
+        z_top = -p[i] + 4.0 * max(reach[0, i], reach[1, i])
+        near = (
+            (np.maximum(edges[:, 0], edges[:, 2]) >= lo_y)
+            & (np.minimum(edges[:, 0], edges[:, 2]) <= hi_y)
+            & (np.minimum(edges[:, 1], edges[:, 3]) <= z_top)
+        )
+        heights[:, i, :] = (_lowest(edges[near], y) + p[i]).reshape(2, SAMPLES)
+    ds = reach / (SAMPLES - 1)  # (2, n)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        half = _interp(heights, ds, 0.5 * calm)
+        wedge = np.all(np.abs(half / p - 0.5) <= 0.5 * WEDGE_TOLERANCE, axis=0)
+        wedge |= np.any(calm <= 0, axis=0) | (p <= 0)
+    used = ~wedge if method == "auto" else np.ones(n, dtype=bool)
+    used &= np.all(calm > 0, axis=0) & (p > 0)
+    # an entry whose contour is not at its keel (a slice at an end of the wetted part that
+    # borrows its neighbour's section, scaled to its own depth) keeps the equivalent wedge
+    at_keel = np.all(np.abs(heights[:, :, 0]) <= 1e-3 * p + 1e-12, axis=0)
+    used &= at_keel
+    if method == "contour":
+        near = heights[:, :, : max(2, SAMPLES // 10)]
+        flat = np.any(np.all(np.abs(near) <= 1e-9 * p[None, :, None] + 1e-12, axis=2), axis=0)
+        if flat.any():
+            i = int(np.flatnonzero(flat)[0])
+            raise InputError(
+                f"the section at x = {float(sections.x[i]):.6g} m has no keel (its bottom is "
+                "flat at its lowest point): the contour method needs one; use "
+                "section_method=auto or wedge"
+            )
+    c_out = np.full((2, n), np.nan)
+    dc_out = np.full((2, n), np.nan)
+    if used.any():
+        f = heights[:, used, :]
+        c, dc = _solve(f, ds[:, used], calm[:, used], p[used], law)
+        c_out[:, used], dc_out[:, used] = c, dc
+    return [c_out[0], c_out[1]], [dc_out[0], dc_out[1]], used
+
+
+def _interp(f: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Rows of ``f`` sampled every ``ds`` from 0, linearly at ``y`` (the same leading
+    shape as ``ds``, and optionally one more axis)."""
+    extra = y.ndim > ds.ndim
+    step = ds[..., None] if extra else ds
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(step > 0, y / step, 0.0)
+    k = f.shape[-1]
+    i0 = np.clip(np.floor(x).astype(np.int64), 0, k - 2)
+    frac = x - i0
+    if not extra:
+        i0, frac = i0[..., None], frac[..., None]
+    a = np.take_along_axis(f, i0, axis=-1)
+    b = np.take_along_axis(f, i0 + 1, axis=-1)
+    out = a * (1.0 - frac) + b * frac
+    return out if extra else out[..., 0]
+
+
+def _solve(
+    f: np.ndarray, ds: np.ndarray, calm: np.ndarray, p: np.ndarray, law: str
+) -> tuple[np.ndarray, np.ndarray]:
+    """``c`` and ``dc/dp`` of sides whose contour heights ``f`` ((2, m, K), NaN past the
+    side's extent) are sampled every ``ds`` ((2, m)); NaN where the water passes it."""
+    k = f.shape[-1]
+    finite = np.isfinite(f)
+    last = np.where(finite.all(axis=-1), k - 1, np.argmin(finite, axis=-1) - 1)  # (2, m)
+    extent = np.maximum(last, 0) * ds
+    # the side's bottom, rising: past its extent it stays at its last height (not used)
+    g = np.where(finite, f, np.inf)
+    g = np.maximum.accumulate(np.where(np.isfinite(g), g, -np.inf), axis=-1)
+    top = np.take_along_axis(g, np.maximum(last, 0)[..., None], axis=-1)
+    g = np.where(np.arange(k) <= last[..., None], g, top)
+    slope = np.diff(g, axis=-1) / np.where(ds > 0, ds, 1.0)[..., None]  # per interval
+    slope = np.concatenate([slope, slope[..., -1:]], axis=-1)
+    bad = (last < 1) | ~np.isfinite(calm) | (calm <= 0)
+    if law == "von-karman":
+        c = calm.copy()
+        lo = _interp(g, ds, np.maximum(c - ds, 0.0))
+        hi = _interp(g, ds, np.minimum(c + ds, extent))
+        width = np.minimum(c + ds, extent) - np.maximum(c - ds, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            fp = (hi - lo) / width
+            dc = np.where(fp > 0, 1.0 / fp, np.nan)
+        past = bad | (c > extent)
+        return np.where(past, np.nan, c), np.where(past, np.nan, dc)
+
+    def integral(c: np.ndarray) -> np.ndarray:
+        return _interp(g, ds, c[..., None] * _SIN) @ _W
+
+    target = 0.5 * np.pi * p[None, :]
+    past = bad | ~(integral(extent) >= target)
+    lo, hi = np.zeros_like(extent), extent.copy()
+    for _ in range(48):  # bisection: 48 halvings of each side's extent, all sides at once
+        mid = 0.5 * (lo + hi)
+        below = integral(mid) < target
+        lo = np.where(below, mid, lo)
+        hi = np.where(below, hi, mid)
+    c = 0.5 * (lo + hi)
+    y = c[..., None] * _SIN
+    with np.errstate(invalid="ignore", divide="ignore"):
+        idx = np.clip(np.floor(np.where(ds[..., None] > 0, y / ds[..., None], 0)), 0, k - 1)
+        fprime = np.take_along_axis(slope, idx.astype(np.int64), axis=-1)
+        denom = fprime @ (_SIN * _W)
+        dc = np.where(denom > 0, 0.5 * np.pi / denom, np.nan)
+    return np.where(past, np.nan, c), np.where(past, np.nan, dc)
