@@ -31,6 +31,7 @@ import numpy as np
 from .convergence import Richardson, richardson
 from .errors import HullsliceError, InputError, SolverError
 from .mesh import Hull
+from .safety import failure
 from .sections import Sections, _as_pose, _slice_count, cut
 from .solvers.base import SectionLoads, Solver
 from .solvers.registry import describe, get_solver
@@ -232,10 +233,8 @@ def evaluate(
                 loads = solver.section_loads(sub, velocity if every else velocity[wet], fluid)
         except HullsliceError:
             raise
-        except Exception as exc:
-            raise SolverError(
-                f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}"
-            ) from exc
+        except (Exception, SystemExit) as exc:  # a plugin's sys.exit() does not end hullslice
+            raise SolverError(f"solver {describe(solver)} failed: {failure(exc)}") from exc
         _check_loads(solver, loads, sub, velocity if every else velocity[wet])
         if every:  # the solver's arrays cover every section (none massless)
             force = np.array(loads.force_per_metre)

@@ -22,6 +22,7 @@ import numpy as np
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
 from .mass import MassDistribution
+from .paths import printable
 
 __all__ = ["SUPPORTED_FORMATS", "Hull", "axis_matrix", "load_hull"]
 
@@ -143,7 +144,7 @@ class Hull:
         self._vertices = _readonly(v)
         self._faces = _readonly(f)
         self._manifold = manifold
-        self.name = str(name)
+        self.name = printable(name)  # one line of visible text, whatever the file was called
         src = dict(source or {})
         src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
         self.source = src

@@ -18,7 +18,12 @@ from __future__ import annotations
 
 import functools
 import json
+import os
+import signal
 import struct
+import subprocess
+import sys
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,6 +36,7 @@ import trimesh
 import hullslice as hs
 from hullslice import shapes
 from hullslice.cli import main
+from hullslice.safety import Terminated, _raise_terminated, terminated_cleanly
 
 from .test_mesh_files import TETRA_OBJ, ascii_stl
 from .test_registry import DEFAULT, ep
@@ -230,6 +236,13 @@ class Bad:
         Add ``--format json -o OUT`` (the entries about ``-o`` give their own).
     call : callable, optional
         ``call(tmp)``: the library call of an entry without a command.
+    plugins : tuple of str
+        Solvers of ``tests/fake_solvers.py`` installed for the run, by name.
+    read : callable, optional
+        ``read(out)``: the result at the output path for ``check`` (default: its JSON).
+    interrupt : int
+        A signal sent to the run (in a process of its own) once its solver has started:
+        the run must end with status 128 + the signal, one line, and no file.
     """
 
     id: str
@@ -241,10 +254,110 @@ class Bad:
     check: Callable[[dict], None] | None = None
     output: bool = True
     call: Callable[[Path], object] | None = None
+    plugins: tuple[str, ...] = ()
+    read: Callable[[Path], dict] | None = None
+    interrupt: int = 0
 
 
 def wedge_file(tmp: Path) -> str:
     return stl(tmp, "wedge.stl", *wedge())
+
+
+STATE_TOML = "mass = 10.0\ndraft = 0.03\nvelocity = -5.0\nslices = [8]\n"
+
+
+def case_file(tmp: Path, extra: str = "", mesh: str = "wedge.stl") -> str:
+    """A case of the standard state in ``tmp/case``, with its mesh beside it."""
+    folder = tmp / "case"
+    folder.mkdir(exist_ok=True)
+    stl(folder, mesh, *wedge())
+    return text(folder, "c.toml", f"mesh = {json.dumps(mesh)}\n{STATE_TOML}{extra}")
+
+
+def result_of(tmp: Path) -> Path:
+    """The output path the test gives (``OUT`` of the module's docstring)."""
+    return tmp.parent / "out" / "result.json"
+
+
+def link_out(tmp: Path) -> str:
+    # a folder in the case's folder that is a link to a folder beside it
+    (tmp / "victim").mkdir()
+    path = case_file(tmp, 'output = "out/result.json"\n')
+    (tmp / "case" / "out").symlink_to(tmp / "victim", target_is_directory=True)
+    return path
+
+
+NEWLINE_NAME = "hull\nrm -rf ~\n.stl"
+
+
+def escaped_table(data: dict) -> None:
+    # the name's line breaks written as \n: no line of the output is the planted one, and
+    # the heading starts with the escaped name; the force is the clean wedge's
+    lines = data["text"].splitlines()
+    assert "rm -rf ~" not in lines and not any(ln.startswith("rm") for ln in lines)
+    assert lines[0].startswith("hull\\nrm -rf ~\\n: ")
+    force = next(ln for ln in lines if ln.startswith("force "))
+    assert float(force.split()[1]) == pytest.approx(wedge_force(), rel=1e-4)
+
+
+def read_text(out: Path) -> dict:
+    return {"text": out.read_text(encoding="utf-8")}
+
+
+def read_report(out: Path) -> dict:
+    return {
+        "md": (out / "report.md").read_text(encoding="utf-8"),
+        "case": hs.load_case(out / "case.toml"),
+        "results": json.loads((out / "results.json").read_text()),
+    }
+
+
+TITLE = 'Run 1 | <img src=x onerror=alert(1)>\n# [click](http://x) `x` "q" \\ end'
+
+
+def escaped_report(data: dict) -> None:
+    md = data["md"].splitlines()
+    # the title is one heading line, its markup escaped; no raw HTML reaches the page
+    assert md[0] == (
+        r"# Run 1 \| \<img src=x onerror=alert(1)\>\\n\# \[click\](http://x) \`x\` "
+        r'"q" \\ end'
+    )
+    assert "<img" not in data["md"].replace(r"\<img", "")
+    # the inputs table keeps three cells a row, the mesh's file name escaped
+    rows = [ln for ln in md if ln.startswith("| mesh |")]
+    assert rows == [r"| mesh | hull\\nrm -rf \~\\n.stl |  |"]
+    # case.toml reads back the same title and mesh file, and the same force
+    assert data["case"]["title"] == TITLE
+    assert data["case"]["mesh"].name == NEWLINE_NAME
+    assert data["results"]["force"] == pytest.approx(wedge_force(), rel=1e-4)
+
+
+def table_csv(tmp: Path) -> str:
+    return text(tmp, "accel.csv", "accel\n100\n")
+
+
+def table_force(data: dict) -> None:
+    # f = M * 100 m/s^2 over the wetted 0.03 / tan(30 deg) ... : the mass per metre is 10 kg/m
+    assert data["force"] == pytest.approx(10.0 * 100.0 * data["wetted_length"], rel=1e-6)
+
+
+def link_to_mesh(tmp: Path) -> str:
+    wedge_file(tmp)
+    (tmp / "link.stl").symlink_to(tmp / "wedge.stl")
+    return str(tmp / "link.stl")
+
+
+def case_reading_table(tmp: Path) -> str:
+    # a case in tmp/case that reads tmp/accel.csv
+    table_csv(tmp)
+    return case_file(tmp, 'solver = "table"\n[solver_options]\ntable = "../accel.csv"\n')
+
+
+def stale_temp(tmp: Path) -> list[str]:
+    # what a run killed with SIGKILL while writing leaves: a temporary file of a dead process
+    out = result_of(tmp)
+    (out.parent / f".{out.name}.hullslice-999999999-abcd.tmp").write_text('{"force": 1')
+    return ["force", wedge_file(tmp), *STATE]
 
 
 CATALOGUE: tuple[Bad, ...] = (
@@ -808,6 +921,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "(first: x, penetration, deadrise, mass per metre, velocity)",
         lambda t: ["force", wedge_file(t), *STATE, "--solver", "nan"],
         error="returned a non-finite force per metre for 8 of 8 sections (first: x = 0.0625 m",
+        plugins=("nan",),
     ),
     # -- output
     Bad(
@@ -833,6 +947,229 @@ CATALOGUE: tuple[Bad, ...] = (
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "-o", str(t / "wedge.stl")],
         error="it is the input mesh file and would be overwritten",
         output=False,
+    ),
+    # -- where a run writes: a case file only inside its folder, names escaped
+    Bad(
+        "case-output-outside",
+        "a case file whose `output` leads out of its folder (`../victim/file`)",
+        "error: key 'output' ('../victim/file') leads out of the case's folder: a case file "
+        "writes only inside its own folder",
+        lambda t: ["run", case_file(t, 'output = "../victim/file"\n')],
+        error="key 'output' ('../victim/file') leads out of the case's folder",
+        output=False,
+    ),
+    Bad(
+        "case-output-absolute",
+        "a case file whose `output` or `plot` is an absolute path",
+        "error: key 'plot' ('/...') is an absolute path: a case file writes only inside its own "
+        "folder",
+        lambda t: ["run", case_file(t, f"plot = {json.dumps(str(t / 'victim.png'))}\n")],
+        error="is an absolute path: a case file writes only inside its own folder",
+        output=False,
+    ),
+    Bad(
+        "case-output-through-link",
+        "a case file whose `output` goes through a link to another folder",
+        "error: the same (links are followed)",
+        lambda t: ["run", link_out(t)],
+        error="key 'output' ('out/result.json') leads out of the case's folder",
+        output=False,
+    ),
+    Bad(
+        "mesh-name-newline",
+        "a mesh file name holding line breaks (and a shell command)",
+        "result: the name written escaped (`hull\\nrm -rf ~\\n`), one line, in every output",
+        lambda t: [
+            "force",
+            stl(t, NEWLINE_NAME, *wedge()),
+            *STATE,
+            "-o",
+            str(result_of(t)),
+        ],
+        check=escaped_table,
+        output=False,
+        read=read_text,
+    ),
+    Bad(
+        "report-markup",
+        "a case title and mesh name holding Markdown, HTML and line breaks (`report`)",
+        "result: each escaped in report.md (one heading line, table rows intact, no HTML); "
+        "case.toml reads back the same text",
+        lambda t: [
+            "report",
+            case_file(t, f"title = {json.dumps(TITLE)}\n", mesh=NEWLINE_NAME),
+            "-o",
+            str(result_of(t)),
+        ],
+        check=escaped_report,
+        output=False,
+        read=read_report,
+    ),
+    # -- no output replaces an input
+    Bad(
+        "run-output-is-the-case",
+        "`hullslice run C.toml -o C.toml` (or `output` naming the case itself)",
+        "error: cannot write '...': it is the input case file and would be overwritten",
+        lambda t: ["run", case_file(t), "-o", str(t / "case" / "c.toml")],
+        error="it is the input case file and would be overwritten",
+        output=False,
+    ),
+    Bad(
+        "output-is-a-solver-table",
+        "`-o` naming a table a solver option reads (`--solver-option table=T.csv -o T.csv`)",
+        "error: cannot write '...': it is the input solver option table file and would be "
+        "overwritten",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            *STATE,
+            "--solver",
+            "table",
+            "--solver-option",
+            f"table={table_csv(t)}",
+            "-o",
+            str(t / "accel.csv"),
+        ],
+        error="it is the input solver option table file and would be overwritten",
+        output=False,
+        plugins=("table",),
+    ),
+    Bad(
+        "solver-table-read",
+        "a solver option naming a table, with `-o` elsewhere",
+        "result: the table is read, and left as it was",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            *STATE,
+            "--solver",
+            "table",
+            "--solver-option",
+            f"table={table_csv(t)}",
+        ],
+        check=table_force,
+        plugins=("table",),
+    ),
+    Bad(
+        "output-link-to-input",
+        "`-o` naming a link to the input mesh",
+        "error: cannot write '...': it is the input mesh file and would be overwritten",
+        lambda t: [
+            "sections",
+            wedge_file(t),
+            "--draft",
+            "0.01",
+            "-o",
+            link_to_mesh(t),
+        ],
+        error="it is the input mesh file and would be overwritten",
+        output=False,
+    ),
+    Bad(
+        "report-overwrite-input-table",
+        "`report --overwrite` onto a folder that holds a table the case reads",
+        "error: report folder '...' holds the input '...', and the folder is written anew",
+        lambda t: [
+            "report",
+            case_reading_table(t),
+            "-o",
+            str(t),
+            "--overwrite",
+        ],
+        error="holds the input",
+        output=False,
+        plugins=("table",),
+    ),
+    Bad(
+        "stale-temp-file",
+        "a temporary file left by a run killed with SIGKILL (`.NAME.hullslice-PID-....tmp`)",
+        "result: removed by the next write to the same file (its process has ended)",
+        stale_temp,
+        check=same_force,
+    ),
+    # -- validity checks cannot be switched off
+    Bad(
+        "solver-option-nan",
+        "`--solver-option froude_min=NaN` (or `Infinity`, `1e999`)",
+        "error: 'froude_min=NaN': nan is not a finite number; give a finite value",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver-option", "froude_min=NaN"],
+        error="'froude_min=NaN': nan is not a finite number",
+    ),
+    Bad(
+        "solver-option-negative",
+        "`--solver-option froude_min=-1`, or NaN in a case's `[solver_options]`",
+        "error: solver '...' option froude_min=-1 is not a positive number: give one above 0",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver-option", "froude_min=-1"],
+        error="option froude_min=-1 is not a positive number: give one above 0 (default 6.5)",
+    ),
+    Bad(
+        "case-solver-option-nan",
+        "a case file with `froude_min = nan` in `[solver_options]`",
+        "error: key 'solver_options': froude_min = nan is not a finite number",
+        lambda t: ["run", case_file(t, "[solver_options]\nfroude_min = nan\n")],
+        error="key 'solver_options': froude_min = nan is not a finite number",
+    ),
+    Bad(
+        "solver-valid-nan",
+        "a solver returning `valid` as NaN",
+        "error: solver '...' failed: TypeError: SectionLoads.valid must be a boolean array",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "nan-valid"],
+        error="failed: TypeError: SectionLoads.valid must be a boolean array (True inside the "
+        "solver's range), not float64 values such as [nan]",
+        plugins=("nan-valid",),
+    ),
+    Bad(
+        "solver-valid-text",
+        "a solver returning `valid` as text",
+        "error: the same",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "text-valid"],
+        error="SectionLoads.valid must be a boolean array",
+        plugins=("text-valid",),
+    ),
+    # -- faulty plugins
+    Bad(
+        "solver-sys-exit",
+        "a solver that calls `sys.exit(0)` while it computes",
+        "error: solver '...' failed: it called sys.exit(0) (SystemExit), which a solver must "
+        "not do",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits"],
+        error="solver 'exits' (tests.fake_solvers:ExitingSolver, distribution fake-plugin 1.0) "
+        "failed: it called sys.exit(0) (SystemExit)",
+        plugins=("exits",),
+    ),
+    Bad(
+        "solver-system-exit-message",
+        "a solver raising `SystemExit('message')`",
+        "error: the same, quoting the message",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-with-message"],
+        error="failed: it called sys.exit('solver gave up') (SystemExit)",
+        plugins=("exits-with-message",),
+    ),
+    Bad(
+        "solver-exit-on-start",
+        "a solver that calls `sys.exit(3)` when it is built",
+        "error: solver '...' failed to start with options {}: it called sys.exit(3)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-on-start"],
+        error="failed to start with options {}: it called sys.exit(3) (SystemExit)",
+        plugins=("exits-on-start",),
+    ),
+    Bad(
+        "solver-hangs-ctrl-c",
+        "a solver that never returns, stopped with Ctrl-C (SIGINT)",
+        "stopped: 'hullslice: interrupted', exit status 130, no file written",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hangs"],
+        error="hullslice: interrupted",
+        plugins=("hangs",),
+        interrupt=signal.SIGINT,
+    ),
+    Bad(
+        "solver-hangs-kill",
+        "a solver that never returns, stopped with `kill PID` (SIGTERM)",
+        "stopped: 'hullslice: terminated', exit status 143, no file written",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hangs"],
+        error="hullslice: terminated",
+        plugins=("hangs",),
+        interrupt=signal.SIGTERM,
     ),
     # -- case files (library: hullslice.load_case)
     Bad(
@@ -860,9 +1197,21 @@ def kind(bad: Bad) -> str:
 # -- running it -------------------------------------------------------------------------------
 
 
-@pytest.fixture
-def nan_solver_installed(fake_entry_points):
-    fake_entry_points([DEFAULT, ep("nan", "tests.fake_solvers:NaNSolver")])
+#: The solvers of tests/fake_solvers.py that entries install, by name.
+FAKE_SOLVERS = {
+    "nan": "NaNSolver",
+    "nan-valid": "NaNValidSolver",
+    "text-valid": "TextValidSolver",
+    "exits": "ExitingSolver",
+    "exits-with-message": "ExitMessageSolver",
+    "exits-on-start": "ExitOnStartSolver",
+    "table": "TableSolver",
+    "hangs": "HangingSolver",
+}
+
+
+def fake_eps(names) -> list:
+    return [DEFAULT, *(ep(n, f"tests.fake_solvers:{FAKE_SOLVERS[n]}") for n in names)]
 
 
 @pytest.mark.parametrize("bad", CATALOGUE, ids=[b.id for b in CATALOGUE])
@@ -877,20 +1226,28 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
             bad.call(work)
         assert bad.error in str(info.value)
         return
-    if bad.id == "solver-nan":
-        request.getfixturevalue("nan_solver_installed")
+    if bad.plugins:
+        request.getfixturevalue("fake_entry_points")(fake_eps(bad.plugins))
     argv = bad.argv(work)
     if bad.output:
         argv += ["--format", "json", "-o", str(out)]
     before = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
 
-    code = main(argv)
-    stdout, stderr = capsys.readouterr()
+    if bad.interrupt:
+        code, stdout, stderr = run_interrupted(argv, bad.plugins, bad.interrupt, tmp_path)
+    else:
+        code = main(argv)
+        stdout, stderr = capsys.readouterr()
     lines = stderr.splitlines()
 
     assert "Traceback" not in stderr
     after = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
     assert after == before  # inputs untouched, nothing written beside them
+    if bad.interrupt:
+        assert code == 128 + bad.interrupt, stderr
+        assert lines == [bad.error] and stdout == ""
+        assert list(out_dir.iterdir()) == []
+        return
     if bad.error:
         assert code == 2, stderr
         assert len(lines) == 1, stderr
@@ -904,11 +1261,55 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert len(lines) == 2, stderr
         assert lines[0].startswith("hullslice: warning: ") and bad.warning in lines[0]
         expected.insert(0, lines[0])
+    if bad.read is not None:  # a report folder names its page
+        assert lines[-1].startswith(expected[-1]), stderr
+        expected[-1] = lines[-1]
     assert lines == expected
     assert [p.name for p in out_dir.iterdir()] == ["result.json"]
-    data = json.loads(out.read_text())
+    data = json.loads(out.read_text()) if bad.read is None else bad.read(out)
     assert bad.check is not None
     bad.check(data)
+
+
+def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
+    """Run the command line in a process of its own with the fake solvers ``plugins``, send
+    it ``sig`` once its solver has started, and return its status, stdout and stderr."""
+    started = tmp / "solver-started"
+    program = (
+        "import signal, sys\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal\n"
+        "from hullslice.solvers import registry\n"
+        "from tests.test_bad_input import fake_eps\n"
+        f"registry.entry_points = lambda group: fake_eps({list(plugins)!r})\n"
+        "registry.refresh()\n"
+        "from hullslice.cli import main\n"
+        "sys.exit(main(sys.argv[1:]))\n"
+    )
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]),
+        "HULLSLICE_TEST_HANGING": str(started),
+    }
+    proc = subprocess.Popen(
+        [sys.executable, "-c", program, *argv],
+        cwd=ROOT,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        deadline = time.monotonic() + 120
+        while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert started.exists(), proc.communicate(timeout=10)
+        proc.send_signal(sig)
+        stdout, stderr = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    return proc.returncode, stdout, stderr
 
 
 def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
@@ -938,6 +1339,47 @@ def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
         stderr.strip() == f"hullslice: error: cannot write {str(target)!r}: No space left on device"
     )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
+
+
+@pytest.mark.parametrize(
+    ("stop", "line", "status"),
+    [
+        (KeyboardInterrupt, "hullslice: interrupted", 130),
+        (Terminated, "hullslice: terminated", 143),
+    ],
+)
+def test_a_run_stopped_while_writing_leaves_no_file(
+    tmp_path, capsys, monkeypatch, stop, line, status
+):
+    # Ctrl-C or SIGTERM in the middle of the write: neither the target nor the temporary file
+    from hullslice import report
+
+    real_fdopen = report.os.fdopen
+
+    def fdopen(*args, **kw):
+        fh = real_fdopen(*args, **kw)
+
+        def write(data):
+            real_write(data[: len(data) // 2])
+            raise stop()
+
+        real_write, fh.write = fh.write, write
+        return fh
+
+    monkeypatch.setattr(report.os, "fdopen", fdopen)
+    target = tmp_path / "force.json"
+    code = main(["force", wedge_file(tmp_path), *STATE, "--format", "json", "-o", str(target)])
+    assert code == status
+    assert capsys.readouterr().err.splitlines() == [line]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
+
+
+def test_sigterm_raises_where_the_run_is(tmp_path):
+    # the handler main() installs turns SIGTERM into an exception in the main thread
+    with terminated_cleanly(), pytest.raises(Terminated):
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5)
+    assert signal.getsignal(signal.SIGTERM) is not _raise_terminated
 
 
 # -- the README's table ---------------------------------------------------------------------

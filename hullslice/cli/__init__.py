@@ -15,6 +15,7 @@ import warnings
 from collections.abc import Sequence
 
 from ..errors import HullsliceError, HullsliceWarning
+from ..safety import Terminated, terminated_cleanly
 from . import cmd_force, cmd_info, cmd_report, cmd_run, cmd_sections, cmd_simulate, cmd_solvers
 from .common import UsageError
 
@@ -57,7 +58,7 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
     debug = os.environ.get("HULLSLICE_DEBUG", "") not in ("", "0")
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), terminated_cleanly():
         warnings.showwarning = _show_warning
         # a repair or a doubtful unit is always shown, one line each, whatever the filters
         warnings.filterwarnings("always", category=HullsliceWarning)
@@ -74,9 +75,12 @@ def main(argv: Sequence[str] | None = None) -> int:
                 raise
             print(f"hullslice: error: {exc}", file=sys.stderr)
             return 2
-        except KeyboardInterrupt:
+        except KeyboardInterrupt:  # Ctrl-C: temporary files are gone, no output is half written
             print("hullslice: interrupted", file=sys.stderr)
             return 130
+        except Terminated:  # kill PID (SIGTERM): the same
+            print("hullslice: terminated", file=sys.stderr)
+            return 143
         except BrokenPipeError:
             return 0
         except OSError as exc:

@@ -10,6 +10,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import InputError
+from ..safety import check_options
 from ..sections import Sections
 from ..state import Fluid
 
@@ -40,6 +41,12 @@ class SectionLoads:
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # frozen: set once here, read-only arrays
+        valid = np.asarray(fields["valid"])
+        if valid.dtype != bool:  # NaN or "no" cast to bool is True: a check switched off
+            raise TypeError(
+                f"SectionLoads.valid must be a boolean array (True inside the solver's range), "
+                f"not {valid.dtype} values such as {valid.ravel()[:1].tolist()}"
+            )
         for name, dtype in (("force_per_metre", np.float64), ("valid", bool), ("reason", object)):
             a = np.asarray(fields[name], dtype=dtype)  # no copy when it is one already
             a.flags.writeable = False
@@ -85,6 +92,7 @@ class Solver(abc.ABC):
                 f"solver {self.name!r} has no option {', '.join(map(repr, unknown))}; "
                 f"its options: {known}"
             )
+        check_options(self.name or type(self).__name__, self.options, options)  # no NaN, ...
         self.settings = {**self.options, **options}
 
     @abc.abstractmethod

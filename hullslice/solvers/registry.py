@@ -26,6 +26,7 @@ from importlib.metadata import EntryPoint, entry_points
 from typing import Any, NoReturn
 
 from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
+from ..safety import failure
 from .base import Solver
 
 __all__ = [
@@ -127,8 +128,8 @@ class _Registry:
         ep = self.winners[name]
         try:
             obj = ep.load()
-        except Exception as exc:
-            msg = f"solver plugin {_describe(ep)} failed to load: {type(exc).__name__}: {exc}"
+        except (Exception, SystemExit) as exc:  # a plugin's sys.exit() does not end hullslice
+            msg = f"solver plugin {_describe(ep)} failed to load: {failure(exc)}"
             return self._broken(name, msg)
         if not (isinstance(obj, type) and issubclass(obj, Solver)):
             msg = (
@@ -260,9 +261,9 @@ def _build(cls: type[Solver], options: dict, who) -> Solver:
         return cls(**options)
     except HullsliceError:
         raise
-    except Exception as exc:
+    except (Exception, SystemExit) as exc:
         raise SolverError(
-            f"solver {who()} failed to start with options {options!r}: {type(exc).__name__}: {exc}"
+            f"solver {who()} failed to start with options {options!r}: {failure(exc)}"
         ) from exc
 
 
