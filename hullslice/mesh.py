@@ -21,6 +21,7 @@ import numpy as np
 
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
+from .integrity import check_sections_match_volume
 from .mass import MassDistribution
 from .paths import printable
 
@@ -935,6 +936,7 @@ def _checked_mesh(vertices, faces, name: str):
             )
     if manifold.volume() <= 0.0:
         raise MeshError(f"mesh {name!r} encloses no volume")
+    check_sections_match_volume(v, f, manifold, name)  # not passing through itself
     return v, f, manifold, repairs
 
 

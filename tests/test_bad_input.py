@@ -353,6 +353,23 @@ def case_reading_table(tmp: Path) -> str:
     return case_file(tmp, 'solver = "table"\n[solver_options]\ntable = "../accel.csv"\n')
 
 
+def corner_through_bottom():
+    # a 1 m box whose top corner (0.5, 0.5, 0.5) is pushed down through the bottom to z = -1
+    v, f = box()
+    v = v.copy()
+    v[np.flatnonzero((v == 0.5).all(axis=1))[0]] = [0.5, 0.5, -1.0]
+    return v, f
+
+
+def keel_through_deck():
+    # the wedge prism with the keel of its middle stations pushed up through the deck
+    v, f = wedge()
+    v = v.copy()
+    keel = (v[:, 2] < -0.01) & (v[:, 0] > 0.25) & (v[:, 0] < 0.75)
+    v[keel, 2] = 0.05
+    return v, f
+
+
 def stale_temp(tmp: Path) -> list[str]:
     # what a run killed with SIGKILL while writing leaves: a temporary file of a dead process
     out = result_of(tmp)
@@ -545,6 +562,23 @@ CATALOGUE: tuple[Bad, ...] = (
             "0.01",
         ],
         error="encloses no volume",
+    ),
+    Bad(
+        "self-intersecting-box",
+        "a box with a corner pushed through its bottom (closed and manifold, but passing "
+        "through itself)",
+        "error: mesh '...' intersects itself: at x = X m its section inside the contours is A1 "
+        "m^2 but its faces enclose A2 m^2 ...; the sections add up to R times the volume",
+        lambda t: ["force", stl(t, "corner.stl", *corner_through_bottom()), *STATE],
+        error="intersects itself: at x = 0.492253 m its section inside the contours is 0.49997 "
+        "m^2 but its faces enclose 0.250045 m^2",
+    ),
+    Bad(
+        "self-intersecting-wedge",
+        "a wedge prism whose keel is pushed through its deck",
+        "error: the same",
+        lambda t: ["force", stl(t, "keel.stl", *keel_through_deck()), *STATE],
+        error="intersects itself",
     ),
     # -- repaired with a warning
     Bad(
