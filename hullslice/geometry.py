@@ -48,7 +48,8 @@ class KeelLine:
     x : (k,) float
         Break points, increasing.
     z : (k,) float
-        Height of the lowest point of the body's section at each break point.
+        Height of the lowest point of the body's section at each break point; ``inf`` in a
+        gap between parts one behind the other.
     """
 
     x: np.ndarray
@@ -73,7 +74,9 @@ class KeelLine:
     def _facets(self) -> tuple[np.ndarray, np.ndarray]:
         facets = self.__dict__.get("_facet_cache")
         if facets is None:
-            facets = (0.5 * (self.x[1:] + self.x[:-1]), np.diff(self.z) / np.diff(self.x))
+            mid, slope = 0.5 * (self.x[1:] + self.x[:-1]), np.diff(self.z) / np.diff(self.x)
+            keep = np.isfinite(slope)  # not the facets into a gap between parts
+            facets = (mid[keep], slope[keep]) if keep.any() else (mid[:1], np.zeros(1))
             object.__setattr__(self, "_facet_cache", facets)
         return facets
 
@@ -375,6 +378,9 @@ def _lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
     mid = 0.5 * (xs[1:] + xs[:-1])
     zm = _envelope_at(a, b, mid)
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
+    # no segment over an interval: a gap between parts one behind the other, where the
+    # line is infinitely high (not a straight line from one part's keel to the next's)
+    lower |= np.isinf(zm)
     if lower.any():
         xs = np.concatenate([xs, mid[lower]])
         z = np.concatenate([z, zm[lower]])

@@ -370,6 +370,103 @@ def keel_through_deck():
     return v, f
 
 
+def obj_text(v, f) -> str:
+    rows = [f"v {x!r} {y!r} {z!r}" for x, y, z in np.asarray(v, dtype=float).tolist()]
+    return "\n".join(rows + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f]) + "\n"
+
+
+def far_open(tmp: Path) -> str:
+    # the wedge without one face, 1e6 m from the origin, in double precision: a merge whose
+    # distance grew with the coordinates would take every vertex for a copy of every other
+    v, f = wedge()
+    return text(tmp, "far.obj", obj_text(v + np.array([1e6, 0.0, 0.0]), f[1:]))
+
+
+def stray_vertex(tmp: Path) -> str:
+    # a closed fuselage plus one stray triangle 1e9 m away
+    v, f = shapes.fuselage(stations=40, points=24)
+    v = np.vstack([v, [[1e9, 0.0, 0.0], [1e9, 1.0, 0.0], [1e9, 0.0, 1.0]]])
+    f = np.vstack([f, [[len(v) - 3, len(v) - 2, len(v) - 1]]])
+    return stl(tmp, "stray.stl", v, f)
+
+
+def nose_hole(tmp: Path) -> str:
+    # the full-scale fuselage (128k faces) as an STL triangle soup without the two faces at
+    # its nose tip, where many vertices lie within 4 mm: merging them once closed the hole
+    v, f = shapes.fuselage(stations=400, points=160)
+    tip = int(np.argmax(v[f].mean(axis=1)[:, 0]))
+    nb = next(i for i in range(len(f)) if i != tip and len(set(f[i]) & set(f[tip])) == 2)
+    return stl(tmp, "hole.stl", v, np.delete(f, [tip, nb], axis=0))
+
+
+def continuation_obj(tmp: Path) -> str:
+    # 2 MB of backslash continuation lines: one statement, read in linear time and refused
+    return text(tmp, "cont.obj", TETRA_OBJ + "f 1 2 \\\n" + "3 \\\n" * 2**19)
+
+
+def tiny_far_shell():
+    # the wedge and a copy 1e4 times smaller 50 m behind it (well above the water)
+    v, f = wedge()
+    return join((v, f), (v * 1e-4 + np.array([50.0, 0.0, 0.0]), f))
+
+
+def wedge_force_of_total_mass(data: dict) -> None:
+    # the shell is dry: the wetted length is the wedge's, the force the wedge's (its mass
+    # per metre from the 10 kg over both volumes: 1e-12 of it is the shell's); the cut is
+    # made at the 50 m body's scale, in manifold3d's single precision: 50 times coarser
+    assert data["wetted_length"] == pytest.approx(1.0, rel=1e-9)
+    assert data["force"] == pytest.approx(wedge_force(), rel=1e-5)
+
+
+KINEMATICS = "t,penetration,velocity\n0,0,-5\n0.001,0.005,-5\n0.002,0.01,-5\n"
+
+
+def kinematics_rows(data: dict) -> None:
+    # the table read as written: three rows to the end, the peak at its last, 0.01 m deep
+    assert data["steps"] == 3 and data["stop_reason"] == "end of table"
+    assert data["peak"]["t"] == pytest.approx(0.002, abs=1e-15)
+    assert data["peak"]["penetration"] == pytest.approx(0.01, abs=1e-15)
+    assert data["peak"]["velocity"] == -5.0
+
+
+def simulate_kinematics(content: str | bytes) -> Callable[[Path], list[str]]:
+    return lambda t: ["simulate", wedge_file(t), "--mass", "10", "--kinematics",
+                      kinematics(t, content)]  # fmt: skip
+
+
+def secret_file(tmp: Path) -> str:
+    # a file that is not a table (a system file); its content must not be quoted
+    (tmp / "shadow").write_text("root:$6$s3cr3tHash:19000:0:99999:7:::\n")
+    path = Path(case_file(tmp))
+    path.write_text('mesh = "wedge.stl"\nmass = 10.0\nkinematics = "../shadow"\n')
+    return str(path)
+
+
+def deep_case(tmp: Path) -> str:
+    (tmp / "case").mkdir(exist_ok=True)
+    return text(tmp / "case", "deep.toml", "mesh = 'w.stl'\nmass = " + "[" * 5000 + "]" * 5000)
+
+
+def bom_case(tmp: Path) -> str:
+    path = Path(case_file(tmp))
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    return str(path)
+
+
+def output_to_device(tmp: Path) -> list[str]:
+    # the output path is a link to /dev/null: written through, the link kept
+    result_of(tmp).symlink_to(os.devnull)
+    return ["force", wedge_file(tmp), *STATE, "-o", str(result_of(tmp))]
+
+
+def read_link(out: Path) -> dict:
+    return {"link": out.is_symlink(), "target": os.readlink(out) if out.is_symlink() else ""}
+
+
+def still_a_link(data: dict) -> None:
+    assert data == {"link": True, "target": os.devnull}
+
+
 def stale_temp(tmp: Path) -> list[str]:
     # what a run killed with SIGKILL while writing leaves: a temporary file of a dead process
     out = result_of(tmp)
@@ -579,6 +676,166 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: the same",
         lambda t: ["force", stl(t, "keel.stl", *keel_through_deck()), *STATE],
         error="intersects itself",
+    ),
+    # -- memory and time stay in proportion to the file; a merge closes rounding, not holes
+    Bad(
+        "far-open-mesh",
+        "an open mesh 1e6 m from the origin",
+        "error: mesh '...' is open: 3 edges belong to a single face (memory as for any file: "
+        "the merge never takes more than 8 pairs a vertex)",
+        lambda t: ["sections", far_open(t), "--draft", "0.01"],
+        error="is open: 3 edges belong to a single face",
+    ),
+    Bad(
+        "stray-far-vertex",
+        "a closed mesh with one stray triangle 1e9 m away",
+        "error: the same: the stray triangle is open",
+        lambda t: ["sections", stray_vertex(t), "--draft", "0.1"],
+        error="is open: 3 edges belong to a single face",
+    ),
+    Bad(
+        "hole-at-the-nose",
+        "a real hole (two faces missing at a fuselage's nose tip, an STL soup)",
+        "error: mesh '...' is open: 4 edges belong to a single face (no merge closes a gap "
+        "larger than rounding: a merge that would collapse a face is not made)",
+        lambda t: ["sections", nose_hole(t), "--draft", "0.5"],
+        error="is open: 4 edges belong to a single face",
+    ),
+    Bad(
+        "obj-continuation-lines",
+        "an OBJ of 2 MB of backslash continuation lines (or one 2 MB line)",
+        "error: line N: a statement longer than 1 MiB (with its continuation lines); read in "
+        "linear time",
+        lambda t: ["sections", continuation_obj(t), "--draft", "0.1"],
+        error="a statement longer than 1 MiB (with its continuation lines)",
+    ),
+    Bad(
+        "obj-byte-order-mark",
+        "an OBJ starting with a byte-order mark",
+        "result: read as without it",
+        lambda t: ["sections", text(t, "bom.obj", "\ufeff" + TETRA_OBJ), "--draft", "1"],
+        check=tetra_sections,
+    ),
+    Bad(
+        "far-from-the-origin",
+        "a wedge at x = 1e12 m",
+        "error: mesh '...' lies 1e+12 m from the origin, N times its size: coordinates that "
+        "far out do not resolve the body; move the body near the origin",
+        lambda t: [
+            "sections",
+            stl(t, "far.stl", wedge()[0] + [1e12, 0, 0], wedge()[1]),
+            "--draft",
+            "0.01",
+        ],
+        error="lies 1e+12 m from the origin, 4.8e+12 times its size (0.208 m)",
+    ),
+    Bad(
+        "huge-prism",
+        "a prism 1e6 m long",
+        "result: cut as accurately as a metre-sized one",
+        lambda t: [
+            "sections",
+            stl(t, "long.stl", wedge()[0] * 1e6, wedge()[1]),
+            "--draft",
+            "3e4",
+            "--slices",
+            "4",
+        ],
+        check=scaled_sections(1e6),
+    ),
+    Bad(
+        "tiny-far-shell",
+        "a wedge and a tiny shell 50 m behind it",
+        "result: the wetted length is the wedge's (the keel line is not drawn across the gap)",
+        lambda t: ["force", stl(t, "shell.stl", *tiny_far_shell()), *STATE],
+        check=wedge_force_of_total_mass,
+    ),
+    # -- tables and case files in odd encodings or shapes
+    Bad(
+        "csv-latin-1",
+        "a kinematics CSV in Latin-1 (a `°` in a comment)",
+        "error: kinematics file '...' is not UTF-8 text (byte N): save it as CSV UTF-8",
+        simulate_kinematics(("# Winkel in \xb0\n" + KINEMATICS).encode("latin-1")),
+        error="is not UTF-8 text (byte 12): save it as CSV UTF-8",
+    ),
+    Bad(
+        "csv-utf-16",
+        "a kinematics CSV in UTF-16 with its byte-order mark (a spreadsheet's Unicode text)",
+        "result: read as written",
+        simulate_kinematics(KINEMATICS.encode("utf-16")),
+        check=kinematics_rows,
+    ),
+    Bad(
+        "csv-byte-order-mark",
+        "a kinematics CSV starting with a UTF-8 byte-order mark",
+        "result: read as written (the first column is `t`)",
+        simulate_kinematics(b"\xef\xbb\xbf" + KINEMATICS.encode()),
+        check=kinematics_rows,
+    ),
+    Bad(
+        "csv-overflow",
+        "a mass distribution with values of 1e308 (or `1e999`, `inf` in any table)",
+        "error: mass distribution: its total mass or moment overflows (inf kg)",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            "--mass-distribution",
+            text(t, "m.csv", "x,mass_per_metre\n0,10\n1e308,10\n"),
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+            "--slices",
+            "8",
+        ],
+        error="its total mass or moment overflows (inf kg)",
+    ),
+    Bad(
+        "csv-line-numbers",
+        "a bad row after comment lines",
+        "error: ... line N: 'x' in the column penetration is not a number (N counts every "
+        "line of the file)",
+        simulate_kinematics("# kinematics\n# from CFD\n" + KINEMATICS + "0.003,x,-5\n"),
+        error="line 7: 'x' in the column penetration is not a number",
+    ),
+    Bad(
+        "case-path-to-system-file",
+        "a case whose `kinematics` names a file that is not a table (`/etc/shadow`)",
+        "error: kinematics file '...' lacks the column(s) ... (its first line is not a header "
+        "of column names); nothing of the file is quoted",
+        lambda t: ["run", secret_file(t)],
+        error="lacks the column(s) t, penetration, velocity (its first line is not a header "
+        "of column names)",
+    ),
+    Bad(
+        "case-deeply-nested",
+        "a case file nested 5000 deep",
+        "error: case file '...' nests tables or lists too deeply to be a case",
+        lambda t: ["run", deep_case(t)],
+        error="nests tables or lists too deeply to be a case",
+    ),
+    Bad(
+        "case-byte-order-mark",
+        "a case file starting with a byte-order mark",
+        "result: read as without it",
+        lambda t: ["run", bom_case(t)],
+        check=same_force,
+    ),
+    Bad(
+        "plot-not-a-figure",
+        "`--plot out.txt` (or `.csv`)",
+        "error: cannot write '...' (--plot): a figure is drawn as PNG, SVG, PDF by the file's "
+        "extension; checked before any work",
+        lambda t: ["force", wedge_file(t), *STATE, "--plot", str(t / "out.txt")],
+        error="(--plot): a figure is drawn as PNG, SVG, PDF by the file's extension",
+    ),
+    Bad(
+        "output-link-to-device",
+        "`-o` onto a device, or a link to one (`/dev/null`)",
+        "result: written through; the device or link stays as it was",
+        output_to_device,
+        check=still_a_link,
+        output=False,
+        read=read_link,
     ),
     # -- repaired with a warning
     Bad(

@@ -248,7 +248,7 @@ def test_curves_with_the_closed_form_table_are_the_analytic_solvers(pile_up, ana
         ({"table": str(PAPER_CURVES_CSV), "a_coeffs": [0.0]}, "not both"),
         ({"table": "no/such/curves.csv"}, "'no/such/curves.csv' does not exist"),
         ({"table": str(PAPER_CURVES_CSV), "pile_up": "wagnr"}, "pile-up law 'wagnr'"),
-        ({"table": str(PAPER_CURVES_CSV), "rho": -1025}, "-1025 kg/m^3 is not positive"),
+        ({"table": str(PAPER_CURVES_CSV), "rho": -1025}, "rho=-1025 is not a positive number"),
         ({"table": str(PAPER_CURVES_CSV), "froude_mn": 5}, "no option 'froude_mn'"),
         # columns swapped: v~ read as a~ and the other way round
         ({"table": [[-0.02, 0.8, 15.0], [0.0, 1.0, -0.35]]}, "v~ = -0.35 at z~ = 0"),

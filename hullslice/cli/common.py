@@ -15,7 +15,7 @@ from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
-from ..paths import check_not_an_input, run_inputs
+from ..paths import check_not_an_input, printable, run_inputs
 from ..report import csv_text, json_text, write_atomic
 from ..safety import non_finite
 from ..solvers.base import Solver
@@ -23,6 +23,9 @@ from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
 
 FORMATS = ("table", "json", "csv")
+
+#: Extensions of the figure files ``--plot`` draws.
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
 
 
 class UsageError(Exception):
@@ -405,6 +408,12 @@ def check_path(out: str, args: argparse.Namespace, option: str = "--output") -> 
         raise InputError(
             f"cannot write {out!r} ({option}): the folder {str(target.parent)!r} does not "
             "exist; create it first"
+        )
+    if option == "--plot" and target.suffix.lower() not in FIGURE_FORMATS:
+        raise InputError(
+            f"cannot write {printable(out)!r} (--plot): a figure is drawn as "
+            f"{', '.join(f[1:].upper() for f in FIGURE_FORMATS)} by the file's extension; "
+            "name it .png"
         )
     check_not_an_input(out, run_inputs(args), option)
 
