@@ -3,8 +3,9 @@
 Each entry runs ``hullslice.cli.main`` in-process, with ``--format json -o OUT`` where the
 command takes it:
 
-- an **error** exits with status 2 and writes exactly one line on stderr, naming the
-  problem, with no traceback; no output file (nor a temporary one) is left behind;
+- an **error** exits with status 2 (a command line that does not parse) or 3 (inputs that
+  are refused) and writes exactly one line on stderr, naming the problem, with no
+  traceback; no output file (nor a temporary one) is left behind;
 - a **repair** exits with status 0, shows its warning as one line on stderr, and writes a
   complete result that is checked against a reference (the clean body, a closed form);
 - a **result** is a run that works although the input looks odd, checked the same way.
@@ -19,6 +20,7 @@ from __future__ import annotations
 import functools
 import json
 import os
+import re
 import signal
 import struct
 import subprocess
@@ -42,6 +44,9 @@ from .test_mesh_files import TETRA_OBJ, ascii_stl
 from .test_registry import DEFAULT, ep
 
 ROOT = Path(__file__).resolve().parents[1]
+
+#: The error line of a command line that does not parse: ``hullslice COMMAND: error: ...``.
+USAGE = re.compile(r"hullslice [a-z]+: error: ")
 
 # the standard case: a 1 m prism of 30-degree wedge section, 0.2 m beam, 10 kg
 MASS, DRAFT, VELOCITY, SLICES = 10.0, 0.03, -5.0, 8
@@ -240,6 +245,9 @@ class Bad:
         Solvers of ``tests/fake_solvers.py`` installed for the run, by name.
     read : callable, optional
         ``read(out)``: the result at the output path for ``check`` (default: its JSON).
+    status : int
+        Exit status of an error: 2 for a command line that does not parse (usage), 3 for
+        inputs that parse and are refused.
     interrupt : int
         A signal sent to the run (in a process of its own) once its solver has started:
         the run must end with status 128 + the signal, one line, and no file.
@@ -257,6 +265,7 @@ class Bad:
     plugins: tuple[str, ...] = ()
     read: Callable[[Path], dict] | None = None
     interrupt: int = 0
+    status: int = 3
 
 
 def wedge_file(tmp: Path) -> str:
@@ -941,6 +950,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: invalid choice: 'yd' (choose from m, cm, mm, in, ft)",
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--units", "yd"],
         error="invalid choice: 'yd'",
+        status=2,
     ),
     Bad(
         "tiny",
@@ -1073,6 +1083,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: argument --slices: '0' is not positive (give 1 or more)",
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--slices", "0"],
         error="'0' is not positive (give 1 or more)",
+        status=2,
     ),
     Bad(
         "slices-negative",
@@ -1080,6 +1091,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: the same",
         lambda t: ["force", wedge_file(t), *STATE, "--slices=-8"],
         error="'-8' is not positive (give 1 or more)",
+        status=2,
     ),
     Bad(
         "slices-not-whole",
@@ -1087,6 +1099,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: '1e3' is not a whole number",
         lambda t: ["force", wedge_file(t), *STATE, "--slices", "16,1e3"],
         error="'1e3' is not a whole number",
+        status=2,
     ),
     Bad(
         "slices-too-many",
@@ -1239,6 +1252,15 @@ CATALOGUE: tuple[Bad, ...] = (
         error="it is the input mesh file and would be overwritten",
         output=False,
     ),
+    Bad(
+        "usage",
+        "a command line that does not parse (`hullslice force MESH` without its state)",
+        "error, exit status 2: hullslice force: error: the following arguments are required: "
+        "--draft, --velocity",
+        lambda t: ["force", wedge_file(t), "--mass", "10"],
+        error="the following arguments are required: --draft, --velocity",
+        status=2,
+    ),
     # -- where a run writes: a case file only inside its folder, names escaped
     Bad(
         "case-output-outside",
@@ -1385,6 +1407,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: 'froude_min=NaN': nan is not a finite number; give a finite value",
         lambda t: ["force", wedge_file(t), *STATE, "--solver-option", "froude_min=NaN"],
         error="'froude_min=NaN': nan is not a finite number",
+        status=2,
     ),
     Bad(
         "solver-option-negative",
@@ -1540,7 +1563,9 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert list(out_dir.iterdir()) == []
         return
     if bad.error:
-        assert code == 2, stderr
+        assert code == bad.status, stderr
+        # a usage error names the command, as argparse does; a refused input does not
+        assert bool(USAGE.match(stderr)) == (bad.status == 2), stderr
         assert len(lines) == 1, stderr
         assert "error:" in lines[0] and bad.error in lines[0]
         assert stdout == ""
@@ -1625,7 +1650,7 @@ def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
     target = tmp_path / "force.json"
     code = main(["force", wedge_file(tmp_path), *STATE, "--format", "json", "-o", str(target)])
     _, stderr = capsys.readouterr()
-    assert code == 2
+    assert code == 3
     assert (
         stderr.strip() == f"hullslice: error: cannot write {str(target)!r}: No space left on device"
     )

@@ -29,7 +29,7 @@ FIGURE_FORMATS = (".png", ".svg", ".pdf")
 
 
 class UsageError(Exception):
-    """A command-line usage error (one line, exit status 2)."""
+    """A command-line usage error (one line, exit status 2, as argparse's own)."""
 
 
 def positive_int(text: str) -> int:
