@@ -1730,6 +1730,24 @@ def test_the_catalogue_covers_the_issue_list():
         "absurd-count",
     }  # fmt: skip
     assert issue <= ids
+    # hostile inputs: writes outside a case's folder, lost inputs, silent wrong loads,
+    # memory, checks switched off, faulty plugins, and the smaller ones
+    hostile = {
+        "case-output-outside", "case-output-absolute", "case-output-through-link",
+        "mesh-name-newline", "report-markup", "run-output-is-the-case",
+        "output-is-a-solver-table", "output-link-to-input", "report-overwrite-input-table",
+        "self-intersecting-box", "self-intersecting-wedge", "far-open-mesh",
+        "stray-far-vertex", "obj-continuation-lines", "solver-option-nan",
+        "solver-option-negative", "case-solver-option-nan", "solver-valid-nan",
+        "solver-valid-text", "solver-sys-exit", "solver-system-exit-message",
+        "solver-exit-on-start", "solver-hangs-ctrl-c", "solver-hangs-kill",
+        "output-link-to-device", "stale-temp-file", "csv-latin-1", "csv-utf-16",
+        "csv-byte-order-mark", "csv-overflow", "csv-line-numbers", "plot-not-a-figure",
+        "case-deeply-nested", "case-path-to-system-file", "huge-prism", "tiny-far-shell",
+        "far-from-the-origin", "obj-byte-order-mark", "case-byte-order-mark",
+        "hole-at-the-nose", "usage",
+    }  # fmt: skip
+    assert hostile <= ids
     assert len(ids) == len(CATALOGUE)
     assert {kind(b) for b in CATALOGUE} == {"error", "repair", "result"}
 

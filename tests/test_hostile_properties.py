@@ -80,7 +80,7 @@ def self_intersecting(draw):
 @settings(max_examples=40)
 @given(body=self_intersecting())
 def test_no_self_intersecting_body_passes(body):
-    v, f, what = body
+    v, f, _ = body
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # an inside-out repair may come first
         with pytest.raises(hs.MeshError, match="intersects itself"):
