@@ -1468,6 +1468,15 @@ CATALOGUE: tuple[Bad, ...] = (
         plugins=("exits-on-start",),
     ),
     Bad(
+        "solver-exit-on-import",
+        "a solver plugin whose module calls `sys.exit(0)` when it is imported",
+        "error: solver plugin '...' failed to load: it called sys.exit(0) (SystemExit); "
+        "`hullslice solvers` lists it as broken",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-on-import"],
+        error="failed to load: it called sys.exit(0) (SystemExit)",
+        plugins=("exits-on-import",),
+    ),
+    Bad(
         "solver-hangs-ctrl-c",
         "a solver that never returns, stopped with Ctrl-C (SIGINT)",
         "stopped: 'hullslice: interrupted', exit status 130, no file written",
@@ -1525,7 +1534,15 @@ FAKE_SOLVERS = {
 
 
 def fake_eps(names) -> list:
-    return [DEFAULT, *(ep(n, f"tests.fake_solvers:{FAKE_SOLVERS[n]}") for n in names)]
+    return [
+        DEFAULT,
+        *(
+            ep(n, "tests.fake_exit_on_import:Solver")
+            if n == "exits-on-import"
+            else ep(n, f"tests.fake_solvers:{FAKE_SOLVERS[n]}")
+            for n in names
+        ),
+    ]
 
 
 @pytest.mark.parametrize("bad", CATALOGUE, ids=[b.id for b in CATALOGUE])
