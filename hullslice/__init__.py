@@ -36,15 +36,19 @@ from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
+    AddedMass,
     CharacteristicCurves,
     CurveSolver,
+    FreeFallMomentumSolver,
+    MomentumFormSolver,
     MomentumSolver,
     SectionLoads,
     Solver,
+    SolverBase,
     get_solver,
     list_solvers,
 )
-from .state import Fluid, Motion, Pose
+from .state import Acceleration, Fluid, Motion, Pose
 
 try:
     __version__ = version("hullslice")
@@ -56,6 +60,8 @@ __all__ = [
     "RHO_WATER",
     "STOP_RULES",
     "TOL",
+    "Acceleration",
+    "AddedMass",
     "CaseError",
     "CharacteristicCurves",
     "ConvergenceStudy",
@@ -63,6 +69,7 @@ __all__ = [
     "Fluid",
     "ForceModel",
     "ForceResult",
+    "FreeFallMomentumSolver",
     "G",
     "History",
     "Hull",
@@ -72,6 +79,7 @@ __all__ = [
     "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
+    "MomentumFormSolver",
     "MomentumSolver",
     "Motion",
     "PluginError",
@@ -81,6 +89,7 @@ __all__ = [
     "SectionLoads",
     "Sections",
     "Solver",
+    "SolverBase",
     "SolverError",
     "UnitsWarning",
     "UnknownSolverError",
