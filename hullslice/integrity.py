@@ -56,16 +56,16 @@ def signed_section_areas(v: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndar
         area for a body that does not intersect itself), from the segments where the faces
         cross the plane. A vertex on the plane counts as below it, for every face alike.
     """
-    tri = v[f]  # (m, 3, 3)
-    tx = tri[:, :, 0]
+    tx = v[:, 0][f]  # (m, 3): only the faces a plane crosses are gathered whole
     lo, hi = tx.min(axis=1), tx.max(axis=1)
-    normal = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
+    del tx
     out = np.zeros(len(x))
     for k, h in enumerate(np.asarray(x, dtype=np.float64)):
         cross = np.flatnonzero((lo <= h) & (hi > h))
         if len(cross) == 0:
             continue
-        t = tri[cross]
+        t = v[f[cross]]
+        normal = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])
         above = t[:, :, 0] > h
         pts = np.zeros((len(cross), 2, 2))
         found = np.zeros(len(cross), dtype=np.int64)
@@ -82,7 +82,7 @@ def signed_section_areas(v: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndar
             found[rows] += 1
         ok = found == 2
         p, q = pts[ok, 0], pts[ok, 1]
-        n = normal[cross[ok]]
+        n = normal[ok]
         # counter-clockwise in (y, z) seen from +x: along (-n_z, n_y), the outward normal
         # turned a quarter turn
         d = q - p
