@@ -188,7 +188,10 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
     if target.is_symlink():
         target = Path(os.path.realpath(target))
     if target.exists() and not target.is_file() and not target.is_dir():
-        with open(target, "wb" if isinstance(data, bytes) else "w") as fh:
+        binary = isinstance(data, bytes)
+        with open(
+            target, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8"})
+        ) as fh:
             fh.write(data)
         return Path(path)
     parent = target.parent if str(target.parent) else Path(".")
