@@ -34,6 +34,8 @@ from typing import Any
 
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
+from .paths import WRITTEN_KEYS, confined, printable, toml_string
+from .safety import non_finite
 from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
 __all__ = [
@@ -290,9 +292,18 @@ def validate_case(
             if why:
                 unit = f" {key.unit}" if key.unit else ""
                 raise CaseError(f"{where}key {name!r} ({key.help}) {why}: {value!r}{unit}")
-        if key.kind == "path":
+        if key.kind == "path" and name in WRITTEN_KEYS and base is not None:
+            value = confined(value, Path(base), name, where)  # a case writes in its folder
+        elif key.kind == "path":
             value = Path(os.path.normpath(Path(base, value))) if base is not None else Path(value)
-        elif name == "solver_options" and base is not None:
+        if name == "solver_options":
+            for k, v in value.items():
+                if non_finite(v) is not None:  # NaN passes no comparison: a check switched off
+                    raise CaseError(
+                        f"{where}key 'solver_options': {k} = {non_finite(v)!r} is not a finite "
+                        "number; give a finite value"
+                    )
+        if name == "solver_options" and base is not None:
             # a solver's file (a curve table) is named relative to the case, like the mesh
             value = {
                 k: (
@@ -341,7 +352,7 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
         :func:`validate_case`.
     """
     p = Path(path)
-    name = str(p)
+    name = printable(p)
     if not p.exists():
         raise CaseError(f"case file {name!r} does not exist")
     if not p.is_file():
@@ -352,16 +363,21 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
             "few lines of TOML"
         )
     try:
-        text = p.read_bytes().decode("utf-8")
+        text = p.read_bytes().decode("utf-8-sig")  # an editor may write a byte-order mark
     except UnicodeDecodeError as exc:
         raise CaseError(f"case file {name!r} is not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
         raise CaseError(f"case file {name!r} cannot be read: {exc.strerror or exc}") from None
     try:
         data = tomllib.loads(text)
+        return validate_case(data, base=p.parent, source=name)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"case file {name!r} is not valid TOML: {exc}") from None
-    return validate_case(data, base=p.parent, source=name)
+    except RecursionError:
+        raise CaseError(
+            f"case file {name!r} nests tables or lists too deeply to be a case: a case is "
+            "flat keys and one [solver_options] table"
+        ) from None
 
 
 _COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output"}
@@ -477,7 +493,7 @@ def _toml_value(value: Any) -> str:
         text = repr(value)
         return text if any(c in text for c in ".en") else text + ".0"
     if isinstance(value, str | Path):
-        return json.dumps(str(value))  # a TOML basic string is a JSON string
+        return toml_string(value)
     if isinstance(value, list | tuple):
         return "[" + ", ".join(_toml_value(v) for v in value) + "]"
     raise CaseError(f"case: a value of type {type(value).__name__} cannot be written")
@@ -487,13 +503,14 @@ def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
     """Write a case to a TOML file, completely or not at all.
 
     Paths are written relative to the file's folder, so that the case can be moved with its
-    files; ``solver_options`` becomes a table at the end.
+    files; ``solver_options`` becomes a table at the end. An ``output`` or ``plot`` outside
+    the folder is left out (a comment says so): a case file writes only inside its folder.
     """
     from .report import write_atomic
 
     target = Path(path)
     folder = target.resolve().parent
-    lines = ["# hullslice case file: run it with 'hullslice run " + target.name + "'"]
+    lines = ["# hullslice case file: run it with 'hullslice run " + printable(target.name) + "'"]
     table = None
     for name, value in case.items():
         if name not in SCHEMA:
@@ -503,12 +520,17 @@ def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
             continue
         if isinstance(value, Path):
             value = Path(os.path.relpath(value.resolve(), folder)).as_posix()
+            if name in WRITTEN_KEYS and (value == ".." or value.startswith("../")):
+                lines.append(
+                    f"# {name} left out: it is outside this folder (give it on the command line)"
+                )
+                continue
         key = SCHEMA[name]
         unit = f" [{key.unit}]" if key.unit else ""
         lines.append(f"{name} = {_toml_value(value)}  # {key.help}{unit}")
     if table:
         lines.append("")
         lines.append("[solver_options]")
-        lines += [f"{json.dumps(str(k))} = {_toml_value(v)}" for k, v in table.items()]
+        lines += [f"{toml_string(k)} = {_toml_value(v)}" for k, v in table.items()]
     validate_case(tomllib.loads("\n".join(lines)))  # what is written reads back
     return write_atomic(target, "\n".join(lines) + "\n")

@@ -55,6 +55,7 @@ import numpy as np
 from .convergence import Richardson, richardson
 from .errors import HullsliceError, InputError, SolverError
 from .mesh import Hull
+from .safety import failure
 from .sections import Sections, _as_pose, _slice_count, cut
 from .solvers.base import (
     FREE_FALL,
@@ -279,8 +280,8 @@ def _call(solver: SolverBase, method, sections: Sections, velocity, fluid: Fluid
             return method(sections, velocity, fluid)
     except HullsliceError:
         raise
-    except (Exception, SystemExit) as exc:
-        raise SolverError(f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}") from exc
+    except (Exception, SystemExit) as exc:  # a plugin's sys.exit() does not end hullslice
+        raise SolverError(f"solver {describe(solver)} failed: {failure(exc)}") from exc
 
 
 def _flag(valid: np.ndarray, reason: np.ndarray, masks) -> None:

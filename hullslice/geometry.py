@@ -53,7 +53,8 @@ class KeelLine:
     x : (k,) float
         Break points, increasing.
     z : (k,) float
-        Height of the lowest point of the body's section at each break point.
+        Height of the lowest point of the body's section at each break point; ``inf`` in a
+        gap between parts one behind the other.
     """
 
     x: np.ndarray
@@ -125,19 +126,25 @@ class KeelLine:
         bow or tail), whose slopes do not blend into the bottom's."""
         facets = self.__dict__.get("_facet_cache")
         if facets is None:
-            mid = 0.5 * (self.x[1:] + self.x[:-1])
-            slopes = np.diff(self.z) / np.diff(self.x)
-            steep = np.abs(slopes) > END_FACE_SLOPE
-            lo, hi = 0, len(slopes)
-            while lo < hi - 1 and steep[lo]:
-                lo += 1
-            while hi - 1 > lo and steep[hi - 1]:
-                hi -= 1
-            facets = (mid[lo:hi], slopes[lo:hi])
-            ends = (
-                (float(self.x[lo]), float(self.x[hi])),
-                ((mid[:lo], slopes[:lo]), (mid[hi:], slopes[hi:])),
-            )
+            mid, slopes = 0.5 * (self.x[1:] + self.x[:-1]), np.diff(self.z) / np.diff(self.x)
+            idx = np.flatnonzero(np.isfinite(slopes))  # not the facets into a gap between parts
+            if not len(idx):
+                facets = (mid[:1], np.zeros(1))
+                empty = (np.empty(0), np.empty(0))
+                ends = ((float(self.x[0]), float(self.x[-1])), (empty, empty))
+            else:
+                mid, slopes = mid[idx], slopes[idx]
+                steep = np.abs(slopes) > END_FACE_SLOPE
+                lo, hi = 0, len(slopes)
+                while lo < hi - 1 and steep[lo]:
+                    lo += 1
+                while hi - 1 > lo and steep[hi - 1]:
+                    hi -= 1
+                facets = (mid[lo:hi], slopes[lo:hi])
+                ends = (
+                    (float(self.x[idx[lo]]), float(self.x[idx[hi - 1] + 1])),
+                    ((mid[:lo], slopes[:lo]), (mid[hi:], slopes[hi:])),
+                )
             object.__setattr__(self, "_facet_cache", facets)
             object.__setattr__(self, "_end_cache", ends)
         return facets
@@ -447,6 +454,9 @@ def _lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
     mid = 0.5 * (xs[1:] + xs[:-1])
     zm = _envelope_at(a, b, mid)
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
+    # no segment over an interval: a gap between parts one behind the other, where the
+    # line is infinitely high (not a straight line from one part's keel to the next's)
+    lower |= np.isinf(zm)
     if lower.any():
         xs = np.concatenate([xs, mid[lower]])
         z = np.concatenate([z, zm[lower]])

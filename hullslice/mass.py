@@ -11,14 +11,14 @@ are applied.
 
 from __future__ import annotations
 
-import csv
 import os
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 
 from .errors import CaseError, InputError
+from .paths import printable
+from .tables import column_values, header_text, read_csv
 
 __all__ = ["MassDistribution", "read_mass_distribution"]
 
@@ -76,7 +76,15 @@ class MassDistribution:
         object.__setattr__(self, "x", _ro(x))
         object.__setattr__(self, "mass_per_metre", _ro(m))
         object.__setattr__(self, "points", _ro(pts))
-        if self.total <= 0:
+        with np.errstate(over="ignore", invalid="ignore"):
+            total, moment = self.total, _moment1(x, m) if len(x) else 0.0
+            moment += float((pts[:, 0] * pts[:, 2]).sum())
+        if not (np.isfinite(total) and np.isfinite(moment)):
+            raise InputError(
+                f"mass distribution: its total mass or moment overflows ({total:.3g} kg): "
+                "values near 1e308 are not masses in kg and stations in m"
+            )
+        if total <= 0:
             raise InputError("mass distribution: the total mass is zero")
 
     @property
@@ -183,30 +191,14 @@ def read_mass_distribution(path: str | os.PathLike) -> MassDistribution:
     -------
     MassDistribution
     """
-    p = Path(path)
-    if not p.is_file():
-        raise CaseError(f"mass distribution file {str(p)!r} does not exist")
-    with open(p, newline="", encoding="utf-8") as fh:
-        lines = [ln for ln in fh if ln.strip() and not ln.lstrip().startswith("#")]
-    if not lines:
-        raise CaseError(f"mass distribution file {str(p)!r} is empty")
-    reader = csv.reader(lines)
-    header = [h.strip().lower() for h in next(reader)]
-    rows = []
-    for lineno, row in enumerate(reader, start=2):
-        try:
-            rows.append([float(v) for v in row])
-        except ValueError:
-            raise CaseError(
-                f"mass distribution file {str(p)!r} line {lineno}: {','.join(row)!r} is not "
-                "all numbers"
-            ) from None
+    header, rows = read_csv(path, "mass distribution")
+    where = f"mass distribution file {printable(path)!r}"
+    for lineno, row in rows:
         if len(row) != len(header):
             raise CaseError(
-                f"mass distribution file {str(p)!r} line {lineno} has {len(row)} values for "
-                f"{len(header)} columns"
+                f"{where} line {lineno} has {len(row)} values for {len(header)} columns"
             )
-    data = np.array(rows, dtype=np.float64).reshape(-1, len(header))
+    data = column_values(rows, range(len(header)), header, where)
     col = {h: data[:, i] for i, h in enumerate(header)}
     try:
         if "mass_per_metre" in col and "x" in col:
@@ -216,8 +208,8 @@ def read_mass_distribution(path: str | os.PathLike) -> MassDistribution:
             pts = np.stack([col["x"], col["z"], col["mass"], length], axis=1)
             return MassDistribution(points=pts)
     except InputError as exc:
-        raise CaseError(f"mass distribution file {str(p)!r}: {exc}") from None
+        raise CaseError(f"{where}: {exc}") from None
     raise CaseError(
-        f"mass distribution file {str(p)!r} has columns {', '.join(header)}; it needs "
+        f"{where} has no columns it can use ({header_text(header)}); it needs "
         "x,mass_per_metre (a line density) or x,z,mass[,length] (point masses)"
     )

@@ -21,7 +21,9 @@ import numpy as np
 
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
+from .integrity import check_sections_match_volume
 from .mass import MassDistribution
+from .paths import printable
 
 __all__ = ["SUPPORTED_FORMATS", "Hull", "axis_matrix", "load_hull"]
 
@@ -143,7 +145,7 @@ class Hull:
         self._vertices = _readonly(v)
         self._faces = _readonly(f)
         self._manifold = manifold
-        self.name = str(name)
+        self.name = printable(name)  # one line of visible text, whatever the file was called
         src = dict(source or {})
         src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
         self.source = src
@@ -575,6 +577,11 @@ class _FormatError(ValueError):
 _STL_HEAD = 84
 _STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
 
+#: Longest OBJ statement read, in bytes (with its continuation lines): a vertex or a face
+#: of a few thousand corners is far shorter; a longer one is not geometry, and reading it
+#: whole would cost memory out of proportion.
+_MAX_OBJ_LINE = 1024**2
+
 #: Largest vertex index an OBJ face may hold (more vertices than any file can hold).
 _MAX_INDEX = 2**40
 
@@ -662,15 +669,28 @@ def _read_obj(fh, size: int) -> tuple[np.ndarray, np.ndarray]:
     verts = array("d")
     tris = array("q")
     tri_lines = array("q")
-    pending = ""
-    for lineno, raw in enumerate(fh, start=1):
+    pending: list[str] = []  # the pieces of a statement continued over several lines
+    pending_bytes = 0
+    lines = iter(lambda: fh.readline(_MAX_OBJ_LINE + 1), b"")
+    for lineno, raw in enumerate(lines, start=1):
         if b"\0" in raw:
             raise _FormatError(f"line {lineno} holds binary data; an OBJ is a text file")
-        line = pending + raw.decode("utf-8", errors="replace").rstrip("\r\n")
+        pending_bytes += len(raw)
+        if pending_bytes > _MAX_OBJ_LINE:
+            raise _FormatError(
+                f"line {lineno}: a statement longer than {_MAX_OBJ_LINE // 1024**2} MiB (with "
+                "its continuation lines); an OBJ statement is a vertex or a face"
+            )
+        if lineno == 1 and raw.startswith(b"\xef\xbb\xbf"):  # a UTF-8 byte-order mark
+            raw = raw[3:]
+        line = raw.decode("utf-8", errors="replace").rstrip("\r\n")
         if line.endswith("\\"):  # continued on the next line
-            pending = line[:-1] + " "
+            pending.append(line[:-1])
             continue
-        pending = ""
+        if pending:
+            line = " ".join([*pending, line])  # joined once: linear in the statement's length
+            pending.clear()
+        pending_bytes = 0
         parts = line.split("#", 1)[0].split()
         if not parts:
             continue
@@ -782,13 +802,33 @@ def _unique_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return v[first], inverse.reshape(-1)
 
 
-def _merge_close(v: np.ndarray, f: np.ndarray, tol: float) -> tuple[np.ndarray, np.ndarray, int]:
-    """Merge vertices closer than ``tol``; returns new arrays and the number merged."""
+#: Farthest a mesh may lie from the origin, in multiples of its size: beyond, its coordinates
+#: keep fewer than 10 significant digits of the body in double precision, and manifold3d's
+#: tolerances, relative to the coordinates, merge its features.
+_MAX_OFFSET = 1e6
+
+#: Most pairs of vertices closer than the merge distance, per vertex, for the merge to be of
+#: copies of vertices (a cone's tip written once per face makes many): more, and the
+#: distance is not rounding but the mesh's own spacing (and the pairs would fill memory).
+_MAX_MERGE_PAIRS = 8
+
+
+def _merge_close(
+    v: np.ndarray, f: np.ndarray, tol: float
+) -> tuple[np.ndarray, np.ndarray, int] | None:
+    """Merge vertices closer than ``tol``; returns new arrays and the number merged, or
+    None when the vertices within ``tol`` of one another are not copies of a vertex: more
+    pairs than :data:`_MAX_MERGE_PAIRS` per vertex (counted before any is listed, so that
+    memory stays in proportion to the mesh), or a face with two corners among them."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
 
-    pairs = cKDTree(v).query_pairs(tol, output_type="ndarray")
+    tree = cKDTree(v)
+    n_pairs = (int(tree.count_neighbors(tree, tol)) - len(v)) // 2
+    if n_pairs > _MAX_MERGE_PAIRS * len(v):
+        return None
+    pairs = tree.query_pairs(tol, output_type="ndarray")
     if len(pairs) == 0:
         return v, f, 0
     n = len(v)
@@ -797,7 +837,10 @@ def _merge_close(v: np.ndarray, f: np.ndarray, tol: float) -> tuple[np.ndarray, 
     # representative: the first vertex of each group
     first = np.full(ncomp, n, dtype=np.int64)
     np.minimum.at(first, labels, np.arange(n))
-    return v[first], labels[f], n - ncomp
+    g = labels[f]
+    if np.any((g[:, 0] == g[:, 1]) | (g[:, 1] == g[:, 2]) | (g[:, 2] == g[:, 0])):
+        return None  # a face would collapse: the distance is larger than some edge
+    return v[first], g, n - ncomp
 
 
 def _checked_mesh(vertices, faces, name: str):
@@ -841,6 +884,13 @@ def _checked_mesh(vertices, faces, name: str):
     size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     if size == 0.0:
         raise MeshError(f"mesh {name!r}: all vertices are at one point")
+    reach = float(np.abs(v).max())
+    if reach > _MAX_OFFSET * size:
+        raise MeshError(
+            f"mesh {name!r} lies {reach:.3g} m from the origin, {reach / size:.3g} times its "
+            f"size ({size:.3g} m): coordinates that far out do not resolve the body (a binary "
+            "STL keeps 7 digits, a double 16); move the body near the origin in your CAD tool"
+        )
 
     # exact duplicates (every STL is a triangle soup on disk): merging them changes nothing
     uniq, inverse = _unique_rows(v)
@@ -867,10 +917,12 @@ def _checked_mesh(vertices, faces, name: str):
         scale = max(size, float(np.abs(v).max()))
         tol = TOL.merge * scale
         while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
-            v2, f2, n_merged = _merge_close(v, f, tol)
+            merged = _merge_close(v, f, tol)
+            if merged is None:  # past rounding: a larger distance would only merge more
+                break
+            v2, f2, n_merged = merged
             if n_merged:
-                deg2 = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
-                f2, _ = _drop_repeated_faces(f2[~deg2])
+                f2, _ = _drop_repeated_faces(f2)
                 if len(f2):
                     counts2, n_forward2 = _edge_use(f2)
                     if np.all(counts2 == 2):
@@ -934,6 +986,7 @@ def _checked_mesh(vertices, faces, name: str):
             )
     if manifold.volume() <= 0.0:
         raise MeshError(f"mesh {name!r} encloses no volume")
+    check_sections_match_volume(v, f, manifold, name)  # not passing through itself
     return v, f, manifold, repairs
 
 

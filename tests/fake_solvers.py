@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import os
+import sys
+import time
+from pathlib import Path
 from typing import ClassVar
 
 import numpy as np
@@ -50,3 +54,77 @@ class RaisingSolver(ConstantSolver):
 
 class NotASolver:
     name = "not-a-solver"
+
+
+class NaNValidSolver(ConstantSolver):
+    """Flags every section with NaN instead of a boolean (NaN cast to bool is True)."""
+
+    name = "nan-valid"
+
+    def section_loads(self, sections, velocity, fluid):
+        loads = super().section_loads(sections, velocity, fluid)
+        return SectionLoads(loads.force_per_metre, np.full(len(sections), np.nan), loads.reason)
+
+
+class TextValidSolver(ConstantSolver):
+    """Flags every section with the text "no" (a non-empty text cast to bool is True)."""
+
+    name = "text-valid"
+
+    def section_loads(self, sections, velocity, fluid):
+        loads = super().section_loads(sections, velocity, fluid)
+        return SectionLoads(loads.force_per_metre, np.full(len(sections), "no"), loads.reason)
+
+
+class ExitingSolver(ConstantSolver):
+    """Calls sys.exit(0) while it computes."""
+
+    name = "exits"
+
+    def section_loads(self, sections, velocity, fluid):
+        sys.exit(0)
+
+
+class ExitMessageSolver(ConstantSolver):
+    """Raises SystemExit with a message while it computes."""
+
+    name = "exits-with-message"
+
+    def section_loads(self, sections, velocity, fluid):
+        raise SystemExit("solver gave up")
+
+
+class ExitOnStartSolver(ConstantSolver):
+    """Calls sys.exit(3) when it is built."""
+
+    name = "exits-on-start"
+
+    def __init__(self, **options):
+        sys.exit(3)
+
+
+class TableSolver(ConstantSolver):
+    """Reads its acceleration from a CSV table named by the option ``table``."""
+
+    name = "table"
+    options: ClassVar[dict] = {"table": ""}
+
+    def section_loads(self, sections, velocity, fluid):
+        text = Path(self.settings["table"]).read_text(encoding="utf-8")
+        accel = float(text.splitlines()[1].split(",")[0])
+        return SectionLoads(
+            sections.mass_per_metre * accel,
+            np.ones(len(sections), dtype=bool),
+            np.full(len(sections), "", dtype=object),
+        )
+
+
+class HangingSolver(ConstantSolver):
+    """Never returns; touches the file named by HULLSLICE_TEST_HANGING first."""
+
+    name = "hangs"
+
+    def section_loads(self, sections, velocity, fluid):
+        Path(os.environ["HULLSLICE_TEST_HANGING"]).touch()
+        while True:
+            time.sleep(0.01)

@@ -3,8 +3,9 @@
 Each entry runs ``hullslice.cli.main`` in-process, with ``--format json -o OUT`` where the
 command takes it:
 
-- an **error** exits with status 2 and writes exactly one line on stderr, naming the
-  problem, with no traceback; no output file (nor a temporary one) is left behind;
+- an **error** exits with status 2 (a command line that does not parse) or 3 (inputs that
+  are refused) and writes exactly one line on stderr, naming the problem, with no
+  traceback; no output file (nor a temporary one) is left behind;
 - a **repair** exits with status 0, shows its warning as one line on stderr, and writes a
   complete result that is checked against a reference (the clean body, a closed form);
 - a **result** is a run that works although the input looks odd, checked the same way.
@@ -18,7 +19,13 @@ from __future__ import annotations
 
 import functools
 import json
+import os
+import re
+import signal
 import struct
+import subprocess
+import sys
+import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -31,11 +38,15 @@ import trimesh
 import hullslice as hs
 from hullslice import shapes
 from hullslice.cli import main
+from hullslice.safety import Terminated, _raise_terminated, terminated_cleanly
 
 from .test_mesh_files import TETRA_OBJ, ascii_stl
 from .test_registry import DEFAULT, ep
 
 ROOT = Path(__file__).resolve().parents[1]
+
+#: The error line of a command line that does not parse: ``hullslice COMMAND: error: ...``.
+USAGE = re.compile(r"hullslice [a-z]+: error: ")
 
 # the standard case: a 1 m prism of 30-degree wedge section, 0.2 m beam, 10 kg
 MASS, DRAFT, VELOCITY, SLICES = 10.0, 0.03, -5.0, 8
@@ -230,6 +241,16 @@ class Bad:
         Add ``--format json -o OUT`` (the entries about ``-o`` give their own).
     call : callable, optional
         ``call(tmp)``: the library call of an entry without a command.
+    plugins : tuple of str
+        Solvers of ``tests/fake_solvers.py`` installed for the run, by name.
+    read : callable, optional
+        ``read(out)``: the result at the output path for ``check`` (default: its JSON).
+    status : int
+        Exit status of an error: 2 for a command line that does not parse (usage), 3 for
+        inputs that parse and are refused.
+    interrupt : int
+        A signal sent to the run (in a process of its own) once its solver has started:
+        the run must end with status 128 + the signal, one line, and no file.
     """
 
     id: str
@@ -241,10 +262,225 @@ class Bad:
     check: Callable[[dict], None] | None = None
     output: bool = True
     call: Callable[[Path], object] | None = None
+    plugins: tuple[str, ...] = ()
+    read: Callable[[Path], dict] | None = None
+    interrupt: int = 0
+    status: int = 3
 
 
 def wedge_file(tmp: Path) -> str:
     return stl(tmp, "wedge.stl", *wedge())
+
+
+STATE_TOML = "mass = 10.0\ndraft = 0.03\nvelocity = -5.0\nslices = [8]\n"
+
+
+def case_file(tmp: Path, extra: str = "", mesh: str = "wedge.stl") -> str:
+    """A case of the standard state in ``tmp/case``, with its mesh beside it."""
+    folder = tmp / "case"
+    folder.mkdir(exist_ok=True)
+    stl(folder, mesh, *wedge())
+    return text(folder, "c.toml", f"mesh = {json.dumps(mesh)}\n{STATE_TOML}{extra}")
+
+
+def result_of(tmp: Path) -> Path:
+    """The output path the test gives (``OUT`` of the module's docstring)."""
+    return tmp.parent / "out" / "result.json"
+
+
+def link_out(tmp: Path) -> str:
+    # a folder in the case's folder that is a link to a folder beside it
+    (tmp / "victim").mkdir()
+    path = case_file(tmp, 'output = "out/result.json"\n')
+    (tmp / "case" / "out").symlink_to(tmp / "victim", target_is_directory=True)
+    return path
+
+
+NEWLINE_NAME = "hull\nrm -rf ~\n.stl"
+
+
+def escaped_table(data: dict) -> None:
+    # the name's line breaks written as \n: no line of the output is the planted one, and
+    # the heading starts with the escaped name; the force is the clean wedge's
+    lines = data["text"].splitlines()
+    assert "rm -rf ~" not in lines and not any(ln.startswith("rm") for ln in lines)
+    assert lines[0].startswith("hull\\nrm -rf ~\\n: ")
+    force = next(ln for ln in lines if ln.startswith("force "))
+    assert float(force.split()[1]) == pytest.approx(wedge_force(), rel=1e-4)
+
+
+def read_text(out: Path) -> dict:
+    return {"text": out.read_text(encoding="utf-8")}
+
+
+def read_report(out: Path) -> dict:
+    return {
+        "md": (out / "report.md").read_text(encoding="utf-8"),
+        "case": hs.load_case(out / "case.toml"),
+        "results": json.loads((out / "results.json").read_text()),
+    }
+
+
+TITLE = 'Run 1 | <img src=x onerror=alert(1)>\n# [click](http://x) `x` "q" \\ end'
+
+
+def escaped_report(data: dict) -> None:
+    md = data["md"].splitlines()
+    # the title is one heading line, its markup escaped; no raw HTML reaches the page
+    assert md[0] == (
+        r"# Run 1 \| \<img src=x onerror=alert(1)\>\\n\# \[click\](http://x) \`x\` "
+        r'"q" \\ end'
+    )
+    assert "<img" not in data["md"].replace(r"\<img", "")
+    # the inputs table keeps three cells a row, the mesh's file name escaped
+    rows = [ln for ln in md if ln.startswith("| mesh |")]
+    assert rows == [r"| mesh | hull\\nrm -rf \~\\n.stl |  |"]
+    # case.toml reads back the same title and mesh file, and the same force
+    assert data["case"]["title"] == TITLE
+    assert data["case"]["mesh"].name == NEWLINE_NAME
+    assert data["results"]["force"] == pytest.approx(wedge_force(), rel=1e-4)
+
+
+def table_csv(tmp: Path) -> str:
+    return text(tmp, "accel.csv", "accel\n100\n")
+
+
+def table_force(data: dict) -> None:
+    # f = M * 100 m/s^2 over the wetted 0.03 / tan(30 deg) ... : the mass per metre is 10 kg/m
+    assert data["force"] == pytest.approx(10.0 * 100.0 * data["wetted_length"], rel=1e-6)
+
+
+def link_to_mesh(tmp: Path) -> str:
+    wedge_file(tmp)
+    (tmp / "link.stl").symlink_to(tmp / "wedge.stl")
+    return str(tmp / "link.stl")
+
+
+def case_reading_table(tmp: Path) -> str:
+    # a case in tmp/case that reads tmp/accel.csv
+    table_csv(tmp)
+    return case_file(tmp, 'solver = "table"\n[solver_options]\ntable = "../accel.csv"\n')
+
+
+def corner_through_bottom():
+    # a 1 m box whose top corner (0.5, 0.5, 0.5) is pushed down through the bottom to z = -1
+    v, f = box()
+    v = v.copy()
+    v[np.flatnonzero((v == 0.5).all(axis=1))[0]] = [0.5, 0.5, -1.0]
+    return v, f
+
+
+def keel_through_deck():
+    # the wedge prism with the keel of its middle stations pushed up through the deck
+    v, f = wedge()
+    v = v.copy()
+    keel = (v[:, 2] < -0.01) & (v[:, 0] > 0.25) & (v[:, 0] < 0.75)
+    v[keel, 2] = 0.05
+    return v, f
+
+
+def obj_text(v, f) -> str:
+    rows = [f"v {x!r} {y!r} {z!r}" for x, y, z in np.asarray(v, dtype=float).tolist()]
+    return "\n".join(rows + [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f]) + "\n"
+
+
+def far_open(tmp: Path) -> str:
+    # the wedge without one face, 1e6 m from the origin, in double precision: a merge whose
+    # distance grew with the coordinates would take every vertex for a copy of every other
+    v, f = wedge()
+    return text(tmp, "far.obj", obj_text(v + np.array([1e6, 0.0, 0.0]), f[1:]))
+
+
+def stray_vertex(tmp: Path) -> str:
+    # a closed fuselage plus one stray triangle 1e9 m away
+    v, f = shapes.fuselage(stations=40, points=24)
+    v = np.vstack([v, [[1e9, 0.0, 0.0], [1e9, 1.0, 0.0], [1e9, 0.0, 1.0]]])
+    f = np.vstack([f, [[len(v) - 3, len(v) - 2, len(v) - 1]]])
+    return stl(tmp, "stray.stl", v, f)
+
+
+def nose_hole(tmp: Path) -> str:
+    # the full-scale fuselage (128k faces) as an STL triangle soup without the two faces at
+    # its nose tip, where many vertices lie within 4 mm: merging them once closed the hole
+    v, f = shapes.fuselage(stations=400, points=160)
+    tip = int(np.argmax(v[f].mean(axis=1)[:, 0]))
+    nb = next(i for i in range(len(f)) if i != tip and len(set(f[i]) & set(f[tip])) == 2)
+    return stl(tmp, "hole.stl", v, np.delete(f, [tip, nb], axis=0))
+
+
+def continuation_obj(tmp: Path) -> str:
+    # 2 MB of backslash continuation lines: one statement, read in linear time and refused
+    return text(tmp, "cont.obj", TETRA_OBJ + "f 1 2 \\\n" + "3 \\\n" * 2**19)
+
+
+def tiny_far_shell():
+    # the wedge and a copy 1e4 times smaller 50 m behind it (well above the water)
+    v, f = wedge()
+    return join((v, f), (v * 1e-4 + np.array([50.0, 0.0, 0.0]), f))
+
+
+def wedge_force_of_total_mass(data: dict) -> None:
+    # the shell is dry: the wetted length is the wedge's, the force the wedge's (its mass
+    # per metre from the 10 kg over both volumes: 1e-12 of it is the shell's); the cut is
+    # made at the 50 m body's scale, in manifold3d's single precision: 50 times coarser
+    assert data["wetted_length"] == pytest.approx(1.0, rel=1e-9)
+    assert data["force"] == pytest.approx(wedge_force(), rel=1e-5)
+
+
+KINEMATICS = "t,penetration,velocity\n0,0,-5\n0.001,0.005,-5\n0.002,0.01,-5\n"
+
+
+def kinematics_rows(data: dict) -> None:
+    # the table read as written: three rows to the end, the peak at its last, 0.01 m deep
+    assert data["steps"] == 3 and data["stop_reason"] == "end of table"
+    assert data["peak"]["t"] == pytest.approx(0.002, abs=1e-15)
+    assert data["peak"]["penetration"] == pytest.approx(0.01, abs=1e-15)
+    assert data["peak"]["velocity"] == -5.0
+
+
+def simulate_kinematics(content: str | bytes) -> Callable[[Path], list[str]]:
+    return lambda t: ["simulate", wedge_file(t), "--mass", "10", "--kinematics",
+                      kinematics(t, content)]  # fmt: skip
+
+
+def secret_file(tmp: Path) -> str:
+    # a file that is not a table (a system file); its content must not be quoted
+    (tmp / "shadow").write_text("root:$6$s3cr3tHash:19000:0:99999:7:::\n")
+    path = Path(case_file(tmp))
+    path.write_text('mesh = "wedge.stl"\nmass = 10.0\nkinematics = "../shadow"\n')
+    return str(path)
+
+
+def deep_case(tmp: Path) -> str:
+    (tmp / "case").mkdir(exist_ok=True)
+    return text(tmp / "case", "deep.toml", "mesh = 'w.stl'\nmass = " + "[" * 5000 + "]" * 5000)
+
+
+def bom_case(tmp: Path) -> str:
+    path = Path(case_file(tmp))
+    path.write_bytes(b"\xef\xbb\xbf" + path.read_bytes())
+    return str(path)
+
+
+def output_to_device(tmp: Path) -> list[str]:
+    # the output path is a link to /dev/null: written through, the link kept
+    result_of(tmp).symlink_to(os.devnull)
+    return ["force", wedge_file(tmp), *STATE, "-o", str(result_of(tmp))]
+
+
+def read_link(out: Path) -> dict:
+    return {"link": out.is_symlink(), "target": os.readlink(out) if out.is_symlink() else ""}
+
+
+def still_a_link(data: dict) -> None:
+    assert data == {"link": True, "target": os.devnull}
+
+
+def stale_temp(tmp: Path) -> list[str]:
+    # what a run killed with SIGKILL while writing leaves: a temporary file of a dead process
+    out = result_of(tmp)
+    (out.parent / f".{out.name}.hullslice-999999999-abcd.tmp").write_text('{"force": 1')
+    return ["force", wedge_file(tmp), *STATE]
 
 
 CATALOGUE: tuple[Bad, ...] = (
@@ -433,6 +669,183 @@ CATALOGUE: tuple[Bad, ...] = (
         ],
         error="encloses no volume",
     ),
+    Bad(
+        "self-intersecting-box",
+        "a box with a corner pushed through its bottom (closed and manifold, but passing "
+        "through itself)",
+        "error: mesh '...' intersects itself: at x = X m its section inside the contours is A1 "
+        "m^2 but its faces enclose A2 m^2 ...; the sections add up to R times the volume",
+        lambda t: ["force", stl(t, "corner.stl", *corner_through_bottom()), *STATE],
+        error="intersects itself: at x = 0.492253 m its section inside the contours is 0.49997 "
+        "m^2 but its faces enclose 0.250045 m^2",
+    ),
+    Bad(
+        "self-intersecting-wedge",
+        "a wedge prism whose keel is pushed through its deck",
+        "error: the same",
+        lambda t: ["force", stl(t, "keel.stl", *keel_through_deck()), *STATE],
+        error="intersects itself",
+    ),
+    # -- memory and time stay in proportion to the file; a merge closes rounding, not holes
+    Bad(
+        "far-open-mesh",
+        "an open mesh 1e6 m from the origin",
+        "error: mesh '...' is open: 3 edges belong to a single face (memory as for any file: "
+        "the merge never takes more than 8 pairs a vertex)",
+        lambda t: ["sections", far_open(t), "--draft", "0.01"],
+        error="is open: 3 edges belong to a single face",
+    ),
+    Bad(
+        "stray-far-vertex",
+        "a closed mesh with one stray triangle 1e9 m away",
+        "error: the same: the stray triangle is open",
+        lambda t: ["sections", stray_vertex(t), "--draft", "0.1"],
+        error="is open: 3 edges belong to a single face",
+    ),
+    Bad(
+        "hole-at-the-nose",
+        "a real hole (two faces missing at a fuselage's nose tip, an STL soup)",
+        "error: mesh '...' is open: 4 edges belong to a single face (no merge closes a gap "
+        "larger than rounding: a merge that would collapse a face is not made)",
+        lambda t: ["sections", nose_hole(t), "--draft", "0.5"],
+        error="is open: 4 edges belong to a single face",
+    ),
+    Bad(
+        "obj-continuation-lines",
+        "an OBJ of 2 MB of backslash continuation lines (or one 2 MB line)",
+        "error: line N: a statement longer than 1 MiB (with its continuation lines); read in "
+        "linear time",
+        lambda t: ["sections", continuation_obj(t), "--draft", "0.1"],
+        error="a statement longer than 1 MiB (with its continuation lines)",
+    ),
+    Bad(
+        "obj-byte-order-mark",
+        "an OBJ starting with a byte-order mark",
+        "result: read as without it",
+        lambda t: ["sections", text(t, "bom.obj", "\ufeff" + TETRA_OBJ), "--draft", "1"],
+        check=tetra_sections,
+    ),
+    Bad(
+        "far-from-the-origin",
+        "a wedge at x = 1e12 m",
+        "error: mesh '...' lies 1e+12 m from the origin, N times its size: coordinates that "
+        "far out do not resolve the body; move the body near the origin",
+        lambda t: [
+            "sections",
+            stl(t, "far.stl", wedge()[0] + [1e12, 0, 0], wedge()[1]),
+            "--draft",
+            "0.01",
+        ],
+        error="lies 1e+12 m from the origin, 4.8e+12 times its size (0.208 m)",
+    ),
+    Bad(
+        "huge-prism",
+        "a prism 1e6 m long",
+        "result: cut as accurately as a metre-sized one",
+        lambda t: [
+            "sections",
+            stl(t, "long.stl", wedge()[0] * 1e6, wedge()[1]),
+            "--draft",
+            "3e4",
+            "--slices",
+            "4",
+        ],
+        check=scaled_sections(1e6),
+    ),
+    Bad(
+        "tiny-far-shell",
+        "a wedge and a tiny shell 50 m behind it",
+        "result: the wetted length is the wedge's (the keel line is not drawn across the gap)",
+        lambda t: ["force", stl(t, "shell.stl", *tiny_far_shell()), *STATE],
+        check=wedge_force_of_total_mass,
+    ),
+    # -- tables and case files in odd encodings or shapes
+    Bad(
+        "csv-latin-1",
+        "a kinematics CSV in Latin-1 (a `°` in a comment)",
+        "error: kinematics file '...' is not UTF-8 text (byte N): save it as CSV UTF-8",
+        simulate_kinematics(("# Winkel in \xb0\n" + KINEMATICS).encode("latin-1")),
+        error="is not UTF-8 text (byte 12): save it as CSV UTF-8",
+    ),
+    Bad(
+        "csv-utf-16",
+        "a kinematics CSV in UTF-16 with its byte-order mark (a spreadsheet's Unicode text)",
+        "result: read as written",
+        simulate_kinematics(KINEMATICS.encode("utf-16")),
+        check=kinematics_rows,
+    ),
+    Bad(
+        "csv-byte-order-mark",
+        "a kinematics CSV starting with a UTF-8 byte-order mark",
+        "result: read as written (the first column is `t`)",
+        simulate_kinematics(b"\xef\xbb\xbf" + KINEMATICS.encode()),
+        check=kinematics_rows,
+    ),
+    Bad(
+        "csv-overflow",
+        "a mass distribution with values of 1e308 (or `1e999`, `inf` in any table)",
+        "error: mass distribution: its total mass or moment overflows (inf kg)",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            "--mass-distribution",
+            text(t, "m.csv", "x,mass_per_metre\n0,10\n1e308,10\n"),
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+            "--slices",
+            "8",
+        ],
+        error="its total mass or moment overflows (inf kg)",
+    ),
+    Bad(
+        "csv-line-numbers",
+        "a bad row after comment lines",
+        "error: ... line N: 'x' in the column penetration is not a number (N counts every "
+        "line of the file)",
+        simulate_kinematics("# kinematics\n# from CFD\n" + KINEMATICS + "0.003,x,-5\n"),
+        error="line 7: 'x' in the column penetration is not a number",
+    ),
+    Bad(
+        "case-path-to-system-file",
+        "a case whose `kinematics` names a file that is not a table (`/etc/shadow`)",
+        "error: kinematics file '...' lacks the column(s) ... (its first line is not a header "
+        "of column names); nothing of the file is quoted",
+        lambda t: ["run", secret_file(t)],
+        error="lacks the column(s) t, penetration, velocity (its first line is not a header "
+        "of column names)",
+    ),
+    Bad(
+        "case-deeply-nested",
+        "a case file nested 5000 deep",
+        "error: case file '...' nests tables or lists too deeply to be a case",
+        lambda t: ["run", deep_case(t)],
+        error="nests tables or lists too deeply to be a case",
+    ),
+    Bad(
+        "case-byte-order-mark",
+        "a case file starting with a byte-order mark",
+        "result: read as without it",
+        lambda t: ["run", bom_case(t)],
+        check=same_force,
+    ),
+    Bad(
+        "plot-not-a-figure",
+        "`--plot out.txt` (or `.csv`)",
+        "error: cannot write '...' (--plot): a figure is drawn as PNG, SVG, PDF by the file's "
+        "extension; checked before any work",
+        lambda t: ["force", wedge_file(t), *STATE, "--plot", str(t / "out.txt")],
+        error="(--plot): a figure is drawn as PNG, SVG, PDF by the file's extension",
+    ),
+    Bad(
+        "output-link-to-device",
+        "`-o` onto a device, or a link to one (`/dev/null`)",
+        "result: written through; the device or link stays as it was",
+        output_to_device,
+        check=still_a_link,
+        output=False,
+        read=read_link,
+    ),
     # -- repaired with a warning
     Bad(
         "inside-out",
@@ -537,6 +950,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: invalid choice: 'yd' (choose from m, cm, mm, in, ft)",
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--units", "yd"],
         error="invalid choice: 'yd'",
+        status=2,
     ),
     Bad(
         "tiny",
@@ -669,6 +1083,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: argument --slices: '0' is not positive (give 1 or more)",
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--slices", "0"],
         error="'0' is not positive (give 1 or more)",
+        status=2,
     ),
     Bad(
         "slices-negative",
@@ -676,6 +1091,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: the same",
         lambda t: ["force", wedge_file(t), *STATE, "--slices=-8"],
         error="'-8' is not positive (give 1 or more)",
+        status=2,
     ),
     Bad(
         "slices-not-whole",
@@ -683,6 +1099,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: '1e3' is not a whole number",
         lambda t: ["force", wedge_file(t), *STATE, "--slices", "16,1e3"],
         error="'1e3' is not a whole number",
+        status=2,
     ),
     Bad(
         "slices-too-many",
@@ -860,6 +1277,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "(first: x, penetration, deadrise, mass per metre, velocity)",
         lambda t: ["force", wedge_file(t), *STATE, "--solver", "nan"],
         error="returned a non-finite force per metre for 8 of 8 sections (first: x = 0.0625 m",
+        plugins=("nan",),
     ),
     # -- output
     Bad(
@@ -885,6 +1303,248 @@ CATALOGUE: tuple[Bad, ...] = (
         lambda t: ["sections", wedge_file(t), "--draft", "0.01", "-o", str(t / "wedge.stl")],
         error="it is the input mesh file and would be overwritten",
         output=False,
+    ),
+    Bad(
+        "usage",
+        "a command line that does not parse (`hullslice force MESH` without its state)",
+        "error, exit status 2: hullslice force: error: the following arguments are required: "
+        "--draft, --velocity",
+        lambda t: ["force", wedge_file(t), "--mass", "10"],
+        error="the following arguments are required: --draft, --velocity",
+        status=2,
+    ),
+    # -- where a run writes: a case file only inside its folder, names escaped
+    Bad(
+        "case-output-outside",
+        "a case file whose `output` leads out of its folder (`../victim/file`)",
+        "error: key 'output' ('../victim/file') leads out of the case's folder: a case file "
+        "writes only inside its own folder",
+        lambda t: ["run", case_file(t, 'output = "../victim/file"\n')],
+        error="key 'output' ('../victim/file') leads out of the case's folder",
+        output=False,
+    ),
+    Bad(
+        "case-output-absolute",
+        "a case file whose `output` or `plot` is an absolute path",
+        "error: key 'plot' ('/...') is an absolute path: a case file writes only inside its own "
+        "folder",
+        lambda t: ["run", case_file(t, f"plot = {json.dumps(str(t / 'victim.png'))}\n")],
+        error="is an absolute path: a case file writes only inside its own folder",
+        output=False,
+    ),
+    Bad(
+        "case-output-through-link",
+        "a case file whose `output` goes through a link to another folder",
+        "error: the same (links are followed)",
+        lambda t: ["run", link_out(t)],
+        error="key 'output' ('out/result.json') leads out of the case's folder",
+        output=False,
+    ),
+    Bad(
+        "mesh-name-newline",
+        "a mesh file name holding line breaks (and a shell command)",
+        "result: the name written escaped (`hull\\nrm -rf ~\\n`), one line, in every output",
+        lambda t: [
+            "force",
+            stl(t, NEWLINE_NAME, *wedge()),
+            *STATE,
+            "-o",
+            str(result_of(t)),
+        ],
+        check=escaped_table,
+        output=False,
+        read=read_text,
+    ),
+    Bad(
+        "report-markup",
+        "a case title and mesh name holding Markdown, HTML and line breaks (`report`)",
+        "result: each escaped in report.md (one heading line, table rows intact, no HTML); "
+        "case.toml reads back the same text",
+        lambda t: [
+            "report",
+            case_file(t, f"title = {json.dumps(TITLE)}\n", mesh=NEWLINE_NAME),
+            "-o",
+            str(result_of(t)),
+        ],
+        check=escaped_report,
+        output=False,
+        read=read_report,
+    ),
+    # -- no output replaces an input
+    Bad(
+        "run-output-is-the-case",
+        "`hullslice run C.toml -o C.toml` (or `output` naming the case itself)",
+        "error: cannot write '...': it is the input case file and would be overwritten",
+        lambda t: ["run", case_file(t), "-o", str(t / "case" / "c.toml")],
+        error="it is the input case file and would be overwritten",
+        output=False,
+    ),
+    Bad(
+        "output-is-a-solver-table",
+        "`-o` naming a table a solver option reads (`--solver-option table=T.csv -o T.csv`)",
+        "error: cannot write '...': it is the input solver option table file and would be "
+        "overwritten",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            *STATE,
+            "--solver",
+            "table",
+            "--solver-option",
+            f"table={table_csv(t)}",
+            "-o",
+            str(t / "accel.csv"),
+        ],
+        error="it is the input solver option table file and would be overwritten",
+        output=False,
+        plugins=("table",),
+    ),
+    Bad(
+        "solver-table-read",
+        "a solver option naming a table, with `-o` elsewhere",
+        "result: the table is read, and left as it was",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            *STATE,
+            "--solver",
+            "table",
+            "--solver-option",
+            f"table={table_csv(t)}",
+        ],
+        check=table_force,
+        plugins=("table",),
+    ),
+    Bad(
+        "output-link-to-input",
+        "`-o` naming a link to the input mesh",
+        "error: cannot write '...': it is the input mesh file and would be overwritten",
+        lambda t: [
+            "sections",
+            wedge_file(t),
+            "--draft",
+            "0.01",
+            "-o",
+            link_to_mesh(t),
+        ],
+        error="it is the input mesh file and would be overwritten",
+        output=False,
+    ),
+    Bad(
+        "report-overwrite-input-table",
+        "`report --overwrite` onto a folder that holds a table the case reads",
+        "error: report folder '...' holds the input '...', and the folder is written anew",
+        lambda t: [
+            "report",
+            case_reading_table(t),
+            "-o",
+            str(t),
+            "--overwrite",
+        ],
+        error="holds the input",
+        output=False,
+        plugins=("table",),
+    ),
+    Bad(
+        "stale-temp-file",
+        "a temporary file left by a run killed with SIGKILL (`.NAME.hullslice-PID-....tmp`)",
+        "result: removed by the next write to the same file (its process has ended)",
+        stale_temp,
+        check=same_force,
+    ),
+    # -- validity checks cannot be switched off
+    Bad(
+        "solver-option-nan",
+        "`--solver-option froude_min=NaN` (or `Infinity`, `1e999`)",
+        "error: 'froude_min=NaN': nan is not a finite number; give a finite value",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver-option", "froude_min=NaN"],
+        error="'froude_min=NaN': nan is not a finite number",
+        status=2,
+    ),
+    Bad(
+        "solver-option-negative",
+        "`--solver-option froude_min=-1`, or NaN in a case's `[solver_options]`",
+        "error: solver '...' option froude_min=-1 is not a positive number: give one above 0",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver-option", "froude_min=-1"],
+        error="option froude_min=-1 is not a positive number: give one above 0 (default 6.5)",
+    ),
+    Bad(
+        "case-solver-option-nan",
+        "a case file with `froude_min = nan` in `[solver_options]`",
+        "error: key 'solver_options': froude_min = nan is not a finite number",
+        lambda t: ["run", case_file(t, "[solver_options]\nfroude_min = nan\n")],
+        error="key 'solver_options': froude_min = nan is not a finite number",
+    ),
+    Bad(
+        "solver-valid-nan",
+        "a solver returning `valid` as NaN",
+        "error: solver '...' failed: TypeError: SectionLoads.valid must be a boolean array",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "nan-valid"],
+        error="failed: TypeError: SectionLoads.valid must be a boolean array (True inside the "
+        "solver's range), not float64 values such as [nan]",
+        plugins=("nan-valid",),
+    ),
+    Bad(
+        "solver-valid-text",
+        "a solver returning `valid` as text",
+        "error: the same",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "text-valid"],
+        error="SectionLoads.valid must be a boolean array",
+        plugins=("text-valid",),
+    ),
+    # -- faulty plugins
+    Bad(
+        "solver-sys-exit",
+        "a solver that calls `sys.exit(0)` while it computes",
+        "error: solver '...' failed: it called sys.exit(0) (SystemExit), which a solver must "
+        "not do",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits"],
+        error="solver 'exits' (tests.fake_solvers:ExitingSolver, distribution fake-plugin 1.0) "
+        "failed: it called sys.exit(0) (SystemExit)",
+        plugins=("exits",),
+    ),
+    Bad(
+        "solver-system-exit-message",
+        "a solver raising `SystemExit('message')`",
+        "error: the same, quoting the message",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-with-message"],
+        error="failed: it called sys.exit('solver gave up') (SystemExit)",
+        plugins=("exits-with-message",),
+    ),
+    Bad(
+        "solver-exit-on-start",
+        "a solver that calls `sys.exit(3)` when it is built",
+        "error: solver '...' failed to start with options {}: it called sys.exit(3)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-on-start"],
+        error="failed to start with options {}: it called sys.exit(3) (SystemExit)",
+        plugins=("exits-on-start",),
+    ),
+    Bad(
+        "solver-exit-on-import",
+        "a solver plugin whose module calls `sys.exit(0)` when it is imported",
+        "error: solver plugin '...' failed to load: it called sys.exit(0) (SystemExit); "
+        "`hullslice solvers` lists it as broken",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "exits-on-import"],
+        error="failed to load: it called sys.exit(0) (SystemExit)",
+        plugins=("exits-on-import",),
+    ),
+    Bad(
+        "solver-hangs-ctrl-c",
+        "a solver that never returns, stopped with Ctrl-C (SIGINT)",
+        "stopped: 'hullslice: interrupted', exit status 130, no file written",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hangs"],
+        error="hullslice: interrupted",
+        plugins=("hangs",),
+        interrupt=signal.SIGINT,
+    ),
+    Bad(
+        "solver-hangs-kill",
+        "a solver that never returns, stopped with `kill PID` (SIGTERM)",
+        "stopped: 'hullslice: terminated', exit status 143, no file written",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hangs"],
+        error="hullslice: terminated",
+        plugins=("hangs",),
+        interrupt=signal.SIGTERM,
     ),
     # -- case files (library: hullslice.load_case)
     Bad(
@@ -912,9 +1572,29 @@ def kind(bad: Bad) -> str:
 # -- running it -------------------------------------------------------------------------------
 
 
-@pytest.fixture
-def nan_solver_installed(fake_entry_points):
-    fake_entry_points([DEFAULT, ep("nan", "tests.fake_solvers:NaNSolver")])
+#: The solvers of tests/fake_solvers.py that entries install, by name.
+FAKE_SOLVERS = {
+    "nan": "NaNSolver",
+    "nan-valid": "NaNValidSolver",
+    "text-valid": "TextValidSolver",
+    "exits": "ExitingSolver",
+    "exits-with-message": "ExitMessageSolver",
+    "exits-on-start": "ExitOnStartSolver",
+    "table": "TableSolver",
+    "hangs": "HangingSolver",
+}
+
+
+def fake_eps(names) -> list:
+    return [
+        DEFAULT,
+        *(
+            ep(n, "tests.fake_exit_on_import:Solver")
+            if n == "exits-on-import"
+            else ep(n, f"tests.fake_solvers:{FAKE_SOLVERS[n]}")
+            for n in names
+        ),
+    ]
 
 
 @pytest.mark.parametrize("bad", CATALOGUE, ids=[b.id for b in CATALOGUE])
@@ -929,22 +1609,32 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
             bad.call(work)
         assert bad.error in str(info.value)
         return
-    if bad.id == "solver-nan":
-        request.getfixturevalue("nan_solver_installed")
+    if bad.plugins:
+        request.getfixturevalue("fake_entry_points")(fake_eps(bad.plugins))
     argv = bad.argv(work)
     if bad.output:
         argv += ["--format", "json", "-o", str(out)]
     before = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
 
-    code = main(argv)
-    stdout, stderr = capsys.readouterr()
+    if bad.interrupt:
+        code, stdout, stderr = run_interrupted(argv, bad.plugins, bad.interrupt, tmp_path)
+    else:
+        code = main(argv)
+        stdout, stderr = capsys.readouterr()
     lines = stderr.splitlines()
 
     assert "Traceback" not in stderr
     after = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
     assert after == before  # inputs untouched, nothing written beside them
+    if bad.interrupt:
+        assert code == 128 + bad.interrupt, stderr
+        assert lines == [bad.error] and stdout == ""
+        assert list(out_dir.iterdir()) == []
+        return
     if bad.error:
-        assert code == 2, stderr
+        assert code == bad.status, stderr
+        # a usage error names the command, as argparse does; a refused input does not
+        assert bool(USAGE.match(stderr)) == (bad.status == 2), stderr
         assert len(lines) == 1, stderr
         assert "error:" in lines[0] and bad.error in lines[0]
         assert stdout == ""
@@ -956,11 +1646,55 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert len(lines) == 2, stderr
         assert lines[0].startswith("hullslice: warning: ") and bad.warning in lines[0]
         expected.insert(0, lines[0])
+    if bad.read is not None:  # a report folder names its page
+        assert lines[-1].startswith(expected[-1]), stderr
+        expected[-1] = lines[-1]
     assert lines == expected
     assert [p.name for p in out_dir.iterdir()] == ["result.json"]
-    data = json.loads(out.read_text())
+    data = json.loads(out.read_text()) if bad.read is None else bad.read(out)
     assert bad.check is not None
     bad.check(data)
+
+
+def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
+    """Run the command line in a process of its own with the fake solvers ``plugins``, send
+    it ``sig`` once its solver has started, and return its status, stdout and stderr."""
+    started = tmp / "solver-started"
+    program = (
+        "import signal, sys\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a terminal\n"
+        "from hullslice.solvers import registry\n"
+        "from tests.test_bad_input import fake_eps\n"
+        f"registry.entry_points = lambda group: fake_eps({list(plugins)!r})\n"
+        "registry.refresh()\n"
+        "from hullslice.cli import main\n"
+        "sys.exit(main(sys.argv[1:]))\n"
+    )
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]),
+        "HULLSLICE_TEST_HANGING": str(started),
+    }
+    proc = subprocess.Popen(
+        [sys.executable, "-c", program, *argv],
+        cwd=ROOT,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        deadline = time.monotonic() + 120
+        while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
+            time.sleep(0.02)
+        assert started.exists(), proc.communicate(timeout=10)
+        proc.send_signal(sig)
+        stdout, stderr = proc.communicate(timeout=60)
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+            proc.communicate()
+    return proc.returncode, stdout, stderr
 
 
 def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
@@ -985,11 +1719,52 @@ def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
     target = tmp_path / "force.json"
     code = main(["force", wedge_file(tmp_path), *STATE, "--format", "json", "-o", str(target)])
     _, stderr = capsys.readouterr()
-    assert code == 2
+    assert code == 3
     assert (
         stderr.strip() == f"hullslice: error: cannot write {str(target)!r}: No space left on device"
     )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
+
+
+@pytest.mark.parametrize(
+    ("stop", "line", "status"),
+    [
+        (KeyboardInterrupt, "hullslice: interrupted", 130),
+        (Terminated, "hullslice: terminated", 143),
+    ],
+)
+def test_a_run_stopped_while_writing_leaves_no_file(
+    tmp_path, capsys, monkeypatch, stop, line, status
+):
+    # Ctrl-C or SIGTERM in the middle of the write: neither the target nor the temporary file
+    from hullslice import report
+
+    real_fdopen = report.os.fdopen
+
+    def fdopen(*args, **kw):
+        fh = real_fdopen(*args, **kw)
+
+        def write(data):
+            real_write(data[: len(data) // 2])
+            raise stop()
+
+        real_write, fh.write = fh.write, write
+        return fh
+
+    monkeypatch.setattr(report.os, "fdopen", fdopen)
+    target = tmp_path / "force.json"
+    code = main(["force", wedge_file(tmp_path), *STATE, "--format", "json", "-o", str(target)])
+    assert code == status
+    assert capsys.readouterr().err.splitlines() == [line]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
+
+
+def test_sigterm_raises_where_the_run_is(tmp_path):
+    # the handler main() installs turns SIGTERM into an exception in the main thread
+    with terminated_cleanly(), pytest.raises(Terminated):
+        os.kill(os.getpid(), signal.SIGTERM)
+        time.sleep(5)
+    assert signal.getsignal(signal.SIGTERM) is not _raise_terminated
 
 
 # -- the README's table ---------------------------------------------------------------------
@@ -1024,6 +1799,24 @@ def test_the_catalogue_covers_the_issue_list():
         "absurd-count",
     }  # fmt: skip
     assert issue <= ids
+    # hostile inputs: writes outside a case's folder, lost inputs, silent wrong loads,
+    # memory, checks switched off, faulty plugins, and the smaller ones
+    hostile = {
+        "case-output-outside", "case-output-absolute", "case-output-through-link",
+        "mesh-name-newline", "report-markup", "run-output-is-the-case",
+        "output-is-a-solver-table", "output-link-to-input", "report-overwrite-input-table",
+        "self-intersecting-box", "self-intersecting-wedge", "far-open-mesh",
+        "stray-far-vertex", "obj-continuation-lines", "solver-option-nan",
+        "solver-option-negative", "case-solver-option-nan", "solver-valid-nan",
+        "solver-valid-text", "solver-sys-exit", "solver-system-exit-message",
+        "solver-exit-on-start", "solver-hangs-ctrl-c", "solver-hangs-kill",
+        "output-link-to-device", "stale-temp-file", "csv-latin-1", "csv-utf-16",
+        "csv-byte-order-mark", "csv-overflow", "csv-line-numbers", "plot-not-a-figure",
+        "case-deeply-nested", "case-path-to-system-file", "huge-prism", "tiny-far-shell",
+        "far-from-the-origin", "obj-byte-order-mark", "case-byte-order-mark",
+        "hole-at-the-nose", "usage",
+    }  # fmt: skip
+    assert hostile <= ids
     assert len(ids) == len(CATALOGUE)
     assert {kind(b) for b in CATALOGUE} == {"error", "repair", "result"}
 

@@ -110,23 +110,24 @@ def test_solvers_lists_the_default(capsys):
 
 
 @pytest.mark.parametrize(
-    ("argv", "message"),
+    ("argv", "message", "status"),
     [
-        (["force", PRISM, *PAPER_ARGS, "--solver", "nope"], "no solver named 'nope'"),
-        (["force", "missing.stl", *PAPER_ARGS], "does not exist"),
-        (["force", PRISM, "--mass", "1", "--draft", "0.0383"], "--velocity"),
-        (["force", PRISM, *PAPER_ARGS, "--slices", "0"], "not positive"),
-        (["force", PRISM, *PAPER_ARGS, "--slices", "a,b"], "not a whole number"),
-        (["force", PRISM, "--mass", "-1", "--draft", "0.01", "--velocity=-1"], "not positive"),
-        (["sections", PRISM, "--draft", "0.5"], "deeper than the body"),
-        (["sections", PRISM, "--draft=-0.1"], "negative"),
-        (["sections", PRISM, "--draft", "0.01", "--units", "yd"], "invalid choice"),
-        (["frobnicate"], "invalid choice"),
+        (["force", PRISM, *PAPER_ARGS, "--solver", "nope"], "no solver named 'nope'", 3),
+        (["force", "missing.stl", *PAPER_ARGS], "does not exist", 3),
+        (["force", PRISM, "--mass", "1", "--draft", "0.0383"], "--velocity", 2),
+        (["force", PRISM, *PAPER_ARGS, "--slices", "0"], "not positive", 2),
+        (["force", PRISM, *PAPER_ARGS, "--slices", "a,b"], "not a whole number", 2),
+        (["force", PRISM, "--mass", "-1", "--draft", "0.01", "--velocity=-1"], "not positive", 3),
+        (["sections", PRISM, "--draft", "0.5"], "deeper than the body", 3),
+        (["sections", PRISM, "--draft=-0.1"], "negative", 3),
+        (["sections", PRISM, "--draft", "0.01", "--units", "yd"], "invalid choice", 2),
+        (["frobnicate"], "invalid choice", 2),
     ],
 )
-def test_errors_are_one_line_with_status_2(capsys, argv, message):
+def test_errors_are_one_line_with_their_status(capsys, argv, message, status):
+    # 2: the command line does not parse (usage); 3: it parses, and the input is refused
     code, _, err = run(capsys, *argv)
-    assert code == 2
+    assert code == status
     assert message in err
     assert len(err.strip().splitlines()) == 1
     assert "Traceback" not in err
@@ -142,7 +143,7 @@ def test_output_file_is_written_whole(capsys, tmp_path):
     # a failing run leaves no file behind
     bad = tmp_path / "bad.json"
     code, _, _ = run(capsys, "force", PRISM, *PAPER_ARGS, "--solver", "nope", "-o", str(bad))
-    assert code == 2 and not bad.exists()
+    assert code == 3 and not bad.exists()
     assert [p.name for p in tmp_path.iterdir()] == ["force.json"]
 
 

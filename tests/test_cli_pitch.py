@@ -103,32 +103,38 @@ def test_mass_distribution_cg_and_inertia(capsys, tmp_path):
 
 
 @pytest.mark.parametrize(
-    ("argv", "message"),
+    ("argv", "message", "status"),
     [
-        (["force", PRISM, "--draft", "0.03", "--velocity=-2"], "give the body's mass"),
+        (["force", PRISM, "--draft", "0.03", "--velocity=-2"], "give the body's mass", 2),
         (
             ["force", PRISM, "--mass", "1", "--draft", "0.03", "--velocity=-2", "--cg", "1"],
             "not two numbers",
+            2,
         ),
         (
             ["force", PRISM, "--mass", "1", "--draft", "0.03", "--velocity=-2", "--pitch", "85"],
             "too steep",
+            3,
         ),
         (
             ["force", PRISM, "--mass", "1", "--draft", "0.03", "--velocity=-2", "--inertia", "-1"],
             "not positive",
+            3,
         ),
         (
             ["simulate", PRISM, "--mass", "1", "--kinematics", "k.csv", "--pitch", "3"],
             "leave out --pitch",
+            2,
         ),
         (
             ["simulate", PRISM, "--mass-distribution", "nope.csv", "--velocity=-1", "--t-end", "1"],
             "does not exist",
+            3,
         ),
     ],
 )
-def test_errors(capsys, argv, message):
+def test_errors(capsys, argv, message, status):
+    # 2: the command line does not parse (usage); 3: it parses, and the input is refused
     code, _, err = run(capsys, *argv)
-    assert code == 2
+    assert code == status
     assert message in err and len(err.strip().splitlines()) == 1

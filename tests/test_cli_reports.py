@@ -85,7 +85,7 @@ def test_without_matplotlib_a_one_line_message(capsys, tmp_path, monkeypatch):
     monkeypatch.setitem(sys.modules, "matplotlib", None)  # import matplotlib fails
     target = tmp_path / "figure.png"
     code, _, err = run(capsys, "info", PRISM, "--plot", str(target))
-    assert code == 2
+    assert code == 3
     assert "pip install 'hullslice[plot]'" in err and len(err.strip().splitlines()) == 1
     assert not target.exists()
 
@@ -149,7 +149,7 @@ def test_case_paths_are_relative_to_the_case(tmp_path, capsys):
     case = tmp_path / "c.toml"
     case.write_text(f'mesh = "{MESHES.relative_to(ROOT).as_posix()}/paper_prism.stl"\n')
     code, _, err = run(capsys, "run", str(case))
-    assert code == 2 and "does not exist" in err  # resolved from the case's own folder
+    assert code == 3 and "does not exist" in err  # resolved from the case's own folder
     case.write_text(f'mesh = "{PRISM}"\ndraft = 0.03\nvelocity = -3.0\nt_end = 0.01\n')
     code, out, _ = run(capsys, "run", str(case), "--print-command")
     assert code == 0 and out.startswith("hullslice simulate ")
@@ -167,7 +167,7 @@ def test_bad_case_files(capsys, tmp_path, text, message):
     case = tmp_path / "bad.toml"
     case.write_text(text)
     code, _, err = run(capsys, "run", str(case))
-    assert code == 2 and message in err and len(err.strip().splitlines()) == 1
+    assert code == 3 and message in err and len(err.strip().splitlines()) == 1
 
 
 def test_report_folder(capsys, tmp_path, paper_hull):
@@ -203,12 +203,12 @@ def test_report_is_written_whole_or_not_at_all(capsys, tmp_path):
     )
     out = tmp_path / "rep"
     code, _, err = run(capsys, "report", str(bad), "-o", str(out))
-    assert code == 2 and "no solver named 'nope'" in err
+    assert code == 3 and "no solver named 'nope'" in err
     assert list(tmp_path.iterdir()) == [bad]  # no folder, no temporary left
     out.mkdir()
     (out / "keep.txt").write_text("x")
     code, _, err = run(capsys, "report", PAPER_CASE, "-o", str(out))
-    assert code == 2 and "exists and is not empty" in err
+    assert code == 3 and "exists and is not empty" in err
     code, _, _ = run(capsys, "report", PAPER_CASE, "-o", str(out), "--overwrite", "--html")
     assert code == 0 and not (out / "keep.txt").exists()
     assert "<h2>Results</h2>" in (out / "report.html").read_text()
@@ -262,7 +262,7 @@ def test_report_refuses_a_folder_holding_its_inputs(capsys, tmp_path):
     case = tmp_path / "case.toml"
     case.write_text('mesh = "hull.stl"\nmass = 1.0\ndraft = 0.02\nvelocity = -3.0\n')
     code, _, err = run(capsys, "report", str(case), "-o", str(tmp_path), "--overwrite")
-    assert code == 2 and "holds the input" in err
+    assert code == 3 and "holds the input" in err
     assert (tmp_path / "hull.stl").exists() and case.exists()
 
 

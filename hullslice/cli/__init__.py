@@ -2,8 +2,11 @@
 
 Every command is a module of this package with ``add_parser(subparsers)`` and
 ``run(args) -> int``. :func:`main` is testable in-process: it takes ``argv`` and returns the
-exit status. Errors print one line on stderr with exit status 2 (bad usage, bad input, a failing
-solver; 1 for an internal error), never a traceback unless ``HULLSLICE_DEBUG=1``.
+exit status. Errors print one line on stderr, never a traceback unless ``HULLSLICE_DEBUG=1``,
+with an exit status that says whose the fault is (:data:`EXIT`): 2 for a command line that
+cannot be parsed (usage), 3 for inputs that parse but are refused (a value out of range, a
+file that is not a mesh, a solver that fails), 1 for an internal error, 130 and 143 for a
+run stopped by Ctrl-C or SIGTERM.
 """
 
 from __future__ import annotations
@@ -15,10 +18,21 @@ import warnings
 from collections.abc import Sequence
 
 from ..errors import HullsliceError, HullsliceWarning
+from ..safety import Terminated, terminated_cleanly
 from . import cmd_force, cmd_info, cmd_report, cmd_run, cmd_sections, cmd_simulate, cmd_solvers
 from .common import UsageError
 
-__all__ = ["main", "run"]
+__all__ = ["EXIT", "main", "run"]
+
+#: Exit statuses by outcome.
+EXIT = {
+    "ok": 0,
+    "internal error": 1,
+    "usage": 2,  # argparse's own: the command line cannot be parsed
+    "bad input": 3,  # the inputs parse, and hullslice refuses them or a solver fails on them
+    "interrupted": 130,  # Ctrl-C (128 + SIGINT)
+    "terminated": 143,  # kill PID (128 + SIGTERM)
+}
 
 COMMANDS = (cmd_solvers, cmd_info, cmd_sections, cmd_force, cmd_simulate, cmd_run, cmd_report)
 
@@ -57,26 +71,32 @@ def _show_warning(message, category, filename, lineno, file=None, line=None) -> 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line with ``argv`` (default ``sys.argv[1:]``); return the exit status."""
     debug = os.environ.get("HULLSLICE_DEBUG", "") not in ("", "0")
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), terminated_cleanly():
         warnings.showwarning = _show_warning
         # a repair or a doubtful unit is always shown, one line each, whatever the filters
         warnings.filterwarnings("always", category=HullsliceWarning)
         try:
             args = build_parser().parse_args(argv)
             return int(args.func(args) or 0)
-        except SystemExit as exc:  # --help and --version
-            return int(exc.code or 0)
+        except SystemExit as exc:  # --help and --version; or code that exits with a message
+            if exc.code is None or isinstance(exc.code, int):
+                return int(exc.code or 0)
+            print(f"hullslice: error: {exc.code}", file=sys.stderr)
+            return EXIT["internal error"]
         except UsageError as exc:
             print(str(exc), file=sys.stderr)
-            return 2
+            return EXIT["usage"]
         except HullsliceError as exc:
             if debug:
                 raise
             print(f"hullslice: error: {exc}", file=sys.stderr)
-            return 2
-        except KeyboardInterrupt:
+            return EXIT["bad input"]
+        except KeyboardInterrupt:  # Ctrl-C: temporary files are gone, no output is half written
             print("hullslice: interrupted", file=sys.stderr)
-            return 130
+            return EXIT["interrupted"]
+        except Terminated:  # kill PID (SIGTERM): the same
+            print("hullslice: terminated", file=sys.stderr)
+            return EXIT["terminated"]
         except BrokenPipeError:
             return 0
         except OSError as exc:
@@ -86,7 +106,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 f"hullslice: error: {exc.strerror or exc}: {exc.filename or ''}".rstrip(": "),
                 file=sys.stderr,
             )
-            return 2
+            return EXIT["bad input"]
         except Exception as exc:
             if debug:
                 raise
@@ -95,7 +115,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 "(set HULLSLICE_DEBUG=1 for the traceback and please report it)",
                 file=sys.stderr,
             )
-            return 1
+            return EXIT["internal error"]
 
 
 def run() -> None:

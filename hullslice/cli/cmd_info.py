@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from .. import plots
+from ..paths import printable
 from ..report import Column, table_text
 from ..sections import area_curve
 from .common import Outcome, add_mesh_options, add_output_options, finish, load, positive_int
@@ -95,8 +96,8 @@ def _vec(v) -> str:
 def _table(hull, d, rows) -> str:
     repairs = d["repairs"]
     lines = [
-        f"{hull.name}: {d['mesh']} ({d['file_bytes']} bytes), units {d['units']}, forward "
-        f"{d['forward']}, up {d['up']}",
+        f"{hull.name}: {printable(d['mesh'])} ({d['file_bytes']} bytes), units {d['units']}, "
+        f"forward {d['forward']}, up {d['up']}",
         f"  faces {d['faces']}, vertices {d['vertices']}, closed (checked on loading)"
         + (f"; repaired: {'; '.join(repairs)}" if repairs else ", no repair needed"),
         f"  bounding box {_vec(d['bounds_min'])} to {_vec(d['bounds_max'])} m",

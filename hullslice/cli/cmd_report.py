@@ -12,7 +12,8 @@ from pathlib import Path
 from .. import __version__
 from ..case import SCHEMA, case_argv, case_command, load_case, write_case
 from ..errors import InputError
-from ..report import _umask, csv_text, json_text, write_atomic
+from ..paths import markdown_fence, markdown_text, printable, run_inputs
+from ..report import _umask, csv_text, json_text, remove_stale, temp_prefix, write_atomic
 from . import cmd_force, cmd_info, cmd_sections, cmd_simulate
 
 COMPUTE = {
@@ -77,7 +78,8 @@ def run(args: argparse.Namespace) -> int:
 
     # built beside the target (same depth, so that the case's relative paths hold) and
     # renamed into place only when complete
-    work = Path(tempfile.mkdtemp(prefix=f".{target.name}.", dir=parent))
+    remove_stale(parent, target.name)
+    work = Path(tempfile.mkdtemp(prefix=temp_prefix(target.name), dir=parent))
     try:
         files = _write_files(work, case, outcome, info, command)
         page = _html if args.html else _markdown
@@ -98,6 +100,8 @@ def _refuse_inputs_inside(target: Path, case_path: str, case) -> None:
     """The report folder must not hold the case or its inputs: it is replaced whole."""
     folder = target.resolve()
     inputs = [Path(case_path), *(v for v in case.values() if isinstance(v, Path))]
+    # a solver's own files (a curve table) are inputs too
+    inputs += [p for _, p in run_inputs(_OptionsOf(case.get("solver_options", {})))]
     for path in inputs:
         p = path.resolve()
         if p == folder or folder in p.parents:
@@ -110,6 +114,13 @@ def _refuse_inputs_inside(target: Path, case_path: str, case) -> None:
             f"report folder {str(target)!r} is the working folder or holds it: give a folder "
             "of its own"
         )
+
+
+class _OptionsOf:
+    """The solver options of a case in the form :func:`run_inputs` reads."""
+
+    def __init__(self, options: dict) -> None:
+        self.solver_option = list(options.items())
 
 
 _INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",
@@ -148,12 +159,14 @@ def _inputs(case) -> list[tuple[str, str, str]]:
             value = ", ".join(f"{k} = {v}" for k, v in value.items())
         elif isinstance(value, Path):
             value = value.name
-        rows.append((name, str(value), key.unit))
+        rows.append((name, printable(value), key.unit))
     return rows
 
 
 def _markdown(case, command, outcome, info, files) -> str:
-    title = case.get("title") or f"{command} of {Path(case['mesh']).name}"
+    title = markdown_text(case.get("title") or f"{command} of {Path(case['mesh']).name}")
+    mesh_fence = markdown_fence(info.table)
+    results_fence = markdown_fence(outcome.table)
     lines = [
         f"# {title}",
         "",
@@ -164,19 +177,19 @@ def _markdown(case, command, outcome, info, files) -> str:
         "",
         "| key | value | unit |",
         "| --- | --- | --- |",
-        *[f"| {k} | {v} | {u} |" for k, v, u in _inputs(case)],
+        *[f"| {k} | {markdown_text(v)} | {u} |" for k, v, u in _inputs(case)],
         "",
         "## Mesh",
         "",
-        "```",
+        mesh_fence,
         info.table.split("\nsectional area curve")[0],
-        "```",
+        mesh_fence,
         "",
         "## Results",
         "",
-        "```",
+        results_fence,
         outcome.table,
-        "```",
+        results_fence,
         "",
         "## Figures",
         "",
@@ -190,7 +203,7 @@ def _markdown(case, command, outcome, info, files) -> str:
 
 
 def _html(case, command, outcome, info, files) -> str:
-    title = html.escape(case.get("title") or f"{command} of {Path(case['mesh']).name}")
+    title = html.escape(printable(case.get("title") or f"{command} of {Path(case['mesh']).name}"))
     rows = "".join(
         f"<tr><td>{html.escape(k)}</td><td>{html.escape(v)}</td><td>{html.escape(u)}</td></tr>"
         for k, v, u in _inputs(case)

@@ -29,7 +29,7 @@ def add_parser(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from . import main
+    from . import build_parser
 
     case = load_case(args.case)
     argv = case_argv(case)
@@ -41,7 +41,9 @@ def run(args: argparse.Namespace) -> int:
     if args.print_command:
         print("hullslice " + " ".join(_quote(a) for a in argv))
         return 0
-    return main(argv)
+    command = build_parser().parse_args(argv)
+    command.case = args.case  # an input of the run, protected from its outputs like the mesh
+    return command.func(command)
 
 
 def _quote(arg: str) -> str:

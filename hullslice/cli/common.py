@@ -15,16 +15,21 @@ from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
+from ..paths import check_not_an_input, printable, run_inputs
 from ..report import csv_text, json_text, write_atomic
+from ..safety import non_finite
 from ..solvers.base import SolverBase
 from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
 
 FORMATS = ("table", "json", "csv")
 
+#: Extensions of the figure files ``--plot`` draws.
+FIGURE_FORMATS = (".png", ".svg", ".pdf")
+
 
 class UsageError(Exception):
-    """A command-line usage error (one line, exit status 2)."""
+    """A command-line usage error (one line, exit status 2, as argparse's own)."""
 
 
 def positive_int(text: str) -> int:
@@ -77,9 +82,15 @@ def solver_option(text: str) -> tuple[str, Any]:
             f"{text!r} is not KEY=VALUE (e.g. --solver-option pile_up=wagner)"
         )
     try:
-        return key, json.loads(value)
+        parsed = json.loads(value)
     except json.JSONDecodeError:
         return key, value
+    bad = non_finite(parsed)
+    if bad is not None:  # NaN would pass every comparison's test: a check switched off
+        raise argparse.ArgumentTypeError(
+            f"{text!r}: {bad!r} is not a finite number; give a finite value"
+        )
+    return key, parsed
 
 
 def add_solver_options(g: argparse._ArgumentGroup) -> None:
@@ -405,13 +416,13 @@ def check_path(out: str, args: argparse.Namespace, option: str = "--output") -> 
             f"cannot write {out!r} ({option}): the folder {str(target.parent)!r} does not "
             "exist; create it first"
         )
-    for name in ("mesh", "kinematics", "mass_distribution", "case"):
-        source = getattr(args, name, None)
-        if source and target.exists() and Path(source).exists() and target.samefile(source):
-            raise InputError(
-                f"cannot write {out!r} ({option}): it is the input {name} file and would be "
-                "overwritten; give another file"
-            )
+    if option == "--plot" and target.suffix.lower() not in FIGURE_FORMATS:
+        raise InputError(
+            f"cannot write {printable(out)!r} (--plot): a figure is drawn as "
+            f"{', '.join(f[1:].upper() for f in FIGURE_FORMATS)} by the file's extension; "
+            "name it .png"
+        )
+    check_not_an_input(out, run_inputs(args), option)
 
 
 def fluid(args: argparse.Namespace) -> Fluid:

@@ -17,18 +17,18 @@ the velocity's change by at most :data:`ACCELERATION_TOLERANCE` of the largest s
 
 from __future__ import annotations
 
-import csv
 import math
 import os
 from collections.abc import Mapping, Sequence
-from pathlib import Path
 
 import numpy as np
 
 from ..errors import CaseError
 from ..mesh import Hull
+from ..paths import printable
 from ..sections import _height_at
 from ..state import Acceleration
+from ..tables import column_values, header_text, read_csv
 
 __all__ = [
     "ACCELERATION_TOLERANCE",
@@ -121,49 +121,16 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
     dict of (k,) float arrays
         ``t``, ``penetration``, ``velocity`` and the optional columns present.
     """
-    p = Path(path)
-    if not p.exists():
-        raise CaseError(f"kinematics file {str(p)!r} does not exist")
-    if not p.is_file():
-        raise CaseError(f"kinematics path {str(p)!r} is not a file: give a CSV file")
-    try:
-        # utf-8-sig: a spreadsheet's CSV may start with a byte-order mark
-        text = p.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise CaseError(
-            f"kinematics file {str(p)!r} is not UTF-8 text (byte {exc.start}): give a CSV "
-            "file with the columns t, penetration, velocity"
-        ) from None
-    except OSError as exc:
-        raise CaseError(
-            f"kinematics file {str(p)!r} cannot be read: {exc.strerror or exc}"
-        ) from None
-    if "\0" in text:
-        raise CaseError(f"kinematics file {str(p)!r} holds binary data: give a CSV text file")
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
-    reader = csv.reader(lines)
-    try:
-        header = [h.strip().lower() for h in next(reader)]
-    except StopIteration:
-        raise CaseError(f"kinematics file {str(p)!r} is empty") from None
+    header, rows = read_csv(path, "kinematics")  # hullslice/tables.py
     missing = [c for c in KINEMATICS_COLUMNS if c not in header]
     if missing:
         raise CaseError(
-            f"kinematics file {str(p)!r} lacks the column(s) {', '.join(missing)} "
-            f"(its header: {', '.join(header)}); it needs t, penetration, velocity"
+            f"kinematics file {printable(path)!r} lacks the column(s) {', '.join(missing)} "
+            f"({header_text(header)}); it needs t, penetration, velocity"
         )
     names = [*KINEMATICS_COLUMNS, *(c for c in KINEMATICS_OPTIONAL if c in header)]
     idx = [header.index(c) for c in names]
-    rows = []
-    for lineno, row in enumerate(reader, start=2):
-        try:
-            rows.append([float(row[i]) for i in idx])
-        except (ValueError, IndexError):
-            raise CaseError(
-                f"kinematics file {str(p)!r} line {lineno}: {','.join(row)!r} does not hold "
-                f"numbers for {', '.join(names)}"
-            ) from None
-    arr = np.array(rows, dtype=np.float64).reshape(-1, len(names))
+    arr = column_values(rows, idx, names, f"kinematics file {printable(path)!r}")
     return {c: arr[:, i] for i, c in enumerate(names)}
 
 

@@ -30,6 +30,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import InputError
+from ..safety import check_options
 from ..sections import Sections
 from ..state import Fluid
 
@@ -80,6 +81,12 @@ class SectionLoads:
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # frozen: set once here, read-only arrays
+        valid = np.asarray(fields["valid"])
+        if valid.dtype != bool:  # NaN or "no" cast to bool is True: a check switched off
+            raise TypeError(
+                f"SectionLoads.valid must be a boolean array (True inside the solver's range), "
+                f"not {valid.dtype} values such as {valid.ravel()[:1].tolist()}"
+            )
         for name, dtype in (("force_per_metre", np.float64), ("valid", bool), ("reason", object)):
             a = np.asarray(fields[name], dtype=dtype)  # no copy when it is one already
             a.flags.writeable = False
@@ -119,6 +126,10 @@ class SolverBase(abc.ABC):  # noqa: B024 (its two subclasses each add the abstra
     options: ClassVar[Mapping[str, Any]] = {}
     #: The solver's kind, a key of :data:`SOLVER_KINDS` (set by the two base classes).
     kind: ClassVar[str] = ""
+    #: Options whose range the solver checks itself in ``__init__`` (hullslice then refuses
+    #: only NaN and infinities in them; otherwise an option with a positive default must be
+    #: a positive number).
+    own_checks: ClassVar[tuple[str, ...]] = ()
 
     def __init__(self, **options: Any) -> None:
         unknown = sorted(set(options) - set(self.options))
@@ -128,6 +139,9 @@ class SolverBase(abc.ABC):  # noqa: B024 (its two subclasses each add the abstra
                 f"solver {self.name!r} has no option {', '.join(map(repr, unknown))}; "
                 f"its options: {known}"
             )
+        check_options(  # no NaN, no threshold switched off
+            self.name or type(self).__name__, self.options, options, frozenset(self.own_checks)
+        )
         self.settings = {**self.options, **options}
 
     def __repr__(self) -> str:

@@ -14,7 +14,6 @@ equivalent mass ``M' = M rho_curves / rho``; the force still uses the real ``M``
 
 from __future__ import annotations
 
-import csv
 import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
@@ -24,8 +23,10 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..errors import CaseError, InputError
+from ..paths import printable
 from ..sections import Sections
 from ..state import Fluid
+from ..tables import column_values, header_text, read_csv
 from .base import SectionLoads, Solver, join_reasons
 
 __all__ = [
@@ -166,34 +167,15 @@ class CharacteristicCurves:
             The file is missing, or lacks a column, or a row is not three numbers.
         """
         p = Path(path)
-        if not p.is_file():
-            raise CaseError(f"curve table {str(p)!r} does not exist: give the path of a CSV file")
-        with open(p, newline="", encoding="utf-8") as fh:
-            numbered = [
-                (i, row)
-                for i, line in enumerate(fh, start=1)
-                if line.strip() and not line.lstrip().startswith("#")
-                for row in csv.reader([line])
-            ]
-        if not numbered:
-            raise CaseError(f"curve table {str(p)!r} is empty")
-        header = [h.strip().lower() for h in numbered[0][1]]
+        header, numbered = read_csv(p, "curve table")  # hullslice/tables.py
         missing = [c for c in CURVE_COLUMNS if c not in header]
         if missing:
             raise CaseError(
-                f"curve table {str(p)!r} lacks the column(s) {', '.join(missing)} (its header: "
-                f"{', '.join(header)}); it needs z_tilde, a_tilde, v_tilde"
+                f"curve table {printable(p)!r} lacks the column(s) {', '.join(missing)} "
+                f"({header_text(header)}); it needs z_tilde, a_tilde, v_tilde"
             )
         idx = [header.index(c) for c in CURVE_COLUMNS]
-        rows = []
-        for lineno, row in numbered[1:]:
-            try:
-                rows.append([float(row[i]) for i in idx])
-            except (ValueError, IndexError):
-                raise CaseError(
-                    f"curve table {str(p)!r} line {lineno}: {','.join(row)!r} does not hold "
-                    "three numbers for z_tilde, a_tilde, v_tilde"
-                ) from None
+        rows = column_values(numbered, idx, CURVE_COLUMNS, f"curve table {printable(p)!r}")
         try:
             return cls(table=np.array(rows).reshape(-1, 3), rho=rho, z_range=z_range, source=str(p))
         except InputError as exc:

@@ -27,6 +27,7 @@ from importlib.metadata import EntryPoint, entry_points
 from typing import Any, NoReturn
 
 from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
+from ..safety import failure
 from .base import SolverBase
 
 __all__ = [
@@ -132,8 +133,8 @@ class _Registry:
         ep = self.winners[name]
         try:
             obj = ep.load()
-        except Exception as exc:
-            msg = f"solver plugin {_describe(ep)} failed to load: {type(exc).__name__}: {exc}"
+        except (Exception, SystemExit) as exc:  # a plugin's sys.exit() does not end hullslice
+            msg = f"solver plugin {_describe(ep)} failed to load: {failure(exc)}"
             return self._broken(name, msg)
         if not (isinstance(obj, type) and issubclass(obj, SolverBase)):
             msg = (
@@ -275,9 +276,9 @@ def _build(cls: type[SolverBase], options: dict, who) -> SolverBase:
         return cls(**options)
     except HullsliceError:
         raise
-    except Exception as exc:
+    except (Exception, SystemExit) as exc:
         raise SolverError(
-            f"solver {who()} failed to start with options {options!r}: {type(exc).__name__}: {exc}"
+            f"solver {who()} failed to start with options {options!r}: {failure(exc)}"
         ) from exc
 
 

@@ -67,6 +67,7 @@ class Zarnick(MomentumSolver):
         "cross-flow drag, buoyancy, round sections by Wagner's condition"
     )
     models_separation = True
+    own_checks = ("cross_flow_drag", "buoyancy_factor")  # zero is allowed
     options: ClassVar[dict[str, Any]] = {
         "pile_up": "wagner",
         "section_method": "auto",
