@@ -113,7 +113,8 @@ def _refuse_inputs_inside(target: Path, case_path: str, case) -> None:
 
 
 _INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",
-                 "--inertia"}  # fmt: skip
+                 "--inertia", "--scale", "--length", "--repair", "--keep",
+                 "--keep-box"}  # fmt: skip
 
 
 def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:
