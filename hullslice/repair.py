@@ -1,0 +1,243 @@
+"""Closing an open mesh into closed bodies: ``repair="close"`` (``--repair close``).
+
+Never done unasked: an open mesh is refused unless the caller asks for this repair, and the
+repair reports what it did (:class:`CloseReport`, one :class:`~hullslice.errors.
+MeshRepairWarning`). The passes, each with its own figures:
+
+1. **Stitch.** Copies of one vertex that differ by rounding are merged, over the smallest
+   distance of the loader's ladder (``TOL.merge`` to ``TOL.merge_max`` of the mesh's size)
+   that leaves the fewest edges with a single face.
+2. **Fill.** Every hole (a loop of edges with a single face) is filled by MeshFix's hole
+   filler (``pymeshfix``, the optional extra ``hullslice[repair]``): a triangulation of the
+   loop, refined and smoothed to the surrounding faces' size. Only the fill is used, not
+   MeshFix's whole clean-up, which takes away sharp tips and small parts of a good hull.
+3. **Drop.** A shell that is still open, or encloses no volume (a single sheet, a loose
+   triangle) is dropped; a shell wound inside out is turned outward.
+
+What was measured (``tests/test_repair.py``, ``benchmarks/repair.py``): a generic fuselage
+(``hullslice.shapes.fuselage``) with holes of 0.2 to 1.5 m radius on a 3.95 m-wide body
+closes to within 0.5 % of its volume; a 100k-face open mesh closes in well under a second.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from .constants import TOL
+from .errors import MeshError
+from .parts import face_labels, open_faces
+
+__all__ = ["CloseReport", "close_mesh"]
+
+
+@dataclass(frozen=True)
+class CloseReport:
+    """What ``repair="close"`` did (lengths in the mesh's own units, scaled later).
+
+    Attributes
+    ----------
+    holes : int
+        Holes (loops of edges with a single face) filled.
+    open_edges : int
+        Edges with a single face before the repair.
+    stitched : int
+        Vertices merged with a copy that differed by rounding.
+    area_added : float
+        Surface added by the fill (mesh units squared).
+    shells : int
+        Shells after the fill.
+    dropped : int
+        Shells dropped (still open, or enclosing no volume).
+    flipped : int
+        Shells turned outward.
+    volume_before : float or None
+        Volume of the shells that were closed before the repair (mesh units cubed), None if
+        none was.
+    volume_after : float
+        Volume of the kept shells after it.
+    seconds : float
+        Time taken.
+    """
+
+    holes: int
+    open_edges: int
+    stitched: int
+    area_added: float
+    shells: int
+    dropped: int
+    flipped: int
+    volume_before: float | None
+    volume_after: float
+    seconds: float
+
+    def message(self, scale: float = 1.0) -> str:
+        """One line for the warning, lengths times ``scale`` (m per mesh unit)."""
+        parts = [
+            f"closed {self.holes} hole{'s' if self.holes != 1 else ''} "
+            f"({self.open_edges} edges with a single face), adding "
+            f"{self.area_added * scale**2:.4g} m^2 of surface"
+        ]
+        if self.stitched:
+            parts.append(f"merged {self.stitched} vertices that differed by rounding")
+        if self.dropped:
+            parts.append(
+                f"dropped {self.dropped} of {self.shells} shells that could not be closed "
+                "(open sheets or no volume)"
+            )
+        if self.flipped:
+            parts.append(f"turned {self.flipped} inside-out shells outward")
+        before = (
+            f"{self.volume_before * scale**3:.6g} m^3 in the shells closed before"
+            if self.volume_before is not None
+            else "undefined before"
+        )
+        parts.append(f"volume {before}, {self.volume_after * scale**3:.6g} m^3 after")
+        return "repair close: " + "; ".join(parts) + f" ({self.seconds:.2f} s)"
+
+
+def _area(v: np.ndarray, f: np.ndarray) -> float:
+    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    return float(np.linalg.norm(cross, axis=1).sum() / 2)
+
+
+def _open_count(f: np.ndarray) -> tuple[int, int]:
+    from .mesh import _edge_use
+
+    counts, _ = _edge_use(f)
+    return int((counts == 1).sum()), int((counts > 2).sum())
+
+
+def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
+    """Merge vertex copies over the ladder's distance that leaves the fewest open edges."""
+    from .mesh import _drop_repeated_faces, _merge_close
+
+    n_open, n_many = _open_count(f)
+    if n_open == 0:
+        return v, f, 0
+    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    scale = max(size, float(np.abs(v).max()))
+    best = (n_open, v, f, 0)
+    tol = TOL.merge * scale
+    while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
+        v2, f2, merged = _merge_close(v, f, tol)
+        if merged:
+            deg = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
+            f2, _ = _drop_repeated_faces(f2[~deg])
+            if len(f2):
+                o2, m2 = _open_count(f2)
+                if o2 < best[0] and m2 <= n_many:
+                    best = (o2, v2, f2, merged)
+                    if o2 == 0:
+                        break
+        tol *= 10.0
+    return best[1], best[2], best[3]
+
+
+def _meshfix():
+    try:
+        import pymeshfix
+    except ImportError:
+        from .plots import MissingDependencyError
+
+        raise MissingDependencyError(
+            "repair close needs pymeshfix: pip install 'hullslice[repair]' (or pip install "
+            "pymeshfix)"
+        ) from None
+    return pymeshfix
+
+
+def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
+    """Close an open, multi-shell surface into closed shells.
+
+    Parameters
+    ----------
+    vertices : (n, 3) float
+        In any length unit (the repair does not depend on it), copies merged.
+    faces : (m, 3) int
+    name : str
+        For messages.
+
+    Returns
+    -------
+    vertices, faces, report : (n', 3) float, (m', 3) int, CloseReport or None
+        The closed shells; the report is None when the mesh had no hole.
+
+    Raises
+    ------
+    MeshError
+        Nothing is left that encloses a volume.
+    """
+    start = time.perf_counter()
+    v = np.asarray(vertices, dtype=np.float64)
+    f = np.asarray(faces, dtype=np.int64)
+    v, f, stitched = _stitch(v, f)
+    n_open, _ = _open_count(f)
+    if n_open == 0 and not stitched:
+        return v, f, None
+    n0, labels0 = face_labels(v, f)
+    before_closed = _closed_shell_volume(v, f, labels0, n0)
+    area_before = _area(v, f)
+    holes = 0
+    if n_open:
+        pymeshfix = _meshfix()
+        tm = pymeshfix.PyTMesh()
+        tm.load_array(np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int32))
+        holes = int(tm.n_boundaries)
+        tm.fill_small_boundaries(nbe=0, refine=True)
+        v, f32 = tm.return_arrays()
+        v = np.asarray(v, dtype=np.float64)
+        f = np.asarray(f32, dtype=np.int64)
+    area_added = _area(v, f) - area_before
+    # keep the closed shells that enclose a volume, each turned outward
+    n, labels = face_labels(v, f)
+    open_shell = np.bincount(labels, weights=open_faces(f), minlength=n) > 0
+    vol = _shell_volumes(v, f, labels, n)
+    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    empty = np.abs(vol) <= 1e3 * TOL.flat * size**3
+    keep_shell = ~open_shell & ~empty
+    if not keep_shell.any():
+        raise MeshError(
+            f"mesh {name!r}: repair close left nothing that encloses a volume ({n} shells, "
+            f"{int(open_shell.sum())} still open): the surface is not a body; remesh it"
+        )
+    flip_shell = keep_shell & (vol < 0)
+    faces_kept = keep_shell[labels]
+    flip = flip_shell[labels]
+    f = f.copy()
+    f[flip] = f[flip][:, ::-1]
+    f = f[faces_kept]
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    remap = np.cumsum(used) - 1
+    v, f = v[used], remap[f]
+    report = CloseReport(
+        holes=holes,
+        open_edges=n_open,
+        stitched=stitched,
+        area_added=area_added,
+        shells=n,
+        dropped=int((~keep_shell).sum()),
+        flipped=int(flip_shell.sum()),
+        volume_before=before_closed,
+        volume_after=float(np.abs(vol[keep_shell]).sum()),
+        seconds=time.perf_counter() - start,
+    )
+    return v, f, report
+
+
+def _shell_volumes(v, f, labels, n) -> np.ndarray:
+    """Signed volume of each shell (about the mesh's mean point; exact for closed shells)."""
+    o = v.mean(axis=0)
+    a, b, c = v[f[:, 0]] - o, v[f[:, 1]] - o, v[f[:, 2]] - o
+    return np.bincount(labels, weights=np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0, minlength=n)
+
+
+def _closed_shell_volume(v, f, labels, n) -> float | None:
+    closed = np.bincount(labels, weights=open_faces(f), minlength=n) == 0
+    if not closed.any():
+        return None
+    vol = _shell_volumes(v, f, labels, n)
+    return float(np.abs(vol[closed]).sum())
