@@ -111,29 +111,48 @@ def _open_count(f: np.ndarray) -> tuple[int, int]:
 
 
 def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """Merge vertex copies over the ladder's distance that leaves the fewest open edges."""
-    from .mesh import _drop_repeated_faces, _merge_close
+    """Merge copies of the vertices on open edges over the ladder's distance that leaves the
+    fewest open edges (only those vertices: a fine part elsewhere is never collapsed)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    from .mesh import _drop_repeated_faces, _edge_use
 
     n_open, n_many = _open_count(f)
     if n_open == 0:
         return v, f, 0
+    directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    key = directed.min(axis=1) * (int(f.max()) + 1) + directed.max(axis=1)
+    _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
+    rim = np.unique(directed[counts[inverse.reshape(-1)] == 1])  # vertices on open edges
+    tree = cKDTree(v[rim])
     size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     scale = max(size, float(np.abs(v).max()))
-    best = (n_open, v, f, 0)
+    best = (n_open, f, 0)
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
-        v2, f2, merged = _merge_close(v, f, tol)
-        if merged:
+        pairs = tree.query_pairs(tol, output_type="ndarray")
+        if len(pairs):
+            k = len(rim)
+            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(k, k))
+            ncomp, labels = connected_components(graph, directed=False)
+            first = np.full(ncomp, k, dtype=np.int64)
+            np.minimum.at(first, labels, np.arange(k))
+            target = np.arange(len(v))
+            target[rim] = rim[first[labels]]
+            f2 = target[f]
             deg = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
             f2, _ = _drop_repeated_faces(f2[~deg])
             if len(f2):
-                o2, m2 = _open_count(f2)
+                c2, _ = _edge_use(f2)
+                o2, m2 = int((c2 == 1).sum()), int((c2 > 2).sum())
                 if o2 < best[0] and m2 <= n_many:
-                    best = (o2, v2, f2, merged)
+                    best = (o2, f2, k - ncomp)
                     if o2 == 0:
                         break
         tol *= 10.0
-    return best[1], best[2], best[3]
+    return v, best[1], best[2]
 
 
 def _meshfix():
@@ -181,9 +200,11 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     before_closed = _closed_shell_volume(v, f, labels0, n0)
     area_before = _area(v, f)
     holes = 0
+    v, f = _compact(v, f)
     if n_open:
         pymeshfix = _meshfix()
         tm = pymeshfix.PyTMesh()
+        tm.set_quiet(1)
         tm.load_array(np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int32))
         holes = int(tm.n_boundaries)
         tm.fill_small_boundaries(nbe=0, refine=True)
@@ -208,11 +229,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     flip = flip_shell[labels]
     f = f.copy()
     f[flip] = f[flip][:, ::-1]
-    f = f[faces_kept]
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    remap = np.cumsum(used) - 1
-    v, f = v[used], remap[f]
+    v, f = _compact(v, f[faces_kept])
     report = CloseReport(
         holes=holes,
         open_edges=n_open,
@@ -226,6 +243,16 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
         seconds=time.perf_counter() - start,
     )
     return v, f, report
+
+
+def _compact(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Drop the vertices no face uses."""
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    if used.all():
+        return v, f
+    remap = np.cumsum(used) - 1
+    return v[used], remap[f]
 
 
 def _shell_volumes(v, f, labels, n) -> np.ndarray:

@@ -397,8 +397,9 @@ def finish(args: argparse.Namespace, outcome: Outcome) -> int:
     return 0
 
 
-def load(args: argparse.Namespace) -> Hull:
-    """The hull of the command's mesh and mass options (the output path is checked first)."""
+def load(args: argparse.Namespace, **overrides) -> Hull:
+    """The hull of the command's mesh and mass options (the output path is checked first);
+    ``overrides`` replace keyword arguments of :func:`~hullslice.load_hull`."""
     check_output(args)
     dist = None
     if args.mass_distribution:
@@ -417,7 +418,7 @@ def load(args: argparse.Namespace) -> Hull:
         mass_distribution=dist,
         cg=args.cg,
         inertia=args.inertia,
-        **shape_options(args),
+        **{**shape_options(args), **overrides},
     )
 
 
