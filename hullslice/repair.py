@@ -40,19 +40,19 @@ class CloseReport:
     Attributes
     ----------
     holes : int
-        Holes (loops of edges with a single face) filled.
+        Holes (loops of edges with a single face) filled in the shells kept.
     open_edges : int
-        Edges with a single face before the repair.
+        Edges with a single face before the repair, in all shells.
     stitched : int
         Vertices merged with a copy that differed by rounding.
     area_added : float
         Surface added by the fill (mesh units squared).
     shells : int
-        Shells after the fill.
+        Shells (after the stitch).
     dropped : int
-        Shells dropped (still open, or enclosing no volume).
+        Open shells dropped (still open after the fill, or enclosing no volume).
     flipped : int
-        Shells turned outward.
+        Filled shells turned outward.
     volume_before : float or None
         Volume of the shells that were closed before the repair (mesh units cubed), None if
         none was.
@@ -196,50 +196,66 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     n_open, _ = _open_count(f)
     if n_open == 0 and not stitched:
         return v, f, None
+    v, f = _compact(v, f)
     n0, labels0 = face_labels(v, f)
     before_closed = _closed_shell_volume(v, f, labels0, n0)
-    area_before = _area(v, f)
+    open_shell = np.bincount(labels0, weights=open_faces(f), minlength=n0) > 0
+    # the closed shells stay as they are; each open one is filled on its own, so that the
+    # holes and the surface added are counted on the shells that are kept
+    pieces_v = [v]
+    pieces_f = [f[~open_shell[labels0]]]
+    offset = len(v)
     holes = 0
-    v, f = _compact(v, f)
-    if n_open:
-        pymeshfix = _meshfix()
+    area_added = 0.0
+    dropped = 0
+    flipped = 0
+    volume_after = before_closed or 0.0
+    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    order = np.argsort(labels0, kind="stable")
+    bounds = np.searchsorted(labels0[order], np.arange(n0 + 1))
+    pymeshfix = _meshfix() if open_shell.any() else None
+    for s in np.flatnonzero(open_shell):
+        sv, sf = _compact(v, f[order[bounds[s] : bounds[s + 1]]])
         tm = pymeshfix.PyTMesh()
         tm.set_quiet(1)
-        tm.load_array(np.ascontiguousarray(v), np.ascontiguousarray(f, dtype=np.int32))
-        holes = int(tm.n_boundaries)
+        tm.load_array(np.ascontiguousarray(sv), np.ascontiguousarray(sf, dtype=np.int32))
+        loops = int(tm.n_boundaries)
         tm.fill_small_boundaries(nbe=0, refine=True)
-        v, f32 = tm.return_arrays()
-        v = np.asarray(v, dtype=np.float64)
-        f = np.asarray(f32, dtype=np.int64)
-    area_added = _area(v, f) - area_before
-    # keep the closed shells that enclose a volume, each turned outward
-    n, labels = face_labels(v, f)
-    open_shell = np.bincount(labels, weights=open_faces(f), minlength=n) > 0
-    vol = _shell_volumes(v, f, labels, n)
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
-    empty = np.abs(vol) <= 1e3 * TOL.flat * size**3
-    keep_shell = ~open_shell & ~empty
-    if not keep_shell.any():
+        fv, ff = tm.return_arrays()
+        fv = np.asarray(fv, dtype=np.float64)
+        ff = np.asarray(ff, dtype=np.int64)
+        # the fill may leave triangles with a repeated corner: no area, part of the fill
+        ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 2] != ff[:, 0])]
+        vol = _volume(fv, ff)
+        if len(ff) == 0 or open_faces(ff).any() or abs(vol) <= 1e3 * TOL.flat * size**3:
+            dropped += 1
+            continue
+        if vol < 0:
+            ff = ff[:, ::-1]
+            flipped += 1
+        holes += loops
+        area_added += _area(fv, ff) - _area(sv, sf)
+        volume_after += abs(vol)
+        pieces_v.append(fv)
+        pieces_f.append(ff + offset)
+        offset += len(fv)
+    n = n0
+    if sum(len(pf) for pf in pieces_f) == 0:
         raise MeshError(
             f"mesh {name!r}: repair close left nothing that encloses a volume ({n} shells, "
-            f"{int(open_shell.sum())} still open): the surface is not a body; remesh it"
+            f"{dropped} could not be closed): the surface is not a body; remesh it"
         )
-    flip_shell = keep_shell & (vol < 0)
-    faces_kept = keep_shell[labels]
-    flip = flip_shell[labels]
-    f = f.copy()
-    f[flip] = f[flip][:, ::-1]
-    v, f = _compact(v, f[faces_kept])
+    v, f = _compact(np.vstack(pieces_v), np.vstack(pieces_f))
     report = CloseReport(
         holes=holes,
         open_edges=n_open,
         stitched=stitched,
         area_added=area_added,
         shells=n,
-        dropped=int((~keep_shell).sum()),
-        flipped=int(flip_shell.sum()),
+        dropped=dropped,
+        flipped=flipped,
         volume_before=before_closed,
-        volume_after=float(np.abs(vol[keep_shell]).sum()),
+        volume_after=volume_after,
         seconds=time.perf_counter() - start,
     )
     return v, f, report
@@ -253,6 +269,13 @@ def _compact(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return v, f
     remap = np.cumsum(used) - 1
     return v[used], remap[f]
+
+
+def _volume(v: np.ndarray, f: np.ndarray) -> float:
+    """Signed volume enclosed by one shell (0 for no faces)."""
+    if len(f) == 0:
+        return 0.0
+    return float(_shell_volumes(v, f, np.zeros(len(f), dtype=np.int64), 1)[0])
 
 
 def _shell_volumes(v, f, labels, n) -> np.ndarray:
