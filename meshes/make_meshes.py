@@ -8,7 +8,7 @@ wedge_prism.stl   a prism of uniform 30-degree wedge section, 1 m long, 0.2 m be
 fuselage_full.obj a generic narrow-body transport fuselage, full scale (37.6 m, 3.95 m wide):
                   nose, constant section, upswept tail cone; x from the tail tip to the nose
 fuselage_model.obj the same at 1:10 model scale (3.76 m)
-dirty_aircraft.stl an aircraft as a modelling tool exports it, to practise on: in its own
+dirty/dirty_aircraft.stl an aircraft as a modelling tool exports it, to practise on: in its own
                   units (14.7 long for 37.6 m), nose towards -x, a coarse fuselage with four
                   holes, a wing, tail planes and a fin through it, two nacelles, and 20 loose
                   triangles (see the README's "Bringing your own aircraft mesh")
@@ -70,8 +70,9 @@ def main() -> None:
     write("fuselage_full.obj", *shapes.fuselage(scale=1.0))
     write("fuselage_model.obj", *shapes.fuselage(scale=0.1))
     dirty = dirty_aircraft()
-    dirty.export(HERE / "dirty_aircraft.stl")
-    print(f"dirty_aircraft.stl: {len(dirty.faces)} faces, open, several bodies")
+    (HERE / "dirty").mkdir(exist_ok=True)  # apart from the clean meshes, which load as they are
+    dirty.export(HERE / "dirty" / "dirty_aircraft.stl")
+    print(f"dirty/dirty_aircraft.stl: {len(dirty.faces)} faces, open, several bodies")
 
 
 if __name__ == "__main__":

@@ -413,3 +413,26 @@ def test_the_options_round_trip_through_a_case_file(tmp_path, capsys, fuselage_h
     # comes down to 0.5 m up to the cut
     assert max(r["x"] for r in a["sections"]) < 30.0
     assert 17.0 < a["wetted_length"] < 30.0
+
+
+def test_the_readme_example_on_the_dirty_sample(fuselage_hull):
+    """meshes/dirty/dirty_aircraft.stl as the README loads it: the fuselage, 37.6 m long,
+    its volume that of the undamaged coarse fuselage it was made from, within the repair's
+    tolerance."""
+    pytest.importorskip("pymeshfix")
+    from .conftest import MESHES
+
+    path = MESHES / "dirty" / "dirty_aircraft.stl"
+    with pytest.raises(hs.MeshError, match="--repair close"):
+        hs.load_hull(path)
+    with pytest.warns(hs.MeshRepairWarning) as record:
+        hull = hs.load_hull(
+            path, forward="-x", repair="close", keep="largest", length=37.6, mass=60000.0
+        )
+    messages = " | ".join(str(w.message) for w in record)
+    assert "closed 3 holes" in messages and "dropped 20 of 26 shells" in messages
+    assert "kept body 1 of 6" in messages
+    undamaged = hs.Hull.from_arrays(*shapes.fuselage(stations=80, points=40))
+    assert hull.extents[0] == pytest.approx(37.6, rel=1e-12)
+    assert hull.volume == pytest.approx(undamaged.volume, rel=REPAIR_VOLUME_RTOL)
+    assert orientation(hull, "-x", "+z").nose == "fore"
