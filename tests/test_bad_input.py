@@ -171,6 +171,13 @@ def scaled_back_force(data: dict) -> None:
     assert data["force"] == pytest.approx(wedge_force(), rel=1e-6)
 
 
+def along_y(data: dict) -> None:
+    # read as asked: 0.2 m long along x, 1 m wide; the file's extents say which is which
+    assert data["length"] == pytest.approx(0.2, rel=1e-6)
+    assert data["orientation"]["mesh_extents"]["y"] == pytest.approx(1.0, rel=1e-6)
+    assert data["orientation"]["longest_axis"] == "y"
+
+
 def rounded_force(data: dict) -> None:
     # the corners moved by up to 1e-6 (noise) and 5e-6 (6 digits) of their coordinates:
     # the force of a body that close, within 2e-5 (it is 1.7e-6 off)
@@ -1018,6 +1025,15 @@ CATALOGUE: tuple[Bad, ...] = (
         ],
         warning="repair close: closed 1 hole (3 edges with a single face)",
         check=same_force,
+    ),
+    Bad(
+        "length-along-y",
+        "a hull whose length is along the file's y axis, `info` with the default `--forward x`",
+        "warning: mesh '...' is longest along its y axis (L m) but --forward is +x (B m): if the "
+        "body's length is along y, give --forward y (or -y)",
+        lambda t: ["info", stl(t, "along_y.stl", wedge()[0][:, [1, 0, 2]], wedge()[1][:, ::-1])],
+        warning="is longest along its y axis (1 m) but --forward is +x (0.2 m)",
+        check=along_y,
     ),
     Bad(
         "repair-not-a-mesh",
