@@ -90,6 +90,8 @@ HOLES = {
 # resolution: 0.002 % for the small holes, 0.003 % for the medium, 0.1 % for the large;
 # the fill is a smooth cap, flatter than the curved skin it replaces)
 REPAIR_VOLUME_RTOL = 5e-3
+# and per size of hole, ten times what was measured or more
+HOLE_VOLUME_RTOL = {"small": 2e-4, "medium": 2e-4, "large": REPAIR_VOLUME_RTOL}
 
 
 # -- scale ----------------------------------------------------------------------------------
@@ -250,7 +252,7 @@ def test_repair_close_restores_the_volume(tmp_path, fuselage_hull, size):
     n = len(HOLES[size])
     with pytest.warns(hs.MeshRepairWarning, match=rf"repair close: closed {n} holes") as rec:
         hull = hs.load_hull(path, repair="close")
-    assert hull.volume == pytest.approx(fuselage_hull.volume, rel=REPAIR_VOLUME_RTOL)
+    assert hull.volume == pytest.approx(fuselage_hull.volume, rel=HOLE_VOLUME_RTOL[size])
     # the surface added is the surface taken away, to the fill's curvature
     added = float(str(rec[0].message).split("adding ")[1].split(" m^2")[0])
     assert added == pytest.approx(area, rel=0.05)
