@@ -438,3 +438,21 @@ def test_the_readme_example_on_the_dirty_sample(fuselage_hull):
     assert hull.extents[0] == pytest.approx(37.6, rel=1e-12)
     assert hull.volume == pytest.approx(undamaged.volume, rel=REPAIR_VOLUME_RTOL)
     assert orientation(hull, "-x", "+z").nose == "fore"
+
+
+def test_the_views_are_the_body_outlines(fuselage_hull):
+    pytest.importorskip("matplotlib")
+    from hullslice import plots
+
+    fig = plots.plot_views(fuselage_hull, "+x", "+z", nose="fore")
+    lo, hi = fuselage_hull.bounds
+    # side (x, z), front (y, z) and top (x, y), in the figure's order: each outline spans
+    # the body's box
+    for ax, (i, j) in zip(fig.axes[:3], [(0, 2), (1, 2), (0, 1)], strict=True):
+        (patch,) = ax.patches
+        pts = patch.get_path().vertices
+        np.testing.assert_allclose(pts.min(axis=0), [lo[i], lo[j]], atol=1e-6 * 37.6)
+        np.testing.assert_allclose(pts.max(axis=0), [hi[i], hi[j]], atol=1e-6 * 37.6)
+    texts = [t.get_text() for ax in fig.axes for t in ax.texts]
+    assert any("forward (+x, the file's +x)" in t for t in texts) and "nose?" in texts
+    plots._pyplot().close(fig)
