@@ -131,6 +131,14 @@ SCHEMA: dict[str, Key] = {
         Key("units", "text", "", "length unit of the mesh", "m", _one_of(LENGTH_UNITS)),
         Key("forward", "text", "", "mesh axis pointing forward", "+x", _axis),
         Key("up", "text", "", "mesh axis pointing up", "+z", _axis),
+        Key("scale", "number", "m per file unit", "scale of the mesh (not with length)",
+            check=_positive),
+        Key("length", "number", "m", "the body's length along forward, sets the scale",
+            check=_positive),
+        Key("repair", "text", "", "repair of an open mesh: none or close", None,
+            _one_of(("none", "close"))),
+        Key("keep", "text", "", "bodies to keep: 'largest' or numbers from 1 as '1,3'"),
+        Key("keep_box", "box", "m", "keep the part inside xmin, xmax, ymin, ymax, zmin, zmax"),
         Key("mass", "number", "kg", "mass of the body", check=_positive),
         Key("mass_distribution", "path", "", "CSV of the mass along the body, relative to "
             "the case"),
@@ -176,6 +184,7 @@ _KIND_WORDS = {
     "count": "a whole number",
     "counts": "a whole number or a list of whole numbers",
     "pair": "a list of two numbers",
+    "box": "a list of six numbers",
     "flag": "true or false",
     "table": "a table",
 }
@@ -219,6 +228,14 @@ def _convert(key: Key, value: Any, where: str) -> Any:
             and all(math.isfinite(i) for i in value)
         )
         hint = " (write e.g. [12.5, 0.3])"
+    elif kind == "box":
+        ok = (
+            isinstance(value, list)
+            and len(value) == 6
+            and all(isinstance(i, int | float) and not isinstance(i, bool) for i in value)
+            and all(math.isfinite(i) for i in value)
+        )
+        hint = " (write e.g. [-1.0, 40.0, -2.5, 2.5, -1.0, 5.0])"
     else:  # count or counts
         items = value if kind == "counts" and isinstance(value, list) else [value]
         ok = bool(items) and all(isinstance(i, int) and not isinstance(i, bool) for i in items)
@@ -233,6 +250,8 @@ def _convert(key: Key, value: Any, where: str) -> Any:
         return float(value)
     if kind == "pair":
         return (float(value[0]), float(value[1]))
+    if kind == "box":
+        return [float(i) for i in value]
     if kind == "table":
         return dict(value)
     if kind == "count":
@@ -380,7 +399,8 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
         ) from None
 
 
-_COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output"}
+_COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output",
+           "scale", "length", "repair", "keep", "keep_box"}  # fmt: skip
 _MASS = {"mass", "mass_distribution", "cg", "inertia"}
 _METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
 _MOTION = {"pitch", "forward_speed", "pitch_rate"}
@@ -445,6 +465,8 @@ def case_argv(case: Mapping[str, Any]) -> list[str]:
             argv.append(f"--cg={value[0]!r},{value[1]!r}")
         elif name == "slices":
             argv.append(f"--slices={','.join(str(n) for n in value)}")
+        elif name == "keep_box":
+            argv.append(f"--keep-box={','.join(repr(float(x)) for x in value)}")
         elif isinstance(value, float):
             argv.append(f"{option}={value!r}")
         else:
@@ -476,6 +498,12 @@ def case_from_args(args) -> dict[str, Any]:
             value = list(value) if isinstance(value, list | tuple) else [int(value)]
         if name == "cg":
             value = [float(value[0]), float(value[1])]
+        if name == "keep_box":
+            from .parts import parse_box
+
+            value = [float(x) for x in parse_box(value).T.ravel()]
+        if name == "repair" and value == "none":
+            continue
         if name in ("mesh", "kinematics", "mass_distribution", "output", "plot"):
             value = Path(value).resolve()
         out[name] = value

@@ -15,6 +15,7 @@ __all__ = [
     "InputError",
     "MeshError",
     "MeshRepairWarning",
+    "OrientationWarning",
     "PluginError",
     "PluginWarning",
     "SolverError",
@@ -61,6 +62,10 @@ class MeshRepairWarning(HullsliceWarning):
 
 class UnitsWarning(HullsliceWarning):
     """A value looks like it is in the wrong unit (a mesh in mm read as metres, ...)."""
+
+
+class OrientationWarning(HullsliceWarning):
+    """A mesh may be turned the wrong way (its longest axis is not the forward one, ...)."""
 
 
 class PluginWarning(HullsliceWarning):

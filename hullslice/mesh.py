@@ -458,6 +458,11 @@ def load_hull(
     mass_distribution: MassDistribution | None = None,
     cg: Sequence[float] | None = None,
     inertia: float | None = None,
+    scale: float | None = None,
+    length: float | None = None,
+    repair: str | None = None,
+    keep: str | int | Sequence[int] | None = None,
+    keep_box: Sequence[float] | str | None = None,
 ) -> Hull:
     """Read an STL or OBJ file into a :class:`Hull`.
 
@@ -479,34 +484,85 @@ def load_hull(
         Centre of gravity ``x, z`` in m, body frame.
     inertia : float, optional
         Pitch moment of inertia about the centre of gravity in kg m^2.
+    scale : float, optional
+        Metres per file unit (times the unit's when ``units`` is given too): 0.0254 for
+        inches, 2.56 for a model whose 14.7 units are 37.6 m. Not with ``length``.
+    length : float, optional
+        The body's extent along ``forward`` in m (after ``keep``); the scale follows from
+        it. Not with ``scale``, nor with ``units`` other than ``m``.
+    repair : str, optional
+        ``"close"``: fill the holes of an open mesh and drop the shells that cannot be
+        closed, with a :class:`MeshRepairWarning` giving the figures (needs ``pymeshfix``,
+        the extra ``hullslice[repair]``). Default ``None``: an open mesh is refused.
+    keep : str, int or sequence of int, optional
+        The bodies (shells) to keep: ``"largest"``, or numbers from 1, largest first
+        (``hullslice info`` lists them; ``hull.source["bodies"]`` too). Default: all.
+    keep_box : six floats or str, optional
+        ``xmin, xmax, ymin, ymax, zmin, zmax`` in m, body frame after scaling: only the
+        part of the body inside this box is kept (cut by manifold3d).
 
     Returns
     -------
     Hull
+        Its ``source`` records the scale (``"scale"``, m per file unit), the bodies
+        (``"bodies"``), those kept (``"kept"``) and every repair (``"repairs"``).
 
     Raises
     ------
     MeshError
         The file is missing, empty, not a mesh, or not a closed 2-manifold body.
     InputError
-        A bad option (unknown unit or axis, non-positive mass).
+        A bad option (unknown unit or axis, non-positive mass, scale or length, a body
+        number the mesh does not have, a box that keeps nothing).
     """
+    from .prepare import prepare_arrays
+
     p = Path(path)
     v, f = read_mesh(p)
+    prep = prepare_arrays(
+        v, f, p.stem, units=units, scale=scale, length=length, forward=forward, up=up,
+        repair=repair, keep=keep,
+    )  # fmt: skip
+    box = None
+    if keep_box is not None:
+        from .parts import parse_box
+
+        box = parse_box(keep_box)
+    mass_options = {
+        "mass": mass, "mass_distribution": mass_distribution, "cg": cg, "inertia": inertia
+    }  # fmt: skip
     hull = Hull.from_arrays(
-        v,
-        f,
+        prep.vertices,
+        prep.faces,
         units=units,
         forward=forward,
         up=up,
-        mass=mass,
         name=p.stem,
-        mass_distribution=mass_distribution,
-        cg=cg,
-        inertia=inertia,
+        **({} if box is not None else mass_options),
     )
-    hull.source["path"] = str(p)
+    if box is not None:
+        hull = _cut_to_box(hull, box, mass_options)
+    hull.source.update(
+        units=str(units), scale=prep.scale, bodies=prep.bodies, kept=prep.kept, path=str(p)
+    )
+    hull.source["repairs"] = tuple(prep.notes) + tuple(hull.source["repairs"])
     return hull
+
+
+def _cut_to_box(hull: Hull, box: np.ndarray, mass_options: dict) -> Hull:
+    """The part of ``hull`` inside ``box`` (m, body frame), with the mass options."""
+    from .parts import cut_to_box
+
+    v, f, inside, whole = cut_to_box(hull.vertices, hull.faces, hull.manifold, box, hull.name)
+    lo, hi = box
+    note = (
+        f"kept the part inside the box x {lo[0]:g} to {hi[0]:g}, y {lo[1]:g} to {hi[1]:g}, "
+        f"z {lo[2]:g} to {hi[2]:g} m: {inside:.6g} of {whole:.6g} m^3"
+    )
+    warnings.warn(f"mesh {hull.name!r}: {note}", MeshRepairWarning, stacklevel=3)
+    source = dict(hull.source)
+    source["repairs"] = (*source.get("repairs", ()), note)
+    return Hull(v, f, name=hull.name, source=source, **mass_options)
 
 
 def read_mesh(path: Path) -> tuple[np.ndarray, np.ndarray]:
@@ -937,7 +993,8 @@ def _checked_mesh(vertices, faces, name: str):
     if open_edges:
         raise MeshError(
             f"mesh {name!r} is open: {open_edges} edges belong to a single face (holes in "
-            "the surface); close the holes in your CAD tool or with a mesh repair tool"
+            "the surface); load it with --repair close (repair='close') to fill them and "
+            "drop what cannot be closed, or close them in your CAD tool"
         )
     nonmanifold = int((counts > 2).sum())
     if nonmanifold:

@@ -22,6 +22,7 @@ __all__ = [
     "plot_force_distribution",
     "plot_history",
     "plot_sections",
+    "plot_views",
     "save",
 ]
 
@@ -276,5 +277,86 @@ def plot_area_curve(x, area, title: str | None = None):
     ax.set_ylabel("section area [m$^2$]")
     ax.grid(True, alpha=0.3)
     ax.set_title(title or "Sectional area curve")
+    fig.tight_layout()
+    return fig
+
+
+# cyclic or signed permutations of the body axes (rotations) that bring a view's two axes
+# to manifold3d's x and y, for its projection
+_VIEWS = (
+    ("side (from port)", "x along the body [m]", "z up [m]", ((1, 0, 0), (0, 0, 1), (0, -1, 0))),
+    ("top", "x along the body [m]", "y to port [m]", ((1, 0, 0), (0, 1, 0), (0, 0, 1))),
+    ("front (from ahead)", "y to port [m]", "z up [m]", ((0, 1, 0), (0, 0, 1), (1, 0, 0))),
+)
+
+
+def plot_views(hull, forward: str = "+x", up: str = "+z", nose: str | None = None):
+    """Side, top and front views of the body (its outline), with the forward axis marked.
+
+    Parameters
+    ----------
+    hull : Hull
+    forward, up : str
+        The mesh file's axes given as forward and up, for the labels.
+    nose : str, optional
+        ``"fore"`` or ``"aft"``: the end that looks like a nose
+        (:func:`hullslice.orientation.orientation`), marked in the side view.
+    """
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+
+    plt = _pyplot()
+    fig, axes = plt.subplots(
+        2, 2, figsize=(10, 6.5), gridspec_kw={"width_ratios": [3, 1], "height_ratios": [1, 1]}
+    )
+    order = (axes[0, 0], axes[1, 0], axes[0, 1])
+    lo, hi = hull.bounds
+    for ax, (title, xlabel, ylabel, rows) in zip(order, _VIEWS, strict=True):
+        m = np.zeros((3, 4))
+        m[:, :3] = np.array(rows, dtype=float)
+        outline = hull.manifold.transform(m).project()
+        verts, codes = [], []
+        for poly in outline.to_polygons():
+            p = np.asarray(poly, dtype=float)
+            if len(p) < 3:
+                continue
+            verts += [*p.tolist(), p[0].tolist()]
+            codes += [MplPath.MOVETO] + [MplPath.LINETO] * (len(p) - 1) + [MplPath.CLOSEPOLY]
+        if verts:
+            ax.add_patch(PathPatch(MplPath(verts, codes), facecolor="C0", alpha=0.35,
+                                   edgecolor="C0", lw=0.8))  # fmt: skip
+        ax.autoscale_view()
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(title, fontsize=10)
+        ax.set_xlabel(xlabel)
+        ax.set_ylabel(ylabel)
+        ax.grid(True, alpha=0.3)
+    length = hi[0] - lo[0]
+    for ax, ybase in ((axes[0, 0], lo[2]), (axes[1, 0], lo[1])):
+        y0 = ybase - 0.08 * length
+        ax.annotate(
+            "", xy=(lo[0] + 0.45 * length, y0), xytext=(lo[0] + 0.2 * length, y0),
+            arrowprops={"arrowstyle": "->", "color": "C3", "lw": 1.5},
+        )  # fmt: skip
+        ax.text(lo[0] + 0.47 * length, y0, f"forward (+x, the file's {forward})", color="C3",
+                va="center", fontsize=9)  # fmt: skip
+        ax.update_datalim([(lo[0], y0 - 0.04 * length)])
+        ax.autoscale_view()
+    if nose in ("fore", "aft"):
+        xn = hi[0] if nose == "fore" else lo[0]
+        axes[0, 0].annotate(
+            "nose?", xy=(xn, 0.5 * (lo[2] + hi[2])), xytext=(xn, hi[2] + 0.1 * length),
+            ha="center", color="C3", arrowprops={"arrowstyle": "->", "color": "C3"},
+        )  # fmt: skip
+        axes[0, 0].update_datalim([(xn, hi[2] + 0.15 * length)])
+        axes[0, 0].autoscale_view()
+    axes[1, 1].axis("off")
+    axes[1, 1].text(
+        0.0, 0.9,
+        f"{hull.name}\nlength {length:.4g} m\nbeam {hi[1] - lo[1]:.4g} m\n"
+        f"height {hi[2] - lo[2]:.4g} m\nfile axes: forward {forward}, up {up}",
+        va="top", fontsize=9, transform=axes[1, 1].transAxes,
+    )  # fmt: skip
+    fig.suptitle(f"{hull.name}: views of the body frame (x forward, y port, z up)")
     fig.tight_layout()
     return fig

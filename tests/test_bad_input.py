@@ -135,6 +135,22 @@ def twin_keels(tmp: Path) -> str:
     return stl(tmp, "w.stl", np.asarray(mesh.vert_properties)[:, :3], mesh.tri_verts)
 
 
+def open_deck(v, f):
+    # one triangle of the flat deck taken away: a hole above the water
+    top = np.flatnonzero(np.all(np.isclose(v[f][:, :, 2], v[:, 2].max()), axis=1))
+    return v, np.delete(f, top[0], axis=0)
+
+
+def three_floats():
+    v, f = wedge()
+    return join(*[(v + np.array([0.0, 0.3 * k, 0.0]), f) for k in range(3)])
+
+
+def with_stray_shell():
+    # a small box 50 m away: a part of the export that is not the hull
+    return join(wedge(), box((0.01, 0.01, 0.01), (50.0, 0.0, 0.0)))
+
+
 def kinematics(tmp: Path, content: str | bytes) -> str:
     return text(tmp, "kin.csv", content)
 
@@ -159,6 +175,18 @@ def same_force(data: dict) -> None:
 def same_force_in_mm(data: dict) -> None:
     # the file holds the body in mm in single precision: 6e-8 relative from the metre file
     assert data["force"] == pytest.approx(wedge_force(), rel=1e-6)
+
+
+def scaled_back_force(data: dict) -> None:
+    # the body 2.5 times larger in single precision, scaled back to 1 m: within rounding
+    assert data["force"] == pytest.approx(wedge_force(), rel=1e-6)
+
+
+def along_y(data: dict) -> None:
+    # read as asked: 0.2 m long along x, 1 m wide; the file's extents say which is which
+    assert data["length"] == pytest.approx(0.2, rel=1e-6)
+    assert data["orientation"]["mesh_extents"]["y"] == pytest.approx(1.0, rel=1e-6)
+    assert data["orientation"]["longest_axis"] == "y"
 
 
 def rounded_force(data: dict) -> None:
@@ -612,14 +640,16 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "open",
         "an open mesh (holes)",
-        "error: mesh '...' is open: N edges belong to a single face",
+        "error: mesh '...' is open: N edges belong to a single face (holes in the surface); "
+        "load it with --repair close",
         lambda t: [
             "sections",
             stl(t, "open.stl", *wedge_with(lambda v, f: (v, f[1:]))),
             "--draft",
             "0.01",
         ],
-        error="is open: 3 edges belong to a single face",
+        error="is open: 3 edges belong to a single face (holes in the surface); load it with "
+        "--repair close (repair='close')",
     ),
     Bad(
         "non-manifold",
@@ -1561,6 +1591,123 @@ CATALOGUE: tuple[Bad, ...] = (
         call=lambda t: hs.load_case(text(t, "c.toml", "mesh = 'hull.stl'\nmass = '1.0'\n")),
         error="key 'mass' must be a number in kg (mass of the body), not the text '1.0' (write "
         "the number without quotes)",
+    ),
+    # -- scale, parts and repair of meshes as exported (tests/test_aircraft_meshes.py)
+    Bad(
+        "length-zero",
+        "`--length 0`",
+        "error: length 0.0 is not a positive number: give the body's length along --forward in m",
+        lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--length", "0"],
+        error="length 0.0 is not a positive number: give the body's length along --forward",
+    ),
+    Bad(
+        "length-negative",
+        "a negative `--length`",
+        "error: the same",
+        lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--length=-1"],
+        error="length -1.0 is not a positive number",
+    ),
+    Bad(
+        "scale-with-length",
+        "`--scale` with `--length`",
+        "error: scale 2.0 and length 1.0 m both give the mesh's size: give one of them",
+        lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--scale", "2", "--length", "1"],
+        error="both give the mesh's size: give one of them (--scale FACTOR or --length M)",
+    ),
+    Bad(
+        "length-with-units",
+        "`--length` with `--units mm`",
+        "error: length 1 m sets the mesh's size by itself; units 'mm' would be ignored",
+        lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--length", "1", "--units", "mm"],
+        error="units 'mm' would be ignored: leave out --units, or give --scale",
+    ),
+    Bad(
+        "length-sets-scale",
+        "a model in arbitrary units, `--length 1` (its length in m)",
+        "result: scaled to 1 m along --forward; the force of the body in metres",
+        lambda t: [
+            "force",
+            stl(t, "model.stl", wedge()[0] * 2.5, wedge()[1]),
+            *STATE,
+            "--length",
+            "1",
+        ],
+        check=scaled_back_force,
+    ),
+    Bad(
+        "keep-missing-body",
+        "`--keep 7` on a mesh of 3 bodies",
+        "error: keep 7: mesh '...' has 3 bodies (numbered 1 to 3, largest first; 'hullslice "
+        "info MESH' lists them)",
+        lambda t: [
+            "sections",
+            stl(t, "floats.stl", *three_floats()),
+            "--draft",
+            "0.01",
+            "--keep",
+            "7",
+        ],
+        error="keep 7: mesh 'floats' has 3 bodies (numbered 1 to 3, largest first",
+    ),
+    Bad(
+        "stray-shell-keep-largest",
+        "a stray shell far from the hull, `--keep largest`",
+        "repaired, warning: kept body 1 of 2 (...); dropped 2 (...)",
+        lambda t: [
+            "force",
+            stl(t, "stray.stl", *with_stray_shell()),
+            *STATE,
+            "--keep",
+            "largest",
+        ],
+        warning="kept body 1 of 2",
+        check=same_force,
+    ),
+    Bad(
+        "keep-box-empty",
+        "a `--keep-box` that holds none of the body",
+        "error: keep box ... keeps nothing of mesh '...', which spans x ... m: give a box that "
+        "overlaps it",
+        lambda t: ["sections", wedge_file(t), "--draft", "0.01", "--keep-box=5,6,-1,1,-1,1"],
+        error="keeps nothing of mesh 'wedge', which spans x",
+    ),
+    Bad(
+        "open-repair-close",
+        "an open mesh with `--repair close` (a hole in the deck)",
+        "repaired, warning: repair close: closed 1 hole (3 edges with a single face), adding "
+        "A m^2 of surface; volume ...",
+        lambda t: [
+            "force",
+            stl(t, "deck.stl", *wedge_with(open_deck)),
+            *STATE,
+            "--repair",
+            "close",
+        ],
+        warning="repair close: closed 1 hole (3 edges with a single face)",
+        check=same_force,
+    ),
+    Bad(
+        "length-along-y",
+        "a hull whose length is along the file's y axis, `info` with the default `--forward x`",
+        "warning: mesh '...' is longest along its y axis (L m) but --forward is +x (B m): if the "
+        "body's length is along y, give --forward y (or -y)",
+        lambda t: ["info", stl(t, "along_y.stl", wedge()[0][:, [1, 0, 2]], wedge()[1][:, ::-1])],
+        warning="is longest along its y axis (1 m) but --forward is +x (0.2 m)",
+        check=along_y,
+    ),
+    Bad(
+        "repair-not-a-mesh",
+        "`--repair close` on a file that is not a mesh",
+        "error: the file's own error: it does not start with 'solid' as an ASCII STL does",
+        lambda t: [
+            "sections",
+            text(t, "notes.stl", "hull notes\n" * 20),
+            "--draft",
+            "0.01",
+            "--repair",
+            "close",
+        ],
+        error="does not start with 'solid'",
     ),
 )
 

@@ -152,6 +152,8 @@ def test_nothing_in_a_case_file_is_executed(tmp_path):
 def test_every_schema_key_has_a_documented_kind_and_unit():
     numbers = {k.name: k.unit for k in SCHEMA.values() if k.kind == "number"}
     assert numbers == {
+        "scale": "m per file unit",
+        "length": "m",
         "mass": "kg",
         "inertia": "kg*m^2",
         "rho": "kg/m^3",

@@ -177,7 +177,7 @@ def test_report_folder(capsys, tmp_path, paper_hull):
     names = sorted(p.name for p in out.iterdir())
     assert names == sorted([
         "report.md", "case.toml", "results.json", "results.csv", "mesh.json",
-        "convergence.png", "force_distribution.png", "sections.png", "area_curve.png",
+        "convergence.png", "force_distribution.png", "sections.png", "area_curve.png", "views.png",
     ])  # fmt: skip
     text = (out / "report.md").read_text()
     data = json.loads((out / "results.json").read_text())

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import warnings
 from pathlib import Path
 
 import numpy as np
 
 from .. import plots
+from ..errors import OrientationWarning
+from ..orientation import orientation
 from ..paths import printable
 from ..report import Column, table_text
 from ..sections import area_curve
@@ -42,7 +45,19 @@ def run(args: argparse.Namespace) -> int:
 
 def compute(args: argparse.Namespace) -> Outcome:
     """The description of ``args``' mesh."""
-    hull = load(args)
+    # the bodies are listed whatever is kept ("all" keeps all and lists them)
+    hull = load(args, keep=args.keep or "all")
+    orient = orientation(hull, args.forward, args.up)
+    if not orient.forward_is_longest:
+        e = orient.mesh_extents
+        warnings.warn(
+            f"mesh {hull.name!r} is longest along its {orient.longest} axis "
+            f"({e[orient.longest]:.6g} m) but --forward is {args.forward} "
+            f"({e[args.forward.strip().lstrip('+-').lower()]:.6g} m): if the body's length is "
+            f"along {orient.longest}, give --forward {orient.longest} (or -{orient.longest})",
+            OrientationWarning,
+            stacklevel=2,
+        )
     x, area = area_curve(hull, args.stations)
     lo, hi = hull.bounds
     ext = hull.extents
@@ -71,6 +86,10 @@ def compute(args: argparse.Namespace) -> Outcome:
         "cg": hull.cg if hull.mass is not None else None,
         "pitch_inertia": hull.pitch_inertia if hull.mass is not None else None,
         "mass_distribution": args.mass_distribution,
+        "scale": hull.source.get("scale"),
+        "orientation": orient.as_dict(),
+        "bodies": hull.source.get("bodies", []),
+        "kept": list(hull.source.get("kept", ())),
         "area_curve": {"x": x, "area": area},
         "max_area": float(area.max()),
         "max_area_x": float(x[int(np.argmax(area))]),
@@ -82,9 +101,10 @@ def compute(args: argparse.Namespace) -> Outcome:
         csv_columns=["x", "area"],
         csv_rows=rows,
         figures={
+            "views": lambda: plots.plot_views(hull, args.forward, args.up, orient.nose),
             "area_curve": lambda: plots.plot_area_curve(
                 x, area, f"{hull.name}: sectional area curve"
-            )
+            ),
         },
     )
 
@@ -112,6 +132,7 @@ def _table(hull, d, rows) -> str:
         )
     else:
         lines.append("  no mass given (--mass KG for the mass properties)")
+    lines += _orientation_lines(d) + _body_lines(d)
     lines += [
         "",
         f"sectional area curve ({len(rows)} stations; largest {d['max_area']:.6g} m^2 at "
@@ -119,3 +140,73 @@ def _table(hull, d, rows) -> str:
         table_text(AREA_COLUMNS, rows),
     ]
     return "\n".join(lines)
+
+
+BODY_COLUMNS = (
+    Column("number", "body"),
+    Column("faces", "faces"),
+    Column("closed", "closed"),
+    Column("volume", "volume", "m^3", ".6g"),
+    Column("length", "length", "m", ".4g"),
+    Column("beam", "beam", "m", ".4g"),
+    Column("height", "height", "m", ".4g"),
+    Column("x_min", "x from", "m", ".4g"),
+    Column("x_max", "x to", "m", ".4g"),
+    Column("kept", "kept"),
+)
+
+
+def _orientation_lines(d) -> list[str]:
+    o = d["orientation"]
+    e = o["mesh_extents"]
+    scale = f" (scale {d['scale']:.6g} m per file unit)" if d["scale"] else ""
+    fwd = o["forward"].strip().lstrip("+-").lower()
+    longest = (
+        f"the forward axis {o['forward']} is the longest"
+        if o["longest_axis"] == fwd
+        else f"the longest is {o['longest_axis']}, not the forward axis {o['forward']}"
+    )
+    if o["nose"] is None:
+        nose = f"  nose: no end looks like one: {o['nose_reason']}"
+    else:
+        where = (
+            "the +x end, where --forward points"
+            if o["nose"] == "fore"
+            else ("the -x end, against --forward: if so, give the opposite --forward")
+        )
+        nose = f"  nose: looks like the {o['nose']} end ({where}): {o['nose_reason']}"
+    return [
+        f"  extents along the file's axes: x {e['x']:.6g} m, y {e['y']:.6g} m, z "
+        f"{e['z']:.6g} m{scale}; {longest}",
+        nose,
+    ]
+
+
+def _body_lines(d) -> list[str]:
+    bodies = d["bodies"]
+    if len(bodies) <= 1:
+        return [f"  one body ({'closed' if not bodies or bodies[0]['closed'] else 'open'})"]
+    rows = [
+        {
+            "number": b["number"],
+            "faces": b["faces"],
+            "closed": b["closed"],
+            "volume": b["volume"] if b["volume"] is not None else float("nan"),
+            "length": b["extents"][0],
+            "beam": b["extents"][1],
+            "height": b["extents"][2],
+            "x_min": b["bounds_min"][0],
+            "x_max": b["bounds_max"][0],
+            "kept": b["kept"],
+        }
+        for b in bodies
+    ]
+    shown = rows[:20]
+    more = [f"  ... and {len(rows) - 20} more (--format json lists all)"] if len(rows) > 20 else []
+    return [
+        "",
+        f"{len(bodies)} separate bodies, largest first (--keep largest or --keep N,M keeps "
+        "some; body frame, m, after scaling):",
+        table_text(BODY_COLUMNS, shown),
+        *more,
+    ]

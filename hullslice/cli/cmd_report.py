@@ -124,7 +124,8 @@ class _OptionsOf:
 
 
 _INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",
-                 "--inertia"}  # fmt: skip
+                 "--inertia", "--scale", "--length", "--repair", "--keep",
+                 "--keep-box"}  # fmt: skip
 
 
 def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:

@@ -160,6 +160,7 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         metavar="AXIS",
         help="mesh axis pointing up: x, y, z, or with a sign as --up=-y (default: +z)",
     )
+    add_shape_options(g)
     m = p.add_argument_group("mass")
     m.add_argument(
         "--mass",
@@ -190,6 +191,46 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         "the mass distribution, or the mesh with uniform density)",
     )
     p.set_defaults(mass_required=mass_required)
+
+
+def add_shape_options(g) -> None:
+    """``--scale``, ``--length``, ``--repair``, ``--keep`` and ``--keep-box``
+    (:mod:`hullslice.prepare`)."""
+    g.add_argument(
+        "--scale",
+        type=number("m per file unit"),
+        metavar="FACTOR",
+        help="metres per unit of the mesh file (times the --units factor when both are "
+        "given), e.g. 2.56 for a model whose 14.7 units are 37.6 m (not with --length)",
+    )
+    g.add_argument(
+        "--length",
+        type=number("m"),
+        metavar="M",
+        help="scale the body so that its extent along --forward is M metres (after --keep; "
+        "not with --scale or --units)",
+    )
+    g.add_argument(
+        "--repair",
+        type=lower,
+        choices=["none", "close"],
+        default=None,
+        help="close: fill the holes of an open mesh (MeshFix, pip install "
+        "'hullslice[repair]') and drop shells that cannot be closed, with the figures in a "
+        "warning (default: none, an open mesh is refused)",
+    )
+    g.add_argument(
+        "--keep",
+        metavar="largest|N,M",
+        help="keep only these bodies (shells) of the mesh: largest, or numbers from 1, "
+        "largest first as 'hullslice info' lists them (default: all)",
+    )
+    g.add_argument(
+        "--keep-box",
+        metavar="XMIN,XMAX,YMIN,YMAX,ZMIN,ZMAX",
+        help="keep the part of the body inside this box, in m, body frame after scaling; "
+        "write it as --keep-box=-1,40,-2.5,2.5,-1,5",
+    )
 
 
 def pair(unit: str):
@@ -374,8 +415,9 @@ def _mass_free(args: argparse.Namespace) -> bool:
     return solver(args).kind == "momentum"
 
 
-def load(args: argparse.Namespace) -> Hull:
-    """The hull of the command's mesh and mass options (the output path is checked first)."""
+def load(args: argparse.Namespace, **overrides) -> Hull:
+    """The hull of the command's mesh and mass options (the output path is checked first);
+    ``overrides`` replace keyword arguments of :func:`~hullslice.load_hull`."""
     check_output(args)
     dist = None
     if args.mass_distribution:
@@ -394,7 +436,20 @@ def load(args: argparse.Namespace) -> Hull:
         mass_distribution=dist,
         cg=args.cg,
         inertia=args.inertia,
+        **{**shape_options(args), **overrides},
     )
+
+
+def shape_options(args: argparse.Namespace) -> dict:
+    """The keyword arguments of :func:`~hullslice.load_hull` for the mesh's scale, repair
+    and parts, from the command line."""
+    return {
+        "scale": args.scale,
+        "length": args.length,
+        "repair": None if args.repair in (None, "none") else args.repair,
+        "keep": args.keep,
+        "keep_box": args.keep_box,
+    }
 
 
 def check_output(args: argparse.Namespace) -> None:
