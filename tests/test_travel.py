@@ -44,3 +44,38 @@ def test_a_pickled_hull_keeps_its_mass_properties():
     rb = hs.compute_force(back, pose, motion, slices=8)
     assert ra.total == rb.total and ra.moment == rb.moment
     assert copy.copy(hull).volume == hull.volume  # copy goes through the same state
+
+
+def test_history_to_xarray_and_dataframe_carry_every_column_with_units():
+    hull = hs.load_hull(PAPER, mass=1.0)
+    h = hs.simulate(hull, -4.0, 0.01, dt=2e-4, slices=16)
+    ds = h.to_xarray()
+    cols = h.columns()
+    # every column travels, generically: the dataset's variables are the history's columns
+    assert set(ds.data_vars) | {"t"} == set(h.COLUMNS)
+    assert np.array_equal(ds["t"].values, h.t)
+    assert np.array_equal(ds["force"].values, h.force)
+    assert ds["force"].attrs["units"] == "N" and ds["velocity"].attrs["units"] == "m s-1"
+    assert ds["pitch_deg"].attrs["units"] == "degree"
+    assert ds.attrs["stop_reason"] == h.stop_reason
+    df = h.to_dataframe()
+    assert len(df) == len(h) == 51
+    assert df["acceleration"].max() == float(np.max(cols["acceleration"]))
+    assert df.attrs["units"]["moment"] == "N m"
+
+
+def test_force_result_and_sections_to_xarray():
+    hull = hs.load_hull(PAPER, mass=1.0)
+    r = hs.compute_force(hull, 0.0383, -3.4943, slices=16)
+    ds = r.to_xarray()
+    # the slices' forces add up to the total (Eq. 12) to rounding
+    assert abs(float(ds["force"].sum()) - r.total) <= 1e-12 * abs(r.total)
+    assert ds["force_per_metre"].attrs["units"] == "N m-1"
+    assert ds.attrs["total_force_N"] == r.total
+    sec = r.sections.to_xarray()
+    assert np.array_equal(sec["area"].values, r.sections.area)
+    assert sec["area"].attrs["units"] == "m2"
+    df = r.sections.to_dataframe()
+    assert len(df) == len(r.sections) == 16
+    assert df.attrs["units"]["mass_per_metre"] == "kg m-1"
+    assert len(r.to_dataframe()) == 16
