@@ -305,7 +305,7 @@ def _write_zarr(ds, target: Path) -> Path:
     old = None
     try:
         store = tmp / target.name
-        ds.to_zarr(store, mode="w", consolidated=True)
+        ds.to_zarr(store, mode="w", consolidated=False)
         if target.exists():
             old = tmp / "previous"
             os.replace(target, old)
@@ -328,9 +328,6 @@ def read_dataset(path: str | os.PathLike):
     if ext == ".nc":
         with xr.open_dataset(path, engine="h5netcdf") as ds:
             return ds.load()
-    with xr.open_zarr(path) as ds:
+    with xr.open_zarr(path, consolidated=False) as ds:
         return ds.load()
 
-
-def _jsonable(mapping: Mapping[str, Any]) -> dict[str, Any]:
-    return {k: (str(v) if isinstance(v, Path) else v) for k, v in mapping.items()}

@@ -15,12 +15,30 @@ import warnings
 from collections.abc import Sequence
 
 from ..errors import HullsliceError, HullsliceWarning
-from . import cmd_force, cmd_info, cmd_report, cmd_run, cmd_sections, cmd_simulate, cmd_solvers
+from . import (
+    cmd_force,
+    cmd_info,
+    cmd_report,
+    cmd_run,
+    cmd_sections,
+    cmd_simulate,
+    cmd_solvers,
+    cmd_sweep,
+)
 from .common import UsageError
 
 __all__ = ["main", "run"]
 
-COMMANDS = (cmd_solvers, cmd_info, cmd_sections, cmd_force, cmd_simulate, cmd_run, cmd_report)
+COMMANDS = (
+    cmd_solvers,
+    cmd_info,
+    cmd_sections,
+    cmd_force,
+    cmd_simulate,
+    cmd_run,
+    cmd_report,
+    cmd_sweep,
+)
 
 
 class Parser(argparse.ArgumentParser):
