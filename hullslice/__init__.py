@@ -45,6 +45,7 @@ from .solvers import (
     list_solvers,
 )
 from .state import Fluid, Motion, Pose
+from .sweeps import sweep
 
 try:
     __version__ = version("hullslice")
@@ -97,5 +98,6 @@ __all__ = [
     "read_mass_distribution",
     "richardson",
     "simulate",
+    "sweep",
     "validate_case",
 ]

@@ -531,9 +531,11 @@ class _Partial:
             for f in folder.glob("case-*.json"):
                 try:
                     index = int(f.stem.removeprefix("case-"))
-                    self.done[index] = json.loads(f.read_text(encoding="utf-8"))
+                    record = json.loads(f.read_text(encoding="utf-8"))
                 except (OSError, ValueError):
                     continue  # a file cut short by the kill: the case runs again
+                if not record.pop("lost", False):
+                    self.done[index] = record
         else:
             folder.mkdir()
             _dump(spec_file, spec)
@@ -773,8 +775,9 @@ def _run_on_dask(plan, hull, inputs, todo, keep, client, workers, timeout, finis
     futures: dict = {}
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        hull_f = client.scatter(hull, broadcast=True)
-        inputs_f = client.scatter([inputs], broadcast=True)[0]
+        # hash=False: a sweep's own copies, which another sweep's end cannot release
+        hull_f = client.scatter(hull, broadcast=True, hash=False)
+        inputs_f = client.scatter([inputs], broadcast=True, hash=False)[0]
 
         def submit(group: list[int]):
             items = [(i, plan.case(i)) for i in group]
@@ -804,6 +807,7 @@ def _run_on_dask(plan, hull, inputs, todo, keep, client, workers, timeout, finis
                             "error": f"the worker running this case stopped "
                             f"({type(exc).__name__}: {why})",
                             "runtime": math.nan,
+                            "lost": True,  # not the case's own failure: resuming reruns it
                         },
                     )
                 ]
@@ -826,7 +830,8 @@ def _dataset(plan: Plan, records: Mapping[int, dict], keep: bool):
 
     shape = plan.shape
     names: list[str] = [n for n in RESULTS]
-    extra = sorted({k for r in records.values() for k in r if k not in RESULTS and k != "history"})
+    skip = {*RESULTS, "history", "lost"}
+    extra = sorted({k for r in records.values() for k in r if k not in skip})
     names += [n for n in extra if n.startswith("final_")] + [
         n for n in extra if not n.startswith("final_")
     ]

@@ -252,9 +252,19 @@ def write_dataset(ds, path: str | os.PathLike) -> Path:
     target and moved into place; ``.parquet``: one row per point of the dataset's
     dimensions, its attributes and units as JSON in the file's metadata (key ``hullslice``).
     """
+    target = Path(path)
+    output_format(target)
+    try:  # the data is in memory: no Dask scheduler (nor its locks) is wanted for writing
+        import dask
+    except ImportError:
+        return _write(ds, target)
+    with dask.config.set(scheduler="synchronous"):
+        return _write(ds, target)
+
+
+def _write(ds, target: Path) -> Path:
     from .report import write_atomic
 
-    target = Path(path)
     ext = output_format(target)
     if ext == ".nc":
         try:
