@@ -277,7 +277,8 @@ def make_plan(
                     f"case keys, one case per row), not {values!r}"
                 )
             continue
-        axes[_sweep_key(key, where)] = _number_list(key, values, where)
+        name = _sweep_key(key, where)
+        axes[name] = _number_list(name, values, where)
     both = sorted(set(table) & set(axes))
     if both:
         raise CaseError(
@@ -536,9 +537,13 @@ class _Partial:
                     continue  # a file cut short by the kill: the case runs again
                 if not record.pop("lost", False):
                     self.done[index] = record
-        else:
-            folder.mkdir()
-            _dump(spec_file, spec)
+        self.spec = spec
+
+    def create(self) -> None:
+        """Make the folder (once the sweep is about to run)."""
+        if not self.folder.exists():
+            self.folder.mkdir()
+            _dump(self.folder / PARTIAL_SPEC, self.spec)
 
     def add(self, index: int, record: dict) -> None:
         _dump(self.folder / f"case-{index}.json", record)
@@ -735,14 +740,29 @@ def sweep(
         if progress is not None:
             progress(len(records), total, failed)
 
-    if progress is not None:
-        progress(len(records), total, failed)
-    if todo and client is None and workers == 1:
-        for i in todo:
-            for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep_histories):
-                finish(index, record)
-    elif todo:
-        _run_on_dask(plan, hull, inputs, todo, keep_histories, client, workers, timeout, finish)
+    in_process = client is None and workers == 1
+    dask_client, owned = (None, False) if in_process or not todo else _client(
+        client, workers, timeout
+    )
+    try:
+        if store is not None:
+            store.create()
+        if progress is not None:
+            progress(len(records), total, failed)
+        if todo and in_process:
+            for i in todo:
+                for index, record in run_batch(
+                    hull, [(i, plan.case(i))], inputs, keep_histories
+                ):
+                    finish(index, record)
+        elif todo:
+            _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish)
+    finally:
+        if owned:
+            cluster = getattr(dask_client, "cluster", None)
+            dask_client.close()
+            if cluster is not None:
+                cluster.close()
     ds = _dataset(plan, records, keep_histories)
     created = datetime.datetime.now(datetime.UTC).replace(microsecond=0).isoformat()
     ds.attrs.update(
@@ -768,10 +788,9 @@ def sweep(
     return ds
 
 
-def _run_on_dask(plan, hull, inputs, todo, keep, client, workers, timeout, finish) -> None:
+def _run_on_dask(plan, hull, inputs, todo, keep, client, finish) -> None:
     from distributed import as_completed
 
-    client, owned = _client(client, workers, timeout)
     futures: dict = {}
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
@@ -817,12 +836,6 @@ def _run_on_dask(plan, hull, inputs, todo, keep, client, workers, timeout, finis
         for fut in list(futures):
             fut.cancel()
         raise
-    finally:
-        if owned:
-            cluster = getattr(client, "cluster", None)
-            client.close()
-            if cluster is not None:
-                cluster.close()
 
 
 def _dataset(plan: Plan, records: Mapping[int, dict], keep: bool):
