@@ -268,3 +268,20 @@ def test_a_killed_command_line_sweep_resumes(tmp_path):
     for name in whole.data_vars:
         if name != "runtime":  # the computing time, which is never the same twice
             assert resumed[name].equals(whole[name]), name
+
+
+def test_with_the_fixed_slicing_a_worker_reuses_its_cuts_to_rounding(client):
+    """The fixed slicing's cuts are kept on the worker's hull from case to case; they agree
+    with a fresh hull's to rounding (the reference: each case alone on a fresh hull)."""
+    base = {**BASE, "slicing": "fixed", "forward_speed": 3.0, "continue_invalid": True}
+    grid = {"pitch": [1.0, 2.0, 3.0], "velocity": [-3.0, -4.0]}
+    ds = hs.sweep(base, grid, client=client)
+    for p in grid["pitch"]:
+        for v in grid["velocity"]:
+            hull = hs.load_hull(WEDGE, mass=10.0)
+            ref = hs.simulate(hull, v, 0.01, dt=0.001, slices=8, slicing="fixed",
+                              pitch=math.radians(p), forward_speed=3.0, stop_on=())  # fmt: skip
+            got = ds.sel(pitch=p, velocity=v)
+            assert got["peak_force"].item() == pytest.approx(ref.peak["force"], rel=1e-12)
+            assert got["final_velocity"].item() == pytest.approx(ref.velocity[-1], rel=1e-12)
+            assert got["steps"].item() == len(ref) == 11
