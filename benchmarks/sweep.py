@@ -97,7 +97,7 @@ def main() -> None:
     print(f"{'setting':<18} {'start [s]':>9} {'wall [s]':>9} {'cases/s':>8} "
           f"{'compute [s]':>11} {'overhead [ms/case]':>18}")  # fmt: skip
     medians = {}
-    for name, n, startup, runs in rows:
+    for name, _, startup, runs in rows:
         wall = statistics.median(r["wall"] for r in runs)
         rate = statistics.median(r["rate"] for r in runs)
         compute = statistics.median(r["compute"] for r in runs)

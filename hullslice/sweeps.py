@@ -250,12 +250,12 @@ def make_plan(
     if command != "simulate":
         raise CaseError(
             f"{where}a sweep runs time histories: the case's command is {command!r}; give "
-            "command = \"simulate\" with velocity and t_end (or kinematics)"
+            'command = "simulate" with velocity and t_end (or kinematics)'
         )
     if not isinstance(grid, Mapping) or not grid:
         raise CaseError(
             f"{where}[sweep] is empty: give at least one case key with a list of values, e.g. "
-            "pitch = [4.0, 6.0, 8.0], or cases = \"design.csv\""
+            'pitch = [4.0, 6.0, 8.0], or cases = "design.csv"'
         )
     table: dict[str, list] = {}
     axes: dict[str, list] = {}
@@ -264,8 +264,10 @@ def make_plan(
             if isinstance(values, str | os.PathLike):
                 p = Path(values)
                 table = _read_table(p if base is None else Path(base, p), where)
-            elif isinstance(values, Sequence) and values and all(
-                isinstance(r, Mapping) for r in values
+            elif (
+                isinstance(values, Sequence)
+                and values
+                and all(isinstance(r, Mapping) for r in values)
             ):
                 names = list(values[0])
                 for n in names:
@@ -701,11 +703,11 @@ def sweep(
     else:
         plan = load_sweep(case_or_study)
         if grid is not None:
-            plan = make_plan(
-                {k: v for k, v in plan.base.items()}, grid, source=str(case_or_study)
-            )
+            plan = make_plan({k: v for k, v in plan.base.items()}, grid, source=str(case_or_study))
     base = plan.base
-    if workers is not None and (isinstance(workers, bool) or int(workers) != workers or workers < 1):
+    if workers is not None and (
+        isinstance(workers, bool) or int(workers) != workers or workers < 1
+    ):
         raise InputError(f"workers {workers!r} is not a positive whole number: give 1 or more")
     mesh_path = Path(base["mesh"])
     hull = load_hull(mesh_path, units=base["units"], forward=base["forward"], up=base["up"])
@@ -741,8 +743,8 @@ def sweep(
             progress(len(records), total, failed)
 
     in_process = client is None and workers == 1
-    dask_client, owned = (None, False) if in_process or not todo else _client(
-        client, workers, timeout
+    dask_client, owned = (
+        (None, False) if in_process or not todo else _client(client, workers, timeout)
     )
     try:
         if store is not None:
@@ -751,9 +753,7 @@ def sweep(
             progress(len(records), total, failed)
         if todo and in_process:
             for i in todo:
-                for index, record in run_batch(
-                    hull, [(i, plan.case(i))], inputs, keep_histories
-                ):
+                for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep_histories):
                     finish(index, record)
         elif todo:
             _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish)
@@ -800,9 +800,7 @@ def _run_on_dask(plan, hull, inputs, todo, keep, client, finish) -> None:
 
         def submit(group: list[int]):
             items = [(i, plan.case(i)) for i in group]
-            return client.submit(
-                run_batch, hull_f, items, inputs_f, keep, pure=False, retries=1
-            )
+            return client.submit(run_batch, hull_f, items, inputs_f, keep, pure=False, retries=1)
 
         for group in _groups(plan, todo, n_workers):
             futures[submit(group)] = group
@@ -877,8 +875,11 @@ def _dataset(plan: Plan, records: Mapping[int, dict], keep: bool):
                     arr[i, np.searchsorted(t, np.asarray(h["t"], float))] = h[col]
             from .xarray_io import attrs_for
 
-            data[f"history_{col}"] = ((*plan.dims, "t"), arr.reshape((*shape, len(t))),
-                                      attrs_for(col))
+            data[f"history_{col}"] = (
+                (*plan.dims, "t"),
+                arr.reshape((*shape, len(t))),
+                attrs_for(col),
+            )
     return xr.Dataset(data, coords=coords)
 
 

@@ -15,7 +15,6 @@ import math
 import os
 import shutil
 import tempfile
-from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -340,4 +339,3 @@ def read_dataset(path: str | os.PathLike):
             return ds.load()
     with xr.open_zarr(path, consolidated=False) as ds:
         return ds.load()
-

@@ -217,7 +217,7 @@ def test_keep_histories_and_the_three_formats(tmp_path):
     assert main(["sweep", str(case), "-o", str(out), "--workers", "1"]) == 0
     df = pd.read_parquet(out)
     assert list(df["mass"]) == [8.0, 12.0]
-    assert list(df["peak_force"]) == [single(-4.0, 8.0).peak["force"], single(-4.0, 12.0).peak["force"]]
+    assert list(df["peak_force"]) == [single(-4.0, m).peak["force"] for m in (8.0, 12.0)]
     import pyarrow.parquet as pq
 
     meta = json.loads(pq.read_schema(out).metadata[b"hullslice"])
@@ -244,7 +244,8 @@ def test_a_killed_command_line_sweep_resumes(tmp_path):
     case = write_case(tmp_path, "velocity = [-3.0, -3.5, -4.0, -4.5, -5.0, -5.5]", base)
     out = tmp_path / "out.nc"
     partial = Path(str(out) + ".partial")
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]))
+    path = os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])
+    env = dict(os.environ, PYTHONPATH=path)
     proc = subprocess.Popen(
         [sys.executable, "-m", "hullslice", "sweep", str(case), "-o", str(out), "--workers", "1"],
         env=env, stderr=subprocess.DEVNULL,

@@ -28,7 +28,7 @@ def add_parser(sub) -> None:
         help="run a case file's [sweep] of time histories on Dask, results as one dataset",
         description="Run the time history of a case file (command 'simulate') for every "
         "combination of the values in its [sweep] table (key = [values], full factorial, in "
-        "the case file's units: SI, angles in degrees; or cases = \"design.csv\", one case "
+        'the case file\'s units: SI, angles in degrees; or cases = "design.csv", one case '
         "per row) on Dask: a local cluster of worker processes by default, one per core. "
         "The results are an xarray dataset with one dimension per swept key: peak force (N), "
         "acceleration (m/s^2) and moment (N m) with their times (s), the final state, why "
@@ -109,7 +109,7 @@ class Progress:
 
 
 def _duration(seconds: float) -> str:
-    s = int(round(seconds))
+    s = round(seconds)
     return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
 
 
