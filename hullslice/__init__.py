@@ -36,15 +36,19 @@ from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
 from .solvers import (
+    AddedMass,
     CharacteristicCurves,
     CurveSolver,
+    FreeFallMomentumSolver,
+    MomentumFormSolver,
     MomentumSolver,
     SectionLoads,
     Solver,
+    SolverBase,
     get_solver,
     list_solvers,
 )
-from .state import Fluid, Motion, Pose
+from .state import Acceleration, Fluid, Motion, Pose
 from .sweeps import sweep
 
 try:
@@ -57,6 +61,8 @@ __all__ = [
     "RHO_WATER",
     "STOP_RULES",
     "TOL",
+    "Acceleration",
+    "AddedMass",
     "CaseError",
     "CharacteristicCurves",
     "ConvergenceStudy",
@@ -64,6 +70,7 @@ __all__ = [
     "Fluid",
     "ForceModel",
     "ForceResult",
+    "FreeFallMomentumSolver",
     "G",
     "History",
     "Hull",
@@ -73,6 +80,7 @@ __all__ = [
     "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
+    "MomentumFormSolver",
     "MomentumSolver",
     "Motion",
     "PluginError",
@@ -82,6 +90,7 @@ __all__ = [
     "SectionLoads",
     "Sections",
     "Solver",
+    "SolverBase",
     "SolverError",
     "UnitsWarning",
     "UnknownSolverError",

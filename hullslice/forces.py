@@ -19,6 +19,30 @@ pressure on the body's bottom), so it has a horizontal part ``F_x^j = -F^j dZ_k/
 drag when the keel rises forward). The pitch moment about the centre of gravity, nose up
 positive, is ``sum_j (X^j - X_g) F^j - (Z^j - Z_g) F_x^j``, each force applied at its
 station halfway between the keel and the waterline. Friction is not modelled.
+
+**The momentum form** (solvers of the kind ``"momentum"``). The solver gives each
+section's added mass per metre ``m_a`` and its rate ``m_a' = dm_a/dp``; the force per metre
+is the rate of change of the fluid's momentum at the fixed plane,
+
+    f = d/dt [m_a (-v)] = m_a' v^2 - m_a a + extra      (N/m, positive up)
+
+with ``dp/dt = -v``. On a section leaving the water (``v >= 0``) the flux term ``m_a' v^2``
+is dropped (the flow separates; no suction), the inertia term stays. The section's
+acceleration ``a = dv/dt |_X`` at the fixed plane follows from differentiating ``v`` above
+(``dX_g/dt = u``, ``dZ_k/dt |_X = v``, ``ds/dt |_X = dv/dX`` with ``s = dZ_k/dX``):
+
+    a = dw/dt + dq/dt (X - X_g + (Z_k - Z_g) s) - du/dt s + b,
+    b = - q u + q (v - w) s - U q (1 + s^2) + U^2 kappa,     U = u - q (Z_k - Z_g),
+
+with ``kappa = d^2 Z_k / dX^2`` the keel line's curvature. The first line is linear in the
+body's accelerations, ``a = J . (dw/dt, dq/dt, du/dt) + b``; ``b`` holds the terms that
+multiply no acceleration (the pitch rate's and the keel line's slide through the plane).
+By virtual work, the generalised forces of a section force ``f`` along the penetration are
+``J f``: the vertical force ``f``, the moment ``f (X - X_g + (Z_k - Z_g) s)`` (each force
+applied at its keel point, normal to the keel line) and the horizontal force ``- f s``. The
+added-mass matrix of the body is then ``A = sum m_a J J^T dx``, symmetric and positive
+semi-definite, and the equations of motion read ``(M_body + A) q'' = Q0 + gravity`` with
+``Q0 = sum J f0 dx``, ``f0 = m_a' v^2 [v < 0] - m_a b + extra`` (:class:`MomentumTerms`).
 """
 
 from __future__ import annotations
@@ -32,21 +56,34 @@ from .convergence import Richardson, richardson
 from .errors import HullsliceError, InputError, SolverError
 from .mesh import Hull
 from .sections import Sections, _as_pose, _slice_count, cut
-from .solvers.base import SectionLoads, Solver
+from .solvers.base import (
+    FREE_FALL,
+    MOMENTUM,
+    AddedMass,
+    MomentumFormSolver,
+    SectionLoads,
+    SolverBase,
+)
 from .solvers.registry import describe, get_solver
-from .state import Fluid, Motion, Pose
+from .state import Acceleration, Fluid, Motion, Pose
 
 __all__ = [
     "ConvergenceStudy",
     "ForceResult",
+    "MomentumTerms",
     "compute_force",
     "convergence",
     "evaluate",
+    "evaluate_added_mass",
     "force_on",
+    "momentum_terms",
+    "section_kinematics",
     "section_velocity",
 ]
 
 CHINE_REASON = "water at or above the section's chine/widest point"
+#: Smallest wetted length over wetted beam of a slender body (2D+t's assumption).
+MIN_SLENDERNESS = 2.0
 MASSLESS_REASON = "no mass per metre at this station (the mass distribution puts none here)"
 #: Smallest deadrise a solver is given, rad: a flat bottom is computed as this, flagged.
 MIN_DEADRISE = float(np.radians(1.0))
@@ -71,6 +108,14 @@ class ForceResult:
     fluid : Fluid
     pose : Pose
     motion : Motion
+    x_cg : float
+        Earth ``X`` of the centre of gravity, m.
+    kind : str
+        The solver's kind, ``"free-fall"`` or ``"momentum"``.
+    acceleration : Acceleration or None
+        The body's acceleration the force was formed with (momentum form), else None.
+    section_acceleration : (n,) float or None
+        Each section's penetration acceleration, m/s^2, positive up (momentum form).
     """
 
     sections: Sections
@@ -81,6 +126,9 @@ class ForceResult:
     pose: Pose
     motion: Motion
     x_cg: float = 0.0
+    kind: str = FREE_FALL
+    acceleration: Acceleration | None = None
+    section_acceleration: np.ndarray | None = None
 
     @property
     def force(self) -> np.ndarray:
@@ -104,11 +152,34 @@ class ForceResult:
 
     @property
     def moment(self) -> float:
-        """Pitch moment about the centre of gravity in N m, positive nose up."""
+        """Pitch moment about the centre of gravity in N m, positive nose up.
+
+        A free-fall force is applied halfway between its keel and the waterline, a
+        momentum-form force at its keel point (see the module notes).
+        """
         s = self.sections
         arm_x = s.x - self.x_cg
-        arm_z = 0.5 * s.keel_z - s.z_cg
+        keel = s.keel_z if self.kind == MOMENTUM else 0.5 * s.keel_z
+        arm_z = keel - s.z_cg
         return float((arm_x * self.force - arm_z * self.force_x).sum())
+
+    @property
+    def added_mass(self) -> float:
+        """Heave added mass ``sum m_a dx`` in kg (momentum form; NaN for free-fall)."""
+        if self.kind != MOMENTUM:
+            return float("nan")
+        return float((self.loads.diagnostics["added_mass"] * self.sections.dx).sum())
+
+    @property
+    def slenderness(self) -> float:
+        """Wetted length over wetted beam (the widest wetted piece at the waterline);
+        ``inf`` when nothing is wetted. See :data:`MIN_SLENDERNESS`."""
+        s = self.sections
+        wet = s.penetration > 0
+        if not wet.any():
+            return float("inf")
+        beam = float((s.half_beam_port + s.half_beam_stbd)[wet].max())
+        return s.wetted_length / beam if beam > 0 else float("inf")
 
     @property
     def station_force(self) -> np.ndarray:
@@ -161,6 +232,8 @@ class ForceResult:
             "force": self.force,
             "force_x": self.force_x,
         }
+        if self.section_acceleration is not None:
+            cols["section_acceleration"] = self.section_acceleration
         cols.update(self.loads.diagnostics)
         cols["valid"] = self.loads.valid
         cols["reason"] = self.loads.reason
@@ -189,10 +262,50 @@ def section_velocity(sections: Sections, motion: Motion, x_cg: float) -> np.ndar
     return motion.velocity + q * arm_x - (u - q * arm_z) * sections.keel_slope
 
 
+def _readonly_velocity(velocity, n: int) -> np.ndarray:
+    velocity = np.asarray(velocity, dtype=np.float64)
+    if velocity.shape != (n,):
+        return np.broadcast_to(velocity, (n,))
+    velocity = velocity.view()  # the solver may not write into the caller's array
+    velocity.flags.writeable = False
+    return velocity
+
+
+def _flat_clamped(sections: Sections, wet: np.ndarray) -> tuple[Sections, np.ndarray]:
+    """A flat bottom (zero deadrise) has no wedge: computed at :data:`MIN_DEADRISE`."""
+    flat = wet & ~(sections.deadrise >= MIN_DEADRISE)
+    if flat.any():
+        sections = replace(
+            sections,
+            deadrise=np.where(flat, MIN_DEADRISE, sections.deadrise),
+            deadrise_port=np.fmax(sections.deadrise_port, MIN_DEADRISE),
+            deadrise_stbd=np.fmax(sections.deadrise_stbd, MIN_DEADRISE),
+        )
+    return sections, flat
+
+
+def _call(solver: SolverBase, method, sections: Sections, velocity, fluid: Fluid):
+    """Call a solver's method on wetted sections, turning every escape into a SolverError."""
+    try:
+        with np.errstate(all="ignore"):
+            return method(sections, velocity, fluid)
+    except HullsliceError:
+        raise
+    except (Exception, SystemExit) as exc:
+        raise SolverError(f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}") from exc
+
+
+def _flag(valid: np.ndarray, reason: np.ndarray, masks) -> None:
+    for mask, why in masks:
+        if mask.any():
+            valid &= ~mask
+            reason[mask] = [f"{r}; {why}" if r else why for r in reason[mask]]
+
+
 def evaluate(
-    solver: Solver, sections: Sections, velocity: np.ndarray, fluid: Fluid
+    solver: SolverBase, sections: Sections, velocity: np.ndarray, fluid: Fluid
 ) -> SectionLoads:
-    """Run a solver on the wetted sections and check what it returns.
+    """Run a free-fall-form solver on the wetted sections and check what it returns.
 
     Dry sections, and wetted ones that carry no mass, get zero force; a deadrise below
     :data:`MIN_DEADRISE` (a flat bottom) is given to the solver as that. The result covers
@@ -207,12 +320,7 @@ def evaluate(
         the message names the solver and its distribution.
     """
     n = len(sections)
-    velocity = np.asarray(velocity, dtype=np.float64)
-    if velocity.shape != (n,):
-        velocity = np.broadcast_to(velocity, (n,))
-    else:  # the solver may not write into the caller's array
-        velocity = velocity.view()
-        velocity.flags.writeable = False
+    velocity = _readonly_velocity(velocity, n)
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
         raise InputError("the hull has no mass: give its mass in kg (mass=...)")
@@ -227,28 +335,13 @@ def evaluate(
         wet = wet & ~massless
         valid[massless] = False
         reason[massless] = MASSLESS_REASON
-    # a flat bottom (zero deadrise) has no wedge: computed at the smallest deadrise, flagged
-    flat = wet & ~(sections.deadrise >= MIN_DEADRISE)
-    if flat.any():
-        sections = replace(
-            sections,
-            deadrise=np.where(flat, MIN_DEADRISE, sections.deadrise),
-            deadrise_port=np.fmax(sections.deadrise_port, MIN_DEADRISE),
-            deadrise_stbd=np.fmax(sections.deadrise_stbd, MIN_DEADRISE),
-        )
+    sections, flat = _flat_clamped(sections, wet)
     if wet.any():
         every = bool(wet.all())
         sub = sections if every else sections.subset(wet)
-        try:
-            with np.errstate(all="ignore"):
-                loads = solver.section_loads(sub, velocity if every else velocity[wet], fluid)
-        except HullsliceError:
-            raise
-        except Exception as exc:
-            raise SolverError(
-                f"solver {describe(solver)} failed: {type(exc).__name__}: {exc}"
-            ) from exc
-        _check_loads(solver, loads, sub, velocity if every else velocity[wet])
+        v_sub = velocity if every else velocity[wet]
+        loads = _call(solver, solver.section_loads, sub, v_sub, fluid)  # type: ignore[attr-defined]
+        _check_loads(solver, loads, sub, v_sub)
         if every:  # the solver's arrays cover every section (none massless)
             force = np.array(loads.force_per_metre)
             valid = np.array(loads.valid)
@@ -262,19 +355,63 @@ def evaluate(
                 full = np.full(n, np.nan)
                 full[wet] = arr
                 diagnostics[k] = full
-    for mask, why in ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)):
-        if mask.any():
-            valid &= ~mask
-            reason[mask] = [f"{r}; {why}" if r else why for r in reason[mask]]
+    _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
     return SectionLoads(force, valid, reason, diagnostics)
 
 
-def _check_loads(solver: Solver, loads: object, sections: Sections, velocity) -> None:
+def evaluate_added_mass(
+    solver: MomentumFormSolver, sections: Sections, velocity: np.ndarray, fluid: Fluid
+) -> AddedMass:
+    """Run a momentum-form solver on the wetted sections and check what it returns.
+
+    Dry sections get zero added mass. A deadrise below :data:`MIN_DEADRISE` (a flat bottom)
+    is given to the solver as that, flagged, and every section whose water reaches its
+    chine is flagged. The body's mass is not used.
+
+    Raises
+    ------
+    SolverError
+        The solver raised, or returned arrays of the wrong type or shape, a negative or
+        non-finite added mass, or a non-finite rate or extra force.
+    """
+    n = len(sections)
+    velocity = _readonly_velocity(velocity, n)
+    wet = sections.wetted
+    sections, flat = _flat_clamped(sections, wet)
+    m_a, rate, extra = np.zeros(n), np.zeros(n), np.zeros(n)
+    valid = np.ones(n, dtype=bool)
+    reason = np.full(n, "", dtype=object)
+    diagnostics: dict[str, np.ndarray] = {}
+    if wet.any():
+        every = bool(wet.all())
+        sub = sections if every else sections.subset(wet)
+        v_sub = velocity if every else velocity[wet]
+        out = _call(solver, solver.added_mass, sub, v_sub, fluid)
+        _check_added_mass(solver, out, sub)
+        if every:
+            m_a, rate, extra = np.array(out.added_mass), np.array(out.rate), np.array(out.extra)
+            valid = np.array(out.valid)
+            reason = np.array(out.reason)
+            diagnostics = dict(out.diagnostics)
+        else:
+            m_a[wet], rate[wet], extra[wet] = out.added_mass, out.rate, out.extra
+            valid[wet] = out.valid
+            reason[wet] = out.reason
+            for k, arr in out.diagnostics.items():
+                full = np.full(n, np.nan)
+                full[wet] = arr
+                diagnostics[k] = full
+    _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
+    return AddedMass(m_a, rate, valid, reason, extra, diagnostics)
+
+
+def _check_loads(solver: SolverBase, loads: object, sections: Sections, velocity) -> None:
     problem = _loads_problem(loads, len(sections))
-    if not problem and not np.all(np.isfinite(loads.force_per_metre)):
-        i = int(np.flatnonzero(~np.isfinite(loads.force_per_metre))[0])
+    if not problem and not np.all(np.isfinite(loads.force_per_metre)):  # type: ignore[attr-defined]
+        fpm = loads.force_per_metre  # type: ignore[attr-defined]
+        i = int(np.flatnonzero(~np.isfinite(fpm))[0])
         problem = (
-            f"a non-finite force per metre for {int((~np.isfinite(loads.force_per_metre)).sum())}"
+            f"a non-finite force per metre for {int((~np.isfinite(fpm)).sum())}"
             f" of {len(sections)} sections (first: x = {sections.x[i]:.6g} m, penetration "
             f"{sections.penetration[i]:.6g} m, deadrise {sections.deadrise_deg[i]:.4g} deg, mass "
             f"per metre {sections.mass_per_metre[i]:.6g} kg/m, velocity {velocity[i]:.6g} m/s); "
@@ -282,6 +419,47 @@ def _check_loads(solver: Solver, loads: object, sections: Sections, velocity) ->
         )
     if problem:
         # naming the plugin reads its distribution's metadata: only when there is a fault
+        raise SolverError(f"solver {describe(solver)} returned {problem}")
+
+
+def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> None:
+    n = len(sections)
+    problem = ""
+    if not isinstance(out, AddedMass):
+        problem = f"{type(out).__name__}, not hullslice.AddedMass"
+    else:
+        for name in ("added_mass", "rate", "extra", "valid", "reason"):
+            shape = getattr(out, name).shape
+            if shape != (n,):
+                problem = f"{name} of shape {shape} for {n} sections"
+                break
+        else:
+            for k, arr in out.diagnostics.items():
+                if arr.shape != (n,):
+                    problem = f"diagnostic {k!r} of shape {arr.shape} for {n} sections"
+                    break
+        if not problem and out.valid.dtype != bool:
+            problem = f"valid of type {out.valid.dtype}, not a boolean array"
+        if not problem:
+            for name in ("added_mass", "rate", "extra"):
+                bad = ~np.isfinite(getattr(out, name))
+                if bad.any():
+                    i = int(np.flatnonzero(bad)[0])
+                    problem = (
+                        f"a non-finite {name.replace('_', ' ')} for {int(bad.sum())} of {n} "
+                        f"sections (first: x = {sections.x[i]:.6g} m, penetration "
+                        f"{sections.penetration[i]:.6g} m, deadrise "
+                        f"{sections.deadrise_deg[i]:.4g} deg)"
+                    )
+                    break
+        if not problem and np.any(out.added_mass < 0):
+            i = int(np.flatnonzero(out.added_mass < 0)[0])
+            problem = (
+                f"a negative added mass ({out.added_mass[i]:.6g} kg/m at x = "
+                f"{sections.x[i]:.6g} m, penetration {sections.penetration[i]:.6g} m): an "
+                "added mass is never negative"
+            )
+    if problem:
         raise SolverError(f"solver {describe(solver)} returned {problem}")
 
 
@@ -300,16 +478,178 @@ def _loads_problem(loads: object, n: int) -> str:
     return ""
 
 
+def section_kinematics(
+    sections: Sections, motion: Motion, x_cg: float, velocity: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """How each section's penetration acceleration follows from the body's.
+
+    Parameters
+    ----------
+    sections : Sections
+    motion : Motion
+        Vertical velocity and forward speed (m/s) and pitch rate (rad/s).
+    x_cg : float
+        Earth ``X`` of the centre of gravity, m.
+    velocity : (n,) float
+        The sections' penetration velocities (:func:`section_velocity`), m/s.
+
+    Returns
+    -------
+    jac : (n, 3) float
+        ``da/d(dw/dt)`` (1), ``da/d(dq/dt)`` (m) and ``da/d(du/dt)`` (1): the section's
+        acceleration is ``jac @ (dw/dt, dq/dt, du/dt) + bias``.
+    bias : (n,) float
+        The part that multiplies no acceleration, m/s^2 (see the module notes).
+    """
+    q, u, w = motion.pitch_rate, motion.forward_speed, motion.velocity
+    slope = sections.keel_slope
+    arm_z = sections.keel_z - sections.z_cg
+    jac = np.empty((len(sections), 3))
+    jac[:, 0] = 1.0
+    jac[:, 1] = sections.x - x_cg + arm_z * slope
+    jac[:, 2] = -slope
+    if q == 0.0 and u == 0.0:
+        return jac, np.zeros(len(sections))
+    slide = u - q * arm_z
+    bias = (
+        -q * u
+        + q * (velocity - w) * slope
+        - slide * q * (1.0 + slope * slope)
+        + slide * slide * sections.keel_curvature
+    )
+    return jac, bias
+
+
+@dataclass(frozen=True, eq=False)
+class MomentumTerms:
+    """A momentum-form solver's output at one pose and motion, before the body's
+    accelerations are known.
+
+    Attributes
+    ----------
+    sections : Sections
+    velocity : (n,) float
+        Penetration velocities, m/s.
+    added : AddedMass
+        The solver's added mass, rate and extra force, every section (zero where dry).
+    jac : (n, 3) float
+    bias : (n,) float
+        The section acceleration is ``jac @ (dw/dt, dq/dt, du/dt) + bias`` (m/s^2).
+    f0 : (n,) float
+        Force per metre with the body at rest in acceleration, N/m:
+        ``m_a' v^2 [v < 0] - m_a bias + extra``.
+    """
+
+    sections: Sections
+    velocity: np.ndarray
+    added: AddedMass
+    jac: np.ndarray
+    bias: np.ndarray
+    f0: np.ndarray
+
+    @property
+    def matrix(self) -> np.ndarray:
+        """(3, 3) added-mass matrix ``sum m_a J J^T dx`` in the order (heave, pitch,
+        surge): kg, kg m, kg m^2."""
+        w = self.added.added_mass * self.sections.dx
+        return (self.jac * w[:, None]).T @ self.jac
+
+    @property
+    def generalized(self) -> np.ndarray:
+        """(3,) generalised forces ``sum J f0 dx`` (N, N m, N) with no body acceleration."""
+        return self.jac.T @ (self.f0 * self.sections.dx)
+
+    def result(
+        self,
+        acceleration: Acceleration,
+        solver: SolverBase,
+        fluid: Fluid,
+        motion: Motion,
+        x_cg: float,
+    ) -> ForceResult:
+        """The force result once the body's acceleration is known."""
+        acc = np.asarray(acceleration.as_array())
+        a_n = self.jac @ acc + self.bias
+        m_a = self.added.added_mass
+        force = self.f0 - m_a * (self.jac @ acc)
+        diagnostics = {
+            **self.added.diagnostics,
+            "added_mass": m_a,
+            "added_mass_rate": self.added.rate,
+            "extra_force": self.added.extra,
+        }
+        loads = SectionLoads(force, self.added.valid, self.added.reason, diagnostics)
+        s = self.sections
+        pose = Pose(s.draft, s.pitch)
+        return ForceResult(
+            s, self.velocity, loads, solver.name, fluid, pose, motion, x_cg, MOMENTUM,
+            acceleration, a_n,
+        )  # fmt: skip
+
+
+def momentum_terms(
+    sections: Sections, motion: Motion, solver: MomentumFormSolver, fluid: Fluid, x_cg: float
+) -> MomentumTerms:
+    """The momentum form's terms at one pose and motion (see :class:`MomentumTerms`)."""
+    velocity = section_velocity(sections, motion, x_cg)
+    added = evaluate_added_mass(solver, sections, velocity, fluid)
+    jac, bias = section_kinematics(sections, motion, x_cg, velocity)
+    flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
+    f0 = flux - added.added_mass * bias + added.extra
+    return MomentumTerms(sections, velocity, added, jac, bias, f0)
+
+
+def solve_accelerations(
+    terms: MomentumTerms,
+    mass: float,
+    inertia: float | None,
+    gravity: float,
+    free: tuple[bool, bool, bool],
+    fixed: Acceleration | None = None,
+    when: str = "",
+) -> Acceleration:
+    """The body's accelerations from ``(M_body + A) q'' = Q0 - m g e_z`` over its free
+    degrees of freedom (heave, pitch, surge); the others take ``fixed``.
+
+    Raises
+    ------
+    InputError
+        The matrix of the free degrees of freedom is singular or not positive definite;
+        the message names the stage ``when``.
+    """
+    fixed = fixed or Acceleration()
+    body = np.array([mass, inertia if inertia is not None else np.nan, mass])
+    idx = [i for i in range(3) if free[i]]
+    acc = np.array(fixed.as_array(), dtype=np.float64)
+    if not idx:
+        return fixed
+    total = terms.matrix
+    total[np.diag_indices(3)] += np.where(np.isnan(body), 0.0, body)
+    rhs = terms.generalized - total @ np.where(free, 0.0, acc)
+    rhs[0] -= mass * gravity
+    sub = total[np.ix_(idx, idx)]
+    if not (np.all(np.isfinite(sub)) and np.all(np.linalg.eigvalsh(sub) > 0.0)):
+        raise InputError(
+            f"the mass matrix of the free motion (body plus added mass) is singular or not "
+            f"positive definite{' ' + when if when else ''} (its diagonal: "
+            f"{', '.join(f'{d:.6g}' for d in np.diag(sub))}): check the body's mass and pitch "
+            "inertia"
+        )
+    acc[idx] = np.linalg.solve(sub, rhs[idx])
+    return Acceleration(*acc)
+
+
 def compute_force(
     hull: Hull,
     pose: Pose | float,
     motion: Motion | float,
     *,
     slices: int = 32,
-    solver: str | Solver | type[Solver] | None = None,
+    solver: str | SolverBase | type[SolverBase] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
     slicing: str = "wetted",
+    acceleration: Acceleration | float | None = None,
 ) -> ForceResult:
     """The 2D+t force on a hull at one state.
 
@@ -332,6 +672,12 @@ def compute_force(
         Deadrise estimator (default ``"wedge"``).
     slicing : str
         ``"wetted"`` (default) or ``"fixed"``, see :data:`~hullslice.sections.SLICINGS`.
+    acceleration : Acceleration or float, optional
+        The body's acceleration (a float: the vertical one, m/s^2, positive up), for a
+        momentum-form solver, whose force has an added-inertia part. By default the body
+        is free in heave: its vertical acceleration solves ``(m + A_33) dw/dt = F0 - m g``
+        with the hull's mass; pitch and forward speed are steady. Free-fall solvers do not
+        use it (their force follows from each slice's own free fall).
 
     Returns
     -------
@@ -340,16 +686,44 @@ def compute_force(
     pose, motion = _as_pose(pose), _as_motion(motion)
     fluid = fluid or Fluid()
     solver = get_solver(solver)
-    if hull.mass is None:
-        raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
+    if isinstance(acceleration, int | float | np.floating):
+        acceleration = Acceleration(vertical=float(acceleration))
+    if hull.mass is None and not (solver.kind == MOMENTUM and acceleration is not None):
+        raise InputError(
+            f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)"
+            + (" or the body's acceleration" if solver.kind == MOMENTUM else "")
+        )
     sections = cut(hull, pose, slices, deadrise=deadrise, slicing=slicing)
-    return force_on(sections, motion, solver, fluid, float(hull.cg[0]))
+    return force_on(
+        sections, motion, solver, fluid, float(hull.cg[0]), acceleration=acceleration,
+        mass=hull.mass,
+    )  # fmt: skip
 
 
 def force_on(
-    sections: Sections, motion: Motion, solver: Solver, fluid: Fluid, x_cg: float
+    sections: Sections,
+    motion: Motion,
+    solver: SolverBase,
+    fluid: Fluid,
+    x_cg: float,
+    *,
+    acceleration: Acceleration | None = None,
+    mass: float | None = None,
 ) -> ForceResult:
-    """The force on cut sections moving with ``motion`` (inputs already checked)."""
+    """The force on cut sections moving with ``motion`` (inputs already checked).
+
+    A momentum-form solver's force uses the body's ``acceleration``; without one, the body
+    of ``mass`` (kg) is free in heave (see :func:`compute_force`).
+    """
+    if solver.kind == MOMENTUM:
+        terms = momentum_terms(sections, motion, solver, fluid, x_cg)  # type: ignore[arg-type]
+        if acceleration is None:
+            if mass is None:
+                raise InputError(
+                    "a momentum-form solver needs the body's acceleration or its mass (kg)"
+                )
+            acceleration = solve_accelerations(terms, mass, None, fluid.g, (True, False, False))
+        return terms.result(acceleration, solver, fluid, motion, x_cg)
     velocity = section_velocity(sections, motion, x_cg)
     loads = evaluate(solver, sections, velocity, fluid)
     pose = Pose(sections.draft, sections.pitch)
@@ -391,10 +765,11 @@ def convergence(
     motion: Motion | float,
     *,
     slices: Sequence[int] = (16, 32, 64),
-    solver: str | Solver | type[Solver] | None = None,
+    solver: str | SolverBase | type[SolverBase] | None = None,
     fluid: Fluid | None = None,
     deadrise: str = "wedge",
     slicing: str = "wetted",
+    acceleration: Acceleration | float | None = None,
 ) -> ConvergenceStudy:
     """Forces for several slice counts and their Richardson extrapolation (paper, Fig. 8).
 
@@ -418,6 +793,7 @@ def convergence(
             fluid=fluid,
             deadrise=deadrise,
             slicing=slicing,
+            acceleration=acceleration,
         )
         for n in counts
     )

@@ -69,6 +69,21 @@ class KeelLine:
         mid, slopes = self._facets
         return z, np.interp(x, mid, slopes)
 
+    def curvature(self, x: np.ndarray) -> np.ndarray:
+        """The keel line's ``d^2 Z_k / dX^2`` at relative stations ``x``, 1/m.
+
+        The derivative of the continuous slope of :meth:`at`: constant between two facet
+        middles, zero beyond the first and last (where the slope is held constant).
+        """
+        x = np.asarray(x, dtype=np.float64)
+        mid, slopes = self._facets
+        if len(mid) < 2:
+            return np.zeros(x.shape)
+        k = np.diff(slopes) / np.diff(mid)
+        i = np.searchsorted(mid, x, side="right") - 1
+        inside = (i >= 0) & (i < len(k))
+        return np.where(inside, k[np.clip(i, 0, len(k) - 1)], 0.0)
+
     @property
     def _facets(self) -> tuple[np.ndarray, np.ndarray]:
         facets = self.__dict__.get("_facet_cache")

@@ -145,6 +145,8 @@ class Sections:
         The pose (m, rad) and the length of the wetted part along ``X`` (m).
     z_cg : float
         Earth height of the centre of gravity, m.
+    keel_curvature : (n,) float
+        The keel line's ``d^2 Z_k / dX^2`` at the station, 1/m (zeros when not given).
     """
 
     station: np.ndarray
@@ -170,6 +172,7 @@ class Sections:
     pitch: float = 0.0
     wetted_length: float = 0.0
     z_cg: float = 0.0
+    keel_curvature: np.ndarray | None = field(repr=False, default=None)
 
     _ARRAYS = (
         "station",
@@ -189,11 +192,14 @@ class Sections:
         "keel_z",
         "y_keel",
         "part_half_beam",
+        "keel_curvature",
     )
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # frozen: set once here, read-only arrays
         n = len(fields["x"])
+        if fields["keel_curvature"] is None:
+            fields["keel_curvature"] = np.zeros(n)
         for name in self._ARRAYS:
             arr = fields[name]
             if not (type(arr) is np.ndarray and arr.shape == (n,) and arr.flags.c_contiguous):
@@ -479,6 +485,7 @@ def _assemble(
         pitch=pose.pitch,
         wetted_length=length,
         z_cg=z_cg,
+        keel_curvature=fr.keel.curvature(rel)[st],
     )
 
 

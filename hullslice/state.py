@@ -12,7 +12,7 @@ from dataclasses import dataclass
 from .constants import RHO_WATER, G
 from .errors import InputError
 
-__all__ = ["Fluid", "Motion", "Pose"]
+__all__ = ["Acceleration", "Fluid", "Motion", "Pose"]
 
 
 def _finite(value, what: str, unit: str) -> float:
@@ -83,6 +83,37 @@ class Motion:
             self, "forward_speed", _finite(self.forward_speed, "forward speed", "m/s")
         )
         object.__setattr__(self, "pitch_rate", _finite(self.pitch_rate, "pitch rate", "rad/s"))
+
+
+@dataclass(frozen=True)
+class Acceleration:
+    """The acceleration of the body (of its centre of gravity, and its pitch).
+
+    Only momentum-form solvers use it: their force has an added-inertia part ``- m_a a``.
+
+    Parameters
+    ----------
+    vertical : float
+        Vertical acceleration ``dw/dt`` in m/s^2, positive upward (default 0).
+    pitch : float
+        Pitch acceleration ``dq/dt`` in rad/s^2, positive nose up (default 0).
+    forward : float
+        Forward acceleration ``du/dt`` in m/s^2 (default 0).
+    """
+
+    vertical: float = 0.0
+    pitch: float = 0.0
+    forward: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name, unit in (("vertical", "m/s^2"), ("pitch", "rad/s^2"), ("forward", "m/s^2")):
+            object.__setattr__(
+                self, name, _finite(getattr(self, name), f"{name} acceleration", unit)
+            )
+
+    def as_array(self) -> tuple[float, float, float]:
+        """``(dw/dt, dq/dt, du/dt)``: the order of the equations of motion."""
+        return (self.vertical, self.pitch, self.forward)
 
 
 @dataclass(frozen=True)

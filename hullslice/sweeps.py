@@ -437,14 +437,14 @@ def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = N
 
 def summarise(history) -> dict[str, Any]:
     """A case's results from its history (see :data:`RESULTS`), read from its columns
-    generically: every column's final value, the flagged share from ``flagged_share`` when
-    the history has one, else ``1 - valid_share``."""
+    generically: every column's final value; the flagged share is the history's own
+    ``flagged_share`` when it has one, else ``1 - valid_share``."""
     cols = history.columns()
     out: dict[str, Any] = {"steps": len(history), "stop_reason": str(history.stop_reason)}
-    if "flagged_share" in cols:
-        flagged = np.asarray(cols["flagged_share"], dtype=float)
-    else:
-        flagged = 1.0 - np.asarray(cols["valid_share"], dtype=float)
+    flagged = getattr(history, "flagged_share", None)  # an attribute, a column, or derived
+    if flagged is None:
+        flagged = cols.get("flagged_share", 1.0 - np.asarray(cols["valid_share"], dtype=float))
+    flagged = np.asarray(flagged, dtype=float)
     t = np.asarray(cols["t"], dtype=float)
     if len(history):
         i = int(np.argmax(cols["force"]))

@@ -57,7 +57,8 @@ UNITS: dict[str, tuple[str, str]] = {
     "valid": ("", "every slice inside the method's range of validity"),
     "valid_share": ("1", "share of the force carried by valid slices"),
     "flagged_share": ("1", "share of the force carried by flagged slices"),
-    "added_mass": ("kg", "added mass"),
+    "added_mass": ("kg", "heave added mass of a momentum-form solver"),
+    "slenderness": ("1", "wetted length over wetted beam"),
     "chine_wetted": ("", "the water reached a section's chine"),
     "reason": ("", "why the instant or slice is not valid"),
     # sections and force results

@@ -13,7 +13,8 @@ from hullslice.solvers import (
     PAPER_CURVES,
     CharacteristicCurves,
     CurveSolver,
-    MomentumSolver,
+    FreeFallMomentumSolver,
+    MomentumFormSolver,
     momentum_curves,
     peak_values,
     pile_up_law,
@@ -21,11 +22,11 @@ from hullslice.solvers import (
 from hullslice.testing import wedge_sections
 
 
-class ConstantGamma(MomentumSolver):
+class ConstantGamma(FreeFallMomentumSolver):
     """Momentum theory with a constant pile-up, for tests."""
 
     name = "constant-gamma"
-    description = "test: momentum theory, gamma = 1.3"
+    description = "test: momentum theory (free-fall form), gamma = 1.3"
 
     def pile_up(self, deadrise):
         return np.full_like(deadrise, 1.3)
@@ -110,12 +111,12 @@ def test_only_mass_over_density_matters():
     np.testing.assert_allclose(a1, a2, rtol=1e-12)
 
 
-def test_momentum_solver_needs_a_pile_up_law():
-    class NoPileUp(MomentumSolver):
-        name = "no-pile-up"
+def test_momentum_form_solver_needs_an_added_mass():
+    class NoAddedMass(MomentumFormSolver):
+        name = "no-added-mass"
 
-    with pytest.raises(TypeError, match="pile_up"):
-        NoPileUp()
+    with pytest.raises(TypeError, match="added_mass"):
+        NoAddedMass()
 
 
 def test_momentum_curves_are_the_closed_form():

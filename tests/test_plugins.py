@@ -23,6 +23,7 @@ from hullslice import shapes
 from hullslice.cli import main
 from hullslice.solvers import (
     PAPER_CURVES,
+    FreeFallMomentumSolver,
     dobrovolskaya_pile_up,
     momentum_curves,
     registry,
@@ -37,6 +38,8 @@ BUNDLED = {
     "wagner": "hullslice-wagner",
     "curves": "hullslice-curves",
 }
+VERSIONS = {"von-karman": "0.2.0", "wagner": "0.2.0", "curves": "0.1.0"}
+KINDS = {"von-karman": "momentum", "wagner": "momentum", "curves": "free-fall"}
 PAPER_CURVES_CSV = ROOT / "plugins" / "curves" / "examples" / "paper_curves.csv"
 PRISM = str(MESHES / "paper_prism.stl")
 PAPER_ARGS = ["--mass", "1", "--draft", "0.0383", "--velocity=-3.4943"]
@@ -74,7 +77,8 @@ def test_bundled_plugins_are_installed_distributions():
     infos = {i.name: i for i in hs.list_solvers()}
     for name, dist in BUNDLED.items():
         info = infos[name]
-        assert (info.status, info.distribution, info.version) == ("ok", dist, "0.1.0")
+        assert (info.status, info.distribution, info.version) == ("ok", dist, VERSIONS[name])
+        assert info.kind == KINDS[name] == build(name).kind
         assert info.description
         assert type(build(name)).__module__ == dist.replace("-", "_")
 
@@ -112,11 +116,15 @@ def _paper_curves_peak(v0, M, beta, rho):
 )
 def test_wedge_prism_free_fall_peaks_at_the_solvers_closed_form(name, options, peak):
     # a prism of uniform wedge section is a 2D wedge: the body's acceleration is each
-    # slice's, so its free fall is the 2D free fall of the theory
+    # slice's, so its free fall is the 2D free fall of the theory. Eq. 2 neglects gravity:
+    # the free-fall form's Eq. 12 takes the slice weight out again (m dw/dt = F - m g with
+    # F = M (a + g)); a momentum-form solver's body falls with g = 0 here
     mass, length, beta, v0, rho = 10.0, 1.0, math.radians(30.0), -5.0, 1000.0
     v, f = shapes.wedge_prism(length=length, beam=0.2, deadrise_deg=30.0)
     hull = hs.Hull.from_arrays(v, f, mass=mass)
-    h = hs.simulate(hull, v0, 0.008, dt=1e-4, slices=4, solver=hs.get_solver(name, **options))
+    solver = hs.get_solver(name, **options)
+    fluid = hs.Fluid(rho, 0.0 if solver.kind == "momentum" else 9.81)
+    h = hs.simulate(hull, v0, 0.008, dt=1e-4, slices=4, solver=solver, fluid=fluid)
     i = int(np.argmax(h.acceleration))
     assert 0 < i < len(h) - 1  # a true peak inside the run
     # measured 6.5e-5 for von-karman and wagner (time step 1e-4 s, single-precision cuts);
@@ -127,6 +135,21 @@ def test_wedge_prism_free_fall_peaks_at_the_solvers_closed_form(name, options, p
 # -- invariants, for every installed solver --------------------------------------------------
 
 
+def impact_force(solver, secs, velocity, fluid):
+    """Force per metre of the impact alone at a constant velocity, and the validity.
+
+    Free-fall form: ``f - M g`` (Eq. 12 less the slice weight). Momentum form: the flux
+    ``m_a' v^2`` plus any extra term (no acceleration).
+    """
+    velocity = np.broadcast_to(np.asarray(velocity, dtype=float), (len(secs),))
+    if solver.kind == "momentum":
+        am = solver.added_mass(secs, velocity, fluid)
+        f = np.where(velocity < 0, am.rate * velocity**2, 0.0) + am.extra
+        return f, am.valid, am.diagnostics
+    loads = solver.section_loads(secs, velocity, fluid)
+    return loads.force_per_metre - secs.mass_per_metre * fluid.g, loads.valid, loads.diagnostics
+
+
 @pytest.fixture(params=installed_ok())
 def solver(request) -> hs.Solver:
     return build(request.param)
@@ -135,25 +158,24 @@ def solver(request) -> hs.Solver:
 def test_no_force_at_zero_penetration(solver, wedge_hull):
     # a dry body: hullslice passes no section to the solver and the force is exactly zero
     assert hs.compute_force(wedge_hull, 0.0, -5.0, slices=8, solver=solver).total == 0.0
-    # and the solver's own limit: momentum theory has a -> 0 as p -> 0 (no added mass and
-    # no rate of it), so the force per metre tends to the slice's weight M g. The paper's
-    # fit has a~(0) = -0.35026, 1.8 % of its peak a~ = 19.63: tolerance 2 % of the largest
-    # deceleration along the sweep
+    # and the solver's own limit: momentum theory has no added mass and no rate of it as
+    # p -> 0, so the impact force tends to zero (a free-fall solver's force per metre to
+    # the slice's weight M g). The paper's fit has a~(0) = -0.35026, 1.8 % of its peak
+    # a~ = 19.63: tolerance 2 % of the largest impact force along the sweep
     M, g = 10.0, 9.81
     secs = wedge_sections(np.geomspace(1e-7, 0.05, 400), math.radians(30.0), M)
-    loads = solver.section_loads(secs, np.full(len(secs), -5.0), hs.Fluid(1000.0, g))
-    a = loads.force_per_metre / M - g
-    assert loads.valid[0]
-    assert abs(a[0]) <= 0.02 * a[loads.valid].max()
+    f, valid, _ = impact_force(solver, secs, -5.0, hs.Fluid(1000.0, g))
+    assert valid[0]
+    assert abs(f[0]) <= 0.02 * f[valid].max()
 
 
 def test_force_grows_with_speed(solver):
     # the same section (p = 1 cm, 30 deg, 10 kg/m) hit faster and faster, all in range
     secs = wedge_sections(np.full(4, 0.01), math.radians(30.0), 10.0)
     v = np.array([-5.0, -7.0, -10.0, -20.0])
-    loads = solver.section_loads(secs, v, hs.Fluid())
-    assert loads.valid.all(), loads.reason
-    assert np.all(np.diff(loads.force_per_metre) > 0.0)
+    f, valid, _ = impact_force(solver, secs, v, hs.Fluid())
+    assert valid.all()
+    assert np.all(np.diff(f) > 0.0)
 
 
 def test_finite_everywhere_in_range(solver):
@@ -166,24 +188,22 @@ def test_finite_everywhere_in_range(solver):
         indexing="ij",
     )
     secs = wedge_sections(p.ravel(), beta.ravel(), mass.ravel())
-    loads = solver.section_loads(secs, v.ravel(), hs.Fluid())
-    assert isinstance(loads, hs.SectionLoads)
-    assert loads.force_per_metre.shape == loads.valid.shape == (len(secs),)
-    # the four bundled solvers are in range on 66-78 % of this grid
-    assert loads.valid.mean() > 0.5
-    assert np.all(np.isfinite(loads.force_per_metre[loads.valid]))
-    for name, arr in loads.diagnostics.items():
-        assert np.all(np.isfinite(arr[loads.valid])), name
+    f, valid, diagnostics = impact_force(solver, secs, v.ravel(), hs.Fluid())
+    assert f.shape == valid.shape == (len(secs),)
+    # the four bundled solvers are in range on 66-100 % of this grid
+    assert valid.mean() > 0.5
+    assert np.all(np.isfinite(f[valid]))
+    for name, arr in diagnostics.items():
+        assert np.all(np.isfinite(arr[valid])), name
 
 
 @pytest.mark.parametrize("name", ["extended-von-karman", *BUNDLED])
-def test_inverse_form_scales_with_the_square_of_the_speed(name):
-    # at a fixed section z~ is fixed, so a = a~ (v / v~)^2 gamma / (sqrt(M) tan beta) grows
-    # as v^2 (paper, Eqs. 3-4; the closed form a = rho pi gamma^2 p v^2 / ...): exact
+def test_impact_force_scales_with_the_square_of_the_speed(name):
+    # free-fall form: at a fixed section z~ is fixed, so a = a~ (v / v~)^2 gamma / (sqrt(M)
+    # tan beta) grows as v^2 (paper, Eqs. 3-4); momentum form: f = m_a'(p) v^2. Exact
     secs = wedge_sections(np.full(2, 0.01), math.radians(25.0), 8.0)
-    loads = build(name).section_loads(secs, np.array([-5.0, -10.0]), hs.Fluid(1000.0, 9.81))
-    a = loads.force_per_metre / 8.0 - 9.81
-    assert a[1] / a[0] == pytest.approx(4.0, rel=1e-12)
+    f, _, _ = impact_force(build(name), secs, np.array([-5.0, -10.0]), hs.Fluid(1000.0, 9.81))
+    assert f[1] / f[0] == pytest.approx(4.0, rel=1e-12)
 
 
 # -- the curves plugin -----------------------------------------------------------------------
@@ -233,11 +253,12 @@ def test_curves_made_for_seawater_are_used_at_their_own_density():
 )
 def test_curves_with_the_closed_form_table_are_the_analytic_solvers(pile_up, analytic):
     # momentum_curves() is the closed form in the scaled variables (2001 rows): with the
-    # same pile-up, the curve solver is the analytic one to the interpolation error
-    # (measured 3.5e-7 on the paper's case)
+    # same pile-up, the curve solver is the closed form in free-fall form to the
+    # interpolation error (measured 3.5e-7 on the paper's case)
     table = momentum_curves().table
     got = _paper_force(hs.get_solver("curves", table=table, pile_up=pile_up)).total
-    assert got == pytest.approx(_paper_force(analytic).total, rel=1e-5)
+    ref = _paper_force(FreeFallMomentumSolver(pile_up=analytic)).total
+    assert got == pytest.approx(ref, rel=1e-5)
 
 
 @pytest.mark.parametrize(
@@ -308,13 +329,13 @@ THROWAWAY = """
 
 FAULTY = """
     import numpy as np
-    from hullslice import MomentumSolver, SectionLoads, Solver
+    from hullslice import MomentumFormSolver, SectionLoads, Solver
 
     class Plain:
         name = "not-a-solver"
 
-    class Half(MomentumSolver):
-        name = "abstract"  # no pile_up
+    class Half(MomentumFormSolver):
+        name = "abstract"  # no added_mass
 
     class Base(Solver):
         def section_loads(self, sections, velocity, fluid):
@@ -379,7 +400,7 @@ def test_a_throwaway_plugin_is_found_and_used(install_plugin, paper_hull, capsys
     code, out, _ = run(capsys, "solvers")
     assert code == 0
     line = next(ln for ln in out.splitlines() if ln.startswith("throwaway"))
-    assert line.split()[:4] == ["throwaway", "ok", "hullslice-throwaway", "1.0"]
+    assert line.split()[:5] == ["throwaway", "free-fall", "ok", "hullslice-throwaway", "1.0"]
 
 
 def test_broken_plugins_leave_the_others_working(install_plugin, paper_hull, capsys):
@@ -391,7 +412,7 @@ def test_broken_plugins_leave_the_others_working(install_plugin, paper_hull, cap
         assert "hullslice-faulty 1.0" in infos[name].error
     assert "ImportError: needs libfoo" in infos["broken-import"].error
     assert "not a subclass of hullslice.Solver" in infos["not-a-solver"].error
-    assert "does not implement pile_up" in infos["abstract"].error
+    assert "does not implement added_mass" in infos["abstract"].error
     assert "does not set the class variable 'name'" in infos["nameless"].error
     for name in ("broken-import", "not-a-solver", "abstract", "nameless"):
         with pytest.raises(hs.PluginError, match=f"'{name}'.*hullslice-faulty 1.0"):
@@ -403,9 +424,9 @@ def test_broken_plugins_leave_the_others_working(install_plugin, paper_hull, cap
     code, out, err = run(capsys, "solvers")
     assert code == 0 and err == ""
     rows = {ln.split()[0]: ln for ln in out.splitlines()[1:]}
-    assert rows["broken-import"].split()[1:3] == ["broken", "hullslice-faulty"]
+    assert rows["broken-import"].split()[1:3] == ["broken", "hullslice-faulty"]  # no kind
     assert "needs libfoo" in rows["broken-import"]
-    assert rows["wagner"].split()[1] == "ok"
+    assert rows["wagner"].split()[1:3] == ["momentum", "ok"]
     code, out, _ = run(capsys, "solvers", "--format", "json")
     status = {s["name"]: s["status"] for s in json.loads(out)["solvers"]}
     assert status["abstract"] == "broken" and status["extended-von-karman"] == "ok"
@@ -536,7 +557,10 @@ def test_simulate_records_the_solver_options(capsys):
     )  # fmt: skip
     assert code == 0, err
     settings = json.loads(out)["settings"]
-    assert settings["solver"] == "wagner" and settings["solver_options"] == {"froude_min": 8}
+    assert settings["solver"] == "wagner" and settings["solver_options"] == {
+        "pile_up": "wagner",
+        "froude_min": 8,
+    }
 
 
 @pytest.mark.parametrize(

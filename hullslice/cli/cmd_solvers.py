@@ -11,6 +11,7 @@ from .common import FORMATS, emit
 
 COLUMNS = (
     Column("name", "name"),
+    Column("kind", "kind"),
     Column("status", "status"),
     Column("distribution", "distribution"),
     Column("version", "version"),
@@ -25,7 +26,10 @@ def add_parser(sub) -> None:
         description="List the 2D solvers registered in the entry-point group "
         "'hullslice.solvers', with their distribution, version and status (ok, broken: "
         "fails to load, with the error; shadowed: another distribution registers the same "
-        "name). JSON and CSV also give each solver's options (--solver-option KEY=VALUE).",
+        "name). The kind says which form a solver has: free-fall (the paper's: each slice in "
+        "a free fall of its own, F = M (a + g) d) or momentum (added mass per metre and its "
+        "rate; the body's accelerations on the left of its equations of motion). JSON and CSV "
+        "also give each solver's options (--solver-option KEY=VALUE).",
     )
     p.add_argument("--format", choices=FORMATS, default="table", help="output format")
     p.set_defaults(func=run)
@@ -46,6 +50,7 @@ def run(args: argparse.Namespace) -> int:
     elif args.format == "csv":
         keys = [
             "name",
+            "kind",
             "status",
             "distribution",
             "version",

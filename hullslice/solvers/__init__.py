@@ -4,7 +4,17 @@ Solvers are found through the entry-point group ``hullslice.solvers``; see
 :mod:`hullslice.solvers.registry`.
 """
 
-from .base import SectionLoads, Solver, join_reasons
+from .base import (
+    FREE_FALL,
+    MOMENTUM,
+    SOLVER_KINDS,
+    AddedMass,
+    MomentumFormSolver,
+    SectionLoads,
+    Solver,
+    SolverBase,
+    join_reasons,
+)
 from .karman import (
     CURVE_COLUMNS,
     PAPER_CURVES,
@@ -17,6 +27,7 @@ from .karman import (
 )
 from .momentum import (
     PILE_UP_LAWS,
+    FreeFallMomentumSolver,
     MomentumSolver,
     chine_half_width,
     momentum_curves,
@@ -38,14 +49,21 @@ __all__ = [
     "CURVE_COLUMNS",
     "DEFAULT_SOLVER",
     "ENTRY_POINT_GROUP",
+    "FREE_FALL",
+    "MOMENTUM",
     "PAPER_CURVES",
     "PILE_UP_LAWS",
+    "SOLVER_KINDS",
+    "AddedMass",
     "CharacteristicCurves",
     "CurveSolver",
     "ExtendedVonKarman",
+    "FreeFallMomentumSolver",
+    "MomentumFormSolver",
     "MomentumSolver",
     "SectionLoads",
     "Solver",
+    "SolverBase",
     "SolverInfo",
     "chine_half_width",
     "dobrovolskaya_pile_up",

@@ -1,4 +1,24 @@
-"""The interface every 2D solver implements, and the loads it returns."""
+"""The interfaces of the 2D solvers, and what they return.
+
+There are two kinds of solver (:data:`SOLVER_KINDS`):
+
+``free-fall`` (:class:`Solver`)
+    The paper's form. Each slice is a 2D section of its own mass per metre in a free fall
+    of its own, and the solver returns the force per metre inferred from that fall,
+    ``f = M (a + g)`` (paper, Eq. 12). It needs the mass per metre of every section.
+``momentum`` (:class:`MomentumFormSolver`)
+    The fluid's momentum (see :mod:`hullslice.forces`). The
+    solver returns, per section and from the sections alone (no body mass), the added mass
+    per metre ``m_a`` (kg/m), its rate ``dm_a/dp`` (kg/m^2) and any force per metre that
+    does not depend on an acceleration (N/m: drag, buoyancy). hullslice forms the force
+
+        f = m_a' v^2 - m_a a + extra          (N/m, positive up)
+
+    with each section's own penetration velocity ``v`` (m/s, negative down) and
+    acceleration ``a`` (m/s^2, positive up), drops the flux term ``m_a' v^2`` on sections
+    leaving the water (``v >= 0``), and puts ``m_a`` on the left of the body's equations
+    of motion.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +33,27 @@ from ..errors import InputError
 from ..sections import Sections
 from ..state import Fluid
 
-__all__ = ["SectionLoads", "Solver", "join_reasons"]
+__all__ = [
+    "FREE_FALL",
+    "MOMENTUM",
+    "SOLVER_KINDS",
+    "AddedMass",
+    "MomentumFormSolver",
+    "SectionLoads",
+    "Solver",
+    "SolverBase",
+    "join_reasons",
+]
+
+#: The paper's form: a force per metre inferred from each slice's own free fall.
+FREE_FALL = "free-fall"
+#: The momentum form: added mass per metre and its rate, forces formed by hullslice.
+MOMENTUM = "momentum"
+#: Solver kinds by name, with a one-line description.
+SOLVER_KINDS: dict[str, str] = {
+    FREE_FALL: "force per metre from each slice's own free fall, M (a + g) (the paper's form)",
+    MOMENTUM: "added mass per metre and its rate; f = m_a' v^2 - m_a a + extra (a rigid body)",
+}
 
 
 @dataclass(frozen=True, eq=False)
@@ -55,12 +95,13 @@ class SectionLoads:
         return len(self.force_per_metre)
 
 
-class Solver(abc.ABC):
-    """A 2D water-entry solver: sections and their velocities in, force per metre out.
+class SolverBase(abc.ABC):  # noqa: B024 (its two subclasses each add the abstract method)
+    """What every 2D solver has: a name, a description, options and a kind.
 
-    Subclasses set the class variables :attr:`name` (the registry key, as in the entry
-    point) and :attr:`description` (one line for ``hullslice solvers``), and implement
-    :meth:`section_loads`. Options are keyword arguments of the constructor; the base
+    Subclass :class:`Solver` (the free-fall form) or :class:`MomentumFormSolver` (the
+    momentum form), not this class. Subclasses set the class variables :attr:`name` (the
+    registry key, as in the entry point) and :attr:`description` (one line for
+    ``hullslice solvers``). Options are keyword arguments of the constructor; the base
     constructor refuses any it does not know (list them in :attr:`options`).
 
     A solver is registered in the entry-point group ``hullslice.solvers`` of its
@@ -76,6 +117,8 @@ class Solver(abc.ABC):
     description: ClassVar[str] = ""
     #: Accepted options with their defaults (keyword arguments of the constructor).
     options: ClassVar[Mapping[str, Any]] = {}
+    #: The solver's kind, a key of :data:`SOLVER_KINDS` (set by the two base classes).
+    kind: ClassVar[str] = ""
 
     def __init__(self, **options: Any) -> None:
         unknown = sorted(set(options) - set(self.options))
@@ -86,6 +129,21 @@ class Solver(abc.ABC):
                 f"its options: {known}"
             )
         self.settings = {**self.options, **options}
+
+    def __repr__(self) -> str:
+        opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
+        return f"{type(self).__name__}({opts})"
+
+
+class Solver(SolverBase):
+    """A free-fall-form 2D solver (the paper's): sections and velocities in, force out.
+
+    Implement :meth:`section_loads`. Each slice is taken as a 2D section of its own mass
+    per metre in a free fall of its own; the force per metre is inferred from that fall.
+    See :class:`SolverBase` for the name, description and options.
+    """
+
+    kind: ClassVar[str] = FREE_FALL
 
     @abc.abstractmethod
     def section_loads(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> SectionLoads:
@@ -106,9 +164,101 @@ class Solver(abc.ABC):
             Arrays of the same length as ``sections``.
         """
 
-    def __repr__(self) -> str:
-        opts = ", ".join(f"{k}={v!r}" for k, v in self.settings.items())
-        return f"{type(self).__name__}({opts})"
+
+@dataclass(frozen=True, eq=False)
+class AddedMass:
+    """What a momentum-form solver returns for a set of sections.
+
+    Attributes
+    ----------
+    added_mass : (n,) float
+        Added mass per metre of each section, kg/m (``>= 0``).
+    rate : (n,) float
+        Its rate with the penetration, ``dm_a/dp``, kg/m^2. Zero once the flow has
+        separated (the spray root past the chine).
+    extra : (n,) float
+        Force per metre that does not depend on an acceleration (cross-flow drag,
+        buoyancy), N/m, positive up. Zeros by default.
+    valid : (n,) bool
+        True where the section is inside the solver's range of validity.
+    reason : (n,) str
+        Why a section is not valid (``""`` where it is).
+    diagnostics : mapping of str to (n,) float
+        Named intermediate arrays, for reports and checks.
+    """
+
+    added_mass: np.ndarray
+    rate: np.ndarray
+    valid: np.ndarray
+    reason: np.ndarray
+    extra: np.ndarray | None = None
+    diagnostics: Mapping[str, np.ndarray] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        fields = self.__dict__  # frozen: set once here, read-only arrays
+        if fields["extra"] is None:
+            fields["extra"] = np.zeros(np.shape(fields["added_mass"]))
+        for name, dtype in (
+            ("added_mass", np.float64),
+            ("rate", np.float64),
+            ("extra", np.float64),
+            ("reason", object),
+        ):
+            a = np.asarray(fields[name], dtype=dtype)
+            a.flags.writeable = False
+            fields[name] = a
+        valid = np.asarray(fields["valid"])  # kept as given: checked by hullslice
+        valid.flags.writeable = False
+        fields["valid"] = valid
+        diags = {}
+        for k, a in dict(self.diagnostics).items():
+            arr = np.asarray(a, dtype=np.float64)
+            arr.flags.writeable = False
+            diags[str(k)] = arr
+        fields["diagnostics"] = diags
+
+    def __len__(self) -> int:
+        return len(self.added_mass)
+
+
+class MomentumFormSolver(SolverBase):
+    """A momentum-form 2D solver: the added mass of each section, from its shape alone.
+
+    Implement :meth:`added_mass`. hullslice forms the force per metre of each section,
+
+        f = m_a' v^2 - m_a a + extra          (N/m, positive up)
+
+    with the section's penetration velocity ``v`` (m/s, negative down) and acceleration
+    ``a`` (m/s^2, positive up), dropping ``m_a' v^2`` where ``v >= 0`` (a section leaving
+    the water: the flow separates, no suction). The inertia term ``- m_a a`` moves to the
+    left of the body's equations of motion, so the force does not depend on the body's
+    mass or its distribution, and gravity acts on the body, never in ``extra`` unless the
+    solver models a hydrostatic force (buoyancy). See :class:`SolverBase` for the name,
+    description and options.
+    """
+
+    kind: ClassVar[str] = MOMENTUM
+
+    @abc.abstractmethod
+    def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:
+        """Added mass per metre and its rate on wetted sections.
+
+        Parameters
+        ----------
+        sections : Sections
+            The wetted sections (every penetration is positive). ``mass_per_metre`` may be
+            NaN (a body without mass under a prescribed motion): do not use it.
+        velocity : (n,) float
+            Penetration velocity of each section in m/s, negative downward (for velocity-
+            dependent terms such as drag, and for validity checks).
+        fluid : Fluid
+            Water density (kg/m^3) and gravity (m/s^2).
+
+        Returns
+        -------
+        AddedMass
+            Arrays of the same length as ``sections``.
+        """
 
 
 def join_reasons(n: int, checks: Sequence[tuple[np.ndarray, str]]) -> np.ndarray:

@@ -1,9 +1,15 @@
 """Von Karman's momentum theory in closed form, and the pile-up laws it is used with.
 
 :class:`MomentumSolver` is the base of the analytic 2D solvers (the ``von-karman`` and
-``wagner`` plugins): a subclass gives only the pile-up coefficient ``gamma(beta)``. It uses
-the theory in the same inverse form as the default solver (the free fall that each slice is
-in, and ``F = M (a + g) d``), so that every solver is comparable on the same body.
+``wagner`` plugins). It is a **momentum-form** solver: it gives each section's added mass
+per metre ``m_a = rho pi c^2 / 2``, with the wetted half-width ``c = gamma p / tan(beta)``
+per side, and its rate ``dm_a/dp``; hullslice forms the force ``m_a' v^2 - m_a a`` and puts
+the added mass on the left of the body's equations of motion (:mod:`hullslice.forces`).
+The pile-up law ``gamma(beta)`` is its option ``pile_up``, shared by every momentum solver.
+
+:class:`FreeFallMomentumSolver` is the same theory in the paper's **free-fall form** (the
+free fall that each slice is in, and ``F = M (a + g) d``), kept to compare the two forms on
+the same theory; the derivation below is that of the free-fall form.
 
 Derivation
 ----------
@@ -58,7 +64,6 @@ Dobrovol'skaya's ``gamma_D``, 1.054 at 45 deg).
 
 from __future__ import annotations
 
-import abc
 import math
 from collections.abc import Callable, Mapping
 from numbers import Real
@@ -69,11 +74,12 @@ import numpy as np
 from ..errors import InputError
 from ..sections import Sections
 from ..state import Fluid
-from .base import SectionLoads, Solver, join_reasons
+from .base import AddedMass, MomentumFormSolver, SectionLoads, Solver, join_reasons
 from .karman import CharacteristicCurves, dobrovolskaya_pile_up, peak_froude
 
 __all__ = [
     "PILE_UP_LAWS",
+    "FreeFallMomentumSolver",
     "MomentumSolver",
     "chine_half_width",
     "momentum_curves",
@@ -183,15 +189,17 @@ def momentum_curves(
     )
 
 
-class MomentumSolver(Solver):
-    """Von Karman's momentum theory in closed form, with a pile-up law, in inverse form.
+class FreeFallMomentumSolver(Solver):
+    """Von Karman's momentum theory in closed form, in the paper's free-fall form.
 
-    Subclasses set :attr:`~hullslice.Solver.name` and :attr:`~hullslice.Solver.description`
-    and implement :meth:`pile_up`. The derivation and the range of validity are in the
-    docstring of :mod:`hullslice.solvers.momentum`.
+    Subclasses set :attr:`~hullslice.Solver.name` and :attr:`~hullslice.Solver.description`;
+    the pile-up law is the option ``pile_up`` (or override :meth:`pile_up`). The derivation
+    and the range of validity are in the docstring of :mod:`hullslice.solvers.momentum`.
 
     Parameters
     ----------
+    pile_up : str or float, optional
+        The pile-up law, see :func:`pile_up_law` (default ``"von-karman"``).
     froude_min : float, optional
         Smallest peak Froude number ``Fr*`` inside the range (default 6.5, the paper's).
 
@@ -203,11 +211,16 @@ class MomentumSolver(Solver):
     ``chine_half_width`` (m).
     """
 
-    options: ClassVar[Mapping[str, Any]] = {"froude_min": 6.5}
+    options: ClassVar[Mapping[str, Any]] = {"pile_up": "von-karman", "froude_min": 6.5}
 
-    @abc.abstractmethod
+    def __init__(self, **options: Any) -> None:
+        super().__init__(**options)
+        self._law = pile_up_law(self.settings["pile_up"])
+        self.settings["froude_min"] = _positive_option(self, "froude_min")
+
     def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
-        """Pile-up coefficient ``gamma`` for deadrise angles in rad."""
+        """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
+        return self._law(deadrise)
 
     def section_loads(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> SectionLoads:
         n = len(sections)
@@ -251,5 +264,121 @@ class MomentumSolver(Solver):
                 "froude": froude,
                 "wetted_half_width": wet_half,
                 "chine_half_width": chine,
+            },
+        )
+
+
+def _positive_option(solver: Any, key: str, *, allow_zero: bool = False) -> float:
+    """A solver's numeric option, checked: finite and positive (or zero where allowed)."""
+    value = solver.settings[key]
+    ok = isinstance(value, Real) and not isinstance(value, bool)
+    v = float(value) if ok else math.nan
+    if not (math.isfinite(v) and (v > 0.0 or (allow_zero and v == 0.0))):
+        what = "zero or positive" if allow_zero else "positive"
+        raise InputError(
+            f"solver {solver.name!r}: option {key}={value!r} is not a {what} finite number "
+            f"(default {type(solver).options[key]!r})"
+        )
+    return v
+
+
+#: Default smallest section Froude number |v| / sqrt(g p) of the momentum solvers.
+SECTION_FROUDE_MIN = 2.0
+
+
+class MomentumSolver(MomentumFormSolver):
+    """Von Karman's momentum theory in closed form, momentum form, with a pile-up law.
+
+    The wetted half-width of each side of a section is ``c = gamma p / tan(beta)`` (its
+    own deadrise), the added mass per metre is a flat plate's of the wetted width,
+
+        m_a = rho pi (c_port + c_stbd)^2 / 8        (= rho pi c^2 / 2 when symmetric),
+
+    and its rate ``dm_a/dp = rho pi (c_port + c_stbd) (gamma / tan(beta_port) +
+    gamma / tan(beta_stbd)) / 4``. At constant speed ``V`` from first contact this gives
+    ``f = rho pi gamma^2 V^3 t / tan^2(beta)`` per metre: von Karman's force (``gamma = 1``)
+    and Wagner's (``gamma = pi / 2``, ``rho pi^3 V^3 t / (4 tan^2 beta)``).
+
+    Once the spray root reaches the chine on a side (``c`` beyond the half-width of the
+    section's part at its widest, ``part_half_beam``), that side's ``c`` stays at the chine
+    and stops growing (``dc/dp = 0``): the added mass keeps its chine value and the section
+    is flagged (the flow separates; no drag is modelled here).
+
+    Subclasses set :attr:`~hullslice.SolverBase.name`,
+    :attr:`~hullslice.SolverBase.description` and a default for the option ``pile_up``.
+
+    Parameters
+    ----------
+    pile_up : str or float, optional
+        The pile-up law: ``"wagner"`` (``pi / 2``), ``"von-karman"`` (1),
+        ``"dobrovolskaya"`` (the paper's ``-0.0114 beta_deg + 1.5669``) or a number (see
+        :func:`pile_up_law`).
+    froude_min : float, optional
+        Smallest section Froude number ``Fr = |v| / sqrt(g p)`` inside the range (default
+        2.0). The section's own velocity and depth give it: for a wedge the hydrostatic
+        force over the impact force is ``tan(beta) / (pi gamma^2 Fr^2)``, so ``Fr > 2``
+        keeps it below 3 % (Wagner's pile-up) or 8 % (von Karman's) up to 45 deg.
+
+    Notes
+    -----
+    Diagnostics, per section: ``gamma``, ``wetted_half_width`` (m, the mean of the two
+    sides, capped at the chine), ``chine_half_width`` (m), ``froude`` (``|v| / sqrt(g p)``).
+    """
+
+    options: ClassVar[Mapping[str, Any]] = {
+        "pile_up": "von-karman",
+        "froude_min": SECTION_FROUDE_MIN,
+    }
+
+    def __init__(self, **options: Any) -> None:
+        super().__init__(**options)
+        self._law = pile_up_law(self.settings["pile_up"])
+        self.settings["froude_min"] = _positive_option(self, "froude_min")
+
+    def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
+        """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
+        return self._law(deadrise)
+
+    def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:
+        n = len(sections)
+        p = sections.penetration
+        v = np.broadcast_to(np.asarray(velocity, dtype=np.float64), (n,))
+        gam = np.broadcast_to(np.asarray(self.pile_up(sections.deadrise), dtype=np.float64), (n,))
+        chine = chine_half_width(sections)
+        c_sides, dc_sides = [], []
+        for beta in (sections.deadrise_port, sections.deadrise_stbd):
+            dc = gam / np.tan(beta)  # dc/dp of a wedge side
+            c = dc * p
+            past = c > chine
+            c_sides.append(np.where(past, chine, c))
+            dc_sides.append(np.where(past, 0.0, dc))
+        width = c_sides[0] + c_sides[1]
+        k = fluid.rho * np.pi / 8.0
+        m_a = k * width**2
+        rate = 2.0 * k * width * (dc_sides[0] + dc_sides[1])
+        past_chine = (dc_sides[0] == 0.0) | (dc_sides[1] == 0.0)
+        froude = np.abs(v) / np.sqrt(fluid.g * p) if fluid.g > 0 else np.full(n, np.inf)
+        fr_min = self.settings["froude_min"]
+        reason = join_reasons(
+            n,
+            [
+                (froude <= fr_min, f"Fr = |v| / sqrt(g p) <= {fr_min:g} (gravity not negligible)"),
+                (
+                    past_chine,
+                    "spray root past the chine: added mass kept at its chine value "
+                    "(flow separation not modelled)",
+                ),
+            ],
+        )
+        return AddedMass(
+            added_mass=m_a,
+            rate=rate,
+            valid=reason == "",
+            reason=reason,
+            diagnostics={
+                "gamma": gam,
+                "wetted_half_width": width / 2.0,
+                "chine_half_width": chine,
+                "froude": froude,
             },
         )

@@ -3,7 +3,8 @@
 Every solver, the default one included, is found through installed distributions'
 entry points. Discovery reads metadata only; a plugin's module is imported when the solver
 is first asked for by name or when all solvers are listed. A plugin that fails to import,
-is not a :class:`~hullslice.solvers.base.Solver`, leaves its abstract methods
+is not a :class:`~hullslice.solvers.base.Solver` or
+:class:`~hullslice.solvers.base.MomentumFormSolver`, leaves its abstract methods
 unimplemented or has no ``name`` is broken: asking for it raises a
 :class:`~hullslice.errors.PluginError` naming it and its distribution,
 :func:`list_solvers` lists it with the status ``"broken"`` and the error, and the other
@@ -26,7 +27,7 @@ from importlib.metadata import EntryPoint, entry_points
 from typing import Any, NoReturn
 
 from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
-from .base import Solver
+from .base import SolverBase
 
 __all__ = [
     "DEFAULT_SOLVER",
@@ -67,6 +68,9 @@ class SolverInfo:
         Why it is broken or shadowed.
     options : dict
         The solver's options with their defaults (empty until loaded).
+    kind : str
+        ``"free-fall"`` or ``"momentum"`` (:data:`~hullslice.solvers.base.SOLVER_KINDS`;
+        empty until loaded).
     """
 
     name: str
@@ -77,6 +81,7 @@ class SolverInfo:
     description: str = ""
     error: str = ""
     options: Mapping[str, Any] = field(default_factory=dict)
+    kind: str = ""
 
 
 def _dist_of(ep: EntryPoint) -> tuple[str, str]:
@@ -96,7 +101,7 @@ class _Registry:
     def __init__(self, eps: list[EntryPoint]) -> None:
         self.winners: dict[str, EntryPoint] = {}
         self.shadowed: list[tuple[EntryPoint, EntryPoint]] = []
-        self.classes: dict[str, type[Solver]] = {}
+        self.classes: dict[str, type[SolverBase]] = {}
         self.broken: dict[str, str] = {}
         by_name: dict[str, list[EntryPoint]] = {}
         for ep in eps:
@@ -119,7 +124,7 @@ class _Registry:
                     stacklevel=4,
                 )
 
-    def load(self, name: str) -> type[Solver]:
+    def load(self, name: str) -> type[SolverBase]:
         if name in self.classes:
             return self.classes[name]
         if name in self.broken:
@@ -130,10 +135,11 @@ class _Registry:
         except Exception as exc:
             msg = f"solver plugin {_describe(ep)} failed to load: {type(exc).__name__}: {exc}"
             return self._broken(name, msg)
-        if not (isinstance(obj, type) and issubclass(obj, Solver)):
+        if not (isinstance(obj, type) and issubclass(obj, SolverBase)):
             msg = (
                 f"solver plugin {_describe(ep)} does not implement the solver interface: "
-                f"{ep.value} is not a subclass of hullslice.Solver"
+                f"{ep.value} is not a subclass of hullslice.Solver or "
+                "hullslice.MomentumFormSolver"
             )
             return self._broken(name, msg)
         if getattr(obj, "__abstractmethods__", None):
@@ -188,7 +194,14 @@ def list_solvers() -> list[SolverInfo]:
             continue
         out.append(
             SolverInfo(
-                name, ep.value, dist, version, "ok", cls.description, options=dict(cls.options)
+                name,
+                ep.value,
+                dist,
+                version,
+                "ok",
+                cls.description,
+                options=dict(cls.options),
+                kind=cls.kind,
             )
         )
     for loser, winner in reg.shadowed:
@@ -212,12 +225,12 @@ def solver_names() -> list[str]:
     return sorted(_registry().winners)
 
 
-def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> Solver:
-    """A solver instance from a registered name, a Solver subclass, or an instance.
+def get_solver(solver: str | type[SolverBase] | SolverBase | None = None, **options) -> SolverBase:
+    """A solver instance from a registered name, a solver class, or an instance.
 
     Parameters
     ----------
-    solver : str, Solver subclass, Solver instance or None
+    solver : str, SolverBase subclass, SolverBase instance or None
         ``None`` means the default, ``"extended-von-karman"``.
     **options
         Options passed to the solver's constructor (not allowed with an instance).
@@ -234,14 +247,16 @@ def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> 
     """
     if solver is None:
         solver = DEFAULT_SOLVER
-    if isinstance(solver, Solver):
+    if isinstance(solver, SolverBase):
         if options:
             raise TypeError("options cannot be given with a solver instance")
         return solver
-    if isinstance(solver, type) and issubclass(solver, Solver):
+    if isinstance(solver, type) and issubclass(solver, SolverBase):
         return _build(solver, options, lambda: _describe_class(solver))
     if not isinstance(solver, str):
-        raise TypeError(f"solver must be a name, a Solver subclass or instance, not {solver!r}")
+        raise TypeError(
+            f"solver must be a name, a solver class or a solver instance, not {solver!r}"
+        )
     reg = _registry()
     if solver not in reg.winners:
         installed = ", ".join(sorted(reg.winners)) or "none"
@@ -254,7 +269,7 @@ def get_solver(solver: str | type[Solver] | Solver | None = None, **options) -> 
     return _build(reg.load(solver), options, lambda: reg.distribution(solver))
 
 
-def _build(cls: type[Solver], options: dict, who) -> Solver:
+def _build(cls: type[SolverBase], options: dict, who) -> SolverBase:
     """``cls(**options)``; an unexpected exception becomes a SolverError naming the plugin."""
     try:
         return cls(**options)
@@ -266,7 +281,7 @@ def _build(cls: type[Solver], options: dict, who) -> Solver:
         ) from exc
 
 
-def describe(solver: Solver) -> str:
+def describe(solver: SolverBase) -> str:
     """Name, class and distribution of a solver instance, for error messages."""
     reg = _registry()
     for name, cls in reg.classes.items():

@@ -1,38 +1,37 @@
 """Von Karman's momentum theory for hullslice: a wedge entering water without pile-up.
 
 The wetted half-width of a section is its calm-water half-width, ``c = p / tan(beta)``
-(pile-up coefficient ``gamma = 1``). The closed form, its inverse use (the free fall each
-slice is in, ``F = M (a + g) d``) and its range of validity come from
-:class:`hullslice.MomentumSolver`; this plugin gives the pile-up law.
+(pile-up coefficient ``gamma = 1``). The solver is a momentum-form solver
+(:class:`hullslice.MomentumSolver`): each section's added mass ``m_a = rho pi c^2 / 2`` and
+its rate, with the body's accelerations on the left of its equations of motion. At a
+constant downward speed ``V`` the force per metre from first contact is
 
-For a free-falling wedge the peak deceleration is (paper, Eq. 2, ``gamma = 1``)
+    f = rho pi V^3 t / tan^2(beta).
 
-    a_max = v_z0^2 (5/6)^3 / tan(beta) sqrt(2 pi rho / (5 M)).
+The option ``pile_up`` takes any other law (``wagner``, ``dobrovolskaya`` or a number).
 """
 
 from __future__ import annotations
 
-import numpy as np
+from typing import Any, ClassVar
 
 from hullslice import MomentumSolver
-from hullslice.solvers import von_karman_pile_up
 
 __all__ = ["VonKarman"]
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 
 class VonKarman(MomentumSolver):
-    """Von Karman's momentum theory, closed form, no pile-up (``gamma = 1``).
+    """Von Karman's momentum theory, closed form, no pile-up (``gamma = 1``) by default.
 
     Parameters
     ----------
+    pile_up : str or float, optional
+        The pile-up law (default ``"von-karman"``, ``gamma = 1``).
     froude_min : float, optional
-        Smallest peak Froude number ``Fr*`` inside the range (default 6.5).
+        Smallest section Froude number ``|v| / sqrt(g p)`` inside the range (default 2).
     """
 
     name = "von-karman"
-    description = "Von Karman's momentum theory in closed form, no pile-up (gamma = 1)"
-
-    def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
-        """``gamma = 1`` for every deadrise (rad)."""
-        return von_karman_pile_up(deadrise)
+    description = "Momentum form, closed form, no pile-up (gamma = 1)"
+    options: ClassVar[dict[str, Any]] = {**MomentumSolver.options, "pile_up": "von-karman"}

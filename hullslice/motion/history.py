@@ -1,0 +1,350 @@
+"""The time history of a run, and the rules that may end it early."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..errors import InputError
+from ..forces import MIN_SLENDERNESS, ForceResult
+
+__all__ = [
+    "DEFAULT_STOP_ON",
+    "MAX_FLAGGED_SHARE",
+    "MAX_PITCH",
+    "STOP_RULES",
+    "History",
+]
+
+#: Why a run may end before its end time, and what each limit means.
+STOP_RULES: dict[str, str] = {
+    "velocity": "the body stopped sinking (vertical velocity >= 0)",
+    "chine": "the water reached a section's chine or deck (its widest point)",
+    "validity": "slices outside the 2D solver's range of validity carry more than the "
+    "allowed share of the force",
+    "pitch": "the pitch reached 80 deg, past what a 2D+t model describes (a run always ends there)",
+    "slender": f"the wetted length fell below {MIN_SLENDERNESS:g} times the wetted beam: the "
+    "body is not slender there, as 2D+t assumes",
+}
+
+#: The stop rules a run applies by default (``slender`` is recorded, not applied).
+DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "chine", "validity", "pitch")
+
+#: Default largest share of the force (sum of the slices' absolute forces) that slices
+#: outside the solver's range may carry before the ``validity`` rule ends a run.
+MAX_FLAGGED_SHARE = 0.1
+
+#: Largest pitch a run may reach, rad.
+MAX_PITCH = math.radians(80.0)
+
+
+@dataclass(frozen=True, eq=False)
+class History:
+    """A time history of the body's motion and the force on it.
+
+    Attributes
+    ----------
+    t : (k,) float
+        Time in s (0 at the start of the run).
+    penetration : (k,) float
+        Draft of the body's lowest point below the water, m (positive).
+    velocity : (k,) float
+        Vertical velocity of the centre of gravity, m/s, negative down.
+    acceleration : (k,) float
+        Vertical acceleration of the centre of gravity, m/s^2, positive up (``F / m - g``).
+    force : (k,) float
+        2D+t vertical force, N, positive up.
+    pitch : (k,) float
+        Pitch in rad, nose up.
+    pitch_rate : (k,) float
+        Pitch rate in rad/s.
+    forward_speed : (k,) float
+        Forward speed in m/s.
+    force_x : (k,) float
+        Horizontal force, N, positive forward.
+    moment : (k,) float
+        Pitch moment about the centre of gravity, N m, nose up.
+    wetted_length : (k,) float
+        Length of the wetted part, m.
+    slices : (k,) int
+        Number of wetted slices (a slice with two wetted parts, a catamaran's floats,
+        counts once).
+    valid : (k,) bool
+        Every slice inside the validity range at that instant.
+    valid_share : (k,) float
+        Share of the force (sum of the slices' absolute forces) carried by valid slices;
+        :attr:`flagged_share` is the rest.
+    chine_wetted : (k,) bool
+        The water reached some section's chine at that instant.
+    reason : (k,) str
+        Why the instant is not valid (the reasons of its slices), ``""`` when it is.
+    footprint : (k, 2) float
+        Earth ``X`` (m) of the aft and fore ends of the wetted part.
+    added_mass : (k,) float
+        Heave added mass ``sum m_a dx`` of a momentum-form solver, kg (NaN for free-fall
+        solvers).
+    slenderness : (k,) float
+        Wetted length over wetted beam (``inf`` when nothing is wetted).
+    stop_reason : str
+        ``"t_end"``, ``"end of table"`` or a key of :data:`STOP_RULES`.
+    first_crossed : dict
+        For each key of :data:`STOP_RULES`, the first time (s) its limit was crossed, or
+        None.
+    mode : str
+        ``"free fall"``, ``"free motion"`` or ``"prescribed"``.
+    settings : dict
+        The run's inputs (hull, mass, solver, fluid, slices, time step, ...).
+    """
+
+    t: np.ndarray
+    penetration: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    force: np.ndarray
+    pitch: np.ndarray
+    pitch_rate: np.ndarray
+    forward_speed: np.ndarray
+    force_x: np.ndarray
+    moment: np.ndarray
+    wetted_length: np.ndarray
+    slices: np.ndarray
+    valid: np.ndarray
+    valid_share: np.ndarray
+    chine_wetted: np.ndarray
+    reason: np.ndarray
+    footprint: np.ndarray
+    added_mass: np.ndarray
+    slenderness: np.ndarray
+    stop_reason: str
+    first_crossed: Mapping[str, float | None]
+    mode: str
+    settings: Mapping[str, object] = field(default_factory=dict)
+
+    ARRAYS = (
+        "t",
+        "penetration",
+        "velocity",
+        "acceleration",
+        "force",
+        "pitch",
+        "pitch_rate",
+        "forward_speed",
+        "force_x",
+        "moment",
+        "wetted_length",
+        "slices",
+        "valid",
+        "valid_share",
+        "chine_wetted",
+        "reason",
+        "footprint",
+        "added_mass",
+        "slenderness",
+    )
+
+    #: The columns of :meth:`columns`, in order (SI; angles in degrees as named).
+    COLUMNS = (
+        "t",
+        "penetration",
+        "velocity",
+        "acceleration",
+        "force",
+        "pitch_deg",
+        "pitch_rate_deg_s",
+        "forward_speed",
+        "force_x",
+        "moment",
+        "wetted_length",
+        "x_aft",
+        "x_fore",
+        "slices",
+        "valid",
+        "valid_share",
+        "chine_wetted",
+        "added_mass",
+        "slenderness",
+        "reason",
+    )
+
+    def __post_init__(self) -> None:
+        for name in self.ARRAYS:
+            arr = np.asarray(getattr(self, name))
+            arr.flags.writeable = False
+            object.__setattr__(self, name, arr)
+
+    def __len__(self) -> int:
+        return len(self.t)
+
+    @property
+    def flagged_share(self) -> np.ndarray:
+        """(k,) float: share of the force carried by slices outside the solver's range."""
+        return 1.0 - self.valid_share
+
+    @property
+    def max_flagged_share(self) -> float:
+        """The largest :attr:`flagged_share` of the run (0 for an empty history)."""
+        return float(self.flagged_share.max()) if len(self) else 0.0
+
+    @property
+    def peak(self) -> dict[str, float]:
+        """The instant of the largest force: ``t``, ``force``, ``acceleration``, ``velocity``,
+        ``penetration``, ``pitch_deg``, ``moment``."""
+        i = int(np.argmax(self.force))
+        return {
+            "t": float(self.t[i]),
+            "force": float(self.force[i]),
+            "acceleration": float(self.acceleration[i]),
+            "velocity": float(self.velocity[i]),
+            "penetration": float(self.penetration[i]),
+            "pitch_deg": float(np.degrees(self.pitch[i])),
+            "moment": float(self.moment[i]),
+        }
+
+    def columns(self) -> dict[str, np.ndarray]:
+        """The per-instant arrays by the names of :attr:`COLUMNS`."""
+        cols = {name: getattr(self, name) for name in self.ARRAYS if name != "footprint"}
+        cols["pitch_deg"] = np.degrees(cols.pop("pitch"))
+        cols["pitch_rate_deg_s"] = np.degrees(cols.pop("pitch_rate"))
+        cols["x_aft"] = self.footprint[:, 0] if len(self) else np.empty(0)
+        cols["x_fore"] = self.footprint[:, 1] if len(self) else np.empty(0)
+        return {name: cols[name] for name in self.COLUMNS}
+
+    def to_xarray(self):
+        """The history as an ``xarray.Dataset`` along ``t``, with units (needs xarray)."""
+        from ..xarray_io import history_to_xarray
+
+        return history_to_xarray(self)
+
+    def to_dataframe(self):
+        """The history as a ``pandas.DataFrame`` indexed by ``t``, with units in ``attrs``."""
+        from ..xarray_io import history_to_dataframe
+
+        return history_to_dataframe(self)
+
+    def at(self, t: float) -> dict[str, float]:
+        """The numeric columns interpolated linearly at time ``t`` (s)."""
+        if not (self.t[0] <= t <= self.t[-1]):
+            raise InputError(f"t = {t} s is outside the history ({self.t[0]} to {self.t[-1]} s)")
+        cols = self.columns()
+        skip = ("t", "slices", "valid", "valid_share", "chine_wetted", "reason", "slenderness")
+        return {k: float(np.interp(t, self.t, v)) for k, v in cols.items() if k not in skip}
+
+
+class _Recorder:
+    """Collects the instants of a run and applies the stop rules."""
+
+    def __init__(
+        self, stop_on: Iterable[str], max_flagged_share: float = MAX_FLAGGED_SHARE
+    ) -> None:
+        self.stop_on = _check_rules(stop_on)
+        self.max_flagged_share = check_share(max_flagged_share)
+        self.rows: list[dict] = []
+        self.first: dict[str, float | None] = dict.fromkeys(STOP_RULES)
+        self.stop: str | None = None
+
+    def add(
+        self,
+        t: float,
+        r: ForceResult,
+        acceleration: float,
+        draft: float | None = None,
+    ) -> bool:
+        """Record an instant; True when a stop rule ends the run here. ``draft`` is the
+        body's own when the force was computed at a draft clipped to its height."""
+        share = _valid_share(r)
+        slender = r.slenderness
+        reasons = sorted({part for text in r.loads.reason if text for part in text.split("; ")})
+        w = r.motion.velocity
+        crossed = {
+            "velocity": w >= 0.0,
+            "chine": bool(r.sections.chine_wetted.any()),
+            "validity": 1.0 - share > self.max_flagged_share,
+            "slender": slender < MIN_SLENDERNESS,
+        }
+        s = r.sections
+        wet = s.penetration > 0
+        if wet.any():
+            fp = (float((s.x - s.dx / 2)[wet].min()), float((s.x + s.dx / 2)[wet].max()))
+        else:
+            fp = (math.nan, math.nan)
+        self.rows.append(
+            {
+                "t": t,
+                "penetration": r.pose.draft if draft is None else draft,
+                "velocity": w,
+                "acceleration": acceleration,
+                "force": r.total,
+                "pitch": r.pose.pitch,
+                "pitch_rate": r.motion.pitch_rate,
+                "forward_speed": r.motion.forward_speed,
+                "force_x": r.total_x,
+                "moment": r.moment,
+                "wetted_length": s.wetted_length,
+                "slices": len(np.unique(s.station[wet])),
+                "valid": r.all_valid,
+                "valid_share": share,
+                "chine_wetted": crossed["chine"],
+                "reason": "; ".join(reasons),
+                "footprint": fp,
+                "added_mass": r.added_mass,
+                "slenderness": slender,
+            }
+        )
+        for rule, hit in crossed.items():
+            if hit and self.first[rule] is None:
+                self.first[rule] = t
+            if hit and rule in self.stop_on and self.stop is None:
+                self.stop = rule
+        return self.stop is not None
+
+    def end(self, rule: str, t: float) -> None:
+        """End the run here by ``rule`` (a limit the run cannot go past)."""
+        self.first[rule] = t if self.first[rule] is None else self.first[rule]
+        self.stop = self.stop or rule
+
+    def history(self, end: str, mode: str, settings: dict) -> History:
+        def col(name, dtype):
+            return np.array([row[name] for row in self.rows], dtype=dtype)
+
+        dtypes = {"slices": int, "valid": bool, "chine_wetted": bool, "reason": object}
+        arrays = {name: col(name, dtypes.get(name, float)) for name in History.ARRAYS}
+        arrays["footprint"] = arrays["footprint"].reshape(-1, 2)
+        return History(
+            **arrays,
+            stop_reason=self.stop or end,
+            first_crossed=dict(self.first),
+            mode=mode,
+            settings=settings,
+        )
+
+
+def _valid_share(r: ForceResult) -> float:
+    """Share of the slices' absolute forces carried by valid slices (1 with no force)."""
+    size = np.abs(r.force)
+    total = size.sum()
+    return float(size[r.loads.valid].sum() / total) if total > 0 else 1.0
+
+
+def check_share(value: float) -> float:
+    """A largest flagged share, checked: a number in [0, 1]."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"largest flagged share {value!r} is not a number in [0, 1]") from None
+    if not 0.0 <= v <= 1.0:  # NaN fails too
+        raise InputError(
+            f"largest flagged share {value!r} is not in [0, 1]: give the share of the force "
+            f"that flagged slices may carry before a run stops (default {MAX_FLAGGED_SHARE:g})"
+        )
+    return v
+
+
+def _check_rules(stop_on: Iterable[str]) -> tuple[str, ...]:
+    rules = tuple(stop_on)
+    unknown = [r for r in rules if r not in STOP_RULES]
+    if unknown:
+        raise InputError(f"unknown stop rule {unknown[0]!r}: choose from {', '.join(STOP_RULES)}")
+    return rules

@@ -1,0 +1,420 @@
+"""Equations of motion and their integration: free motion and prescribed motion.
+
+Free motion integrates the rigid body's equations in the vertical plane,
+
+    dZ_g/dt = w,        d(theta)/dt = q,        dX_g/dt = u,
+    (M_body + A) (dw/dt, dq/dt, du/dt) = (F_z - m g, M_y, F_x)
+
+(``w`` vertical velocity, negative down; ``theta`` pitch, nose up; ``u`` forward speed;
+``F_z``, ``F_x``, ``M_y`` the 2D+t force and moment about the centre of gravity, see
+:mod:`hullslice.forces`; ``M_body = diag(m, I, m)``) with the classical fourth-order
+Runge-Kutta scheme at a fixed step, cutting the hull afresh at each stage. Pitch (``dq/dt``)
+is free with ``free_pitch`` and surge (``du/dt``) with ``free_surge``; otherwise the pitch
+changes at the given constant rate and the forward speed is constant.
+
+``A`` is the added-mass matrix of a **momentum-form** solver, assembled from the sections
+at every stage and solved with the body's mass matrix (no lag from the last step, no
+iteration); a singular or indefinite matrix is an :class:`~hullslice.errors.InputError`
+naming the time. Gravity acts on the body here, never in the water force. A **free-fall**
+solver (the paper's) has no added mass: ``A = 0`` and ``F_z`` already holds each slice's
+free fall (Eq. 12). A level vertical fall is the special case of the paper.
+
+A prescribed motion (the paper's way: kinematics from CFD or a test) evaluates the force
+along a table of ``t, penetration, velocity`` (and optionally the accelerations, pitch and
+forward speed, :mod:`hullslice.motion.kinematics`); a momentum-form solver's force then uses
+the table's accelerations and does not depend on the body's mass.
+
+A run ends at its end time, or earlier by one of the stop rules of
+:data:`~hullslice.motion.history.STOP_RULES`; the :class:`History` records which rule
+ended it and the first time each limit was crossed.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from ..constants import MAX_STEPS
+from ..errors import InputError
+from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_accelerations
+from ..geometry import frame
+from ..mesh import Hull
+from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
+from ..solvers.base import MOMENTUM, SolverBase
+from ..solvers.registry import get_solver
+from ..state import Acceleration, Fluid, Motion, Pose
+from .history import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, MAX_PITCH, History, _Recorder
+from .kinematics import check_kinematics, kinematics_accelerations
+
+__all__ = ["ForceModel", "prescribed", "simulate"]
+
+
+class _PitchLimit(Exception):
+    """The pitch reached :data:`MAX_PITCH` during a run."""
+
+
+#: Largest part of the body's height it may move in one time step of a free fall.
+MAX_STEP_TRAVEL = 0.1
+
+
+class ForceModel:
+    """The 2D+t force and moment on a hull as a function of its pose and motion.
+
+    Parameters
+    ----------
+    hull : Hull
+        The body, with its mass.
+    slices : int
+        Slices over the wetted length (default 32).
+    solver : str, Solver or Solver subclass, optional
+        The 2D solver (default ``"extended-von-karman"``).
+    fluid : Fluid, optional
+        Water density and gravity.
+    deadrise : str
+        Deadrise estimator (default ``"wedge"``).
+    slicing : str
+        ``"wetted"`` (default) or ``"fixed"`` (cut once per pitch and reused), see
+        :data:`~hullslice.sections.SLICINGS`.
+    cache : bool
+        Reuse the fixed slicing's cut (default); False cuts afresh at every call, for
+        checking that both give the same numbers.
+    need_mass : bool
+        Refuse a hull without mass (default). A momentum-form solver along a prescribed
+        motion does not need it.
+    """
+
+    def __init__(
+        self,
+        hull: Hull,
+        *,
+        slices: int = 32,
+        solver: str | SolverBase | type[SolverBase] | None = None,
+        fluid: Fluid | None = None,
+        deadrise: str = "wedge",
+        slicing: str = "wetted",
+        cache: bool = True,
+        need_mass: bool = True,
+    ) -> None:
+        self.solver = get_solver(solver)
+        if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
+            raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
+        self.hull = hull
+        self.slices = _slice_count(slices)
+        self.fluid = fluid or Fluid()
+        self.deadrise = _check_deadrise(deadrise)
+        self.slicing = _check_slicing(slicing)
+        self.cache = bool(cache)
+
+    @property
+    def momentum(self) -> bool:
+        """True when the solver is a momentum-form solver."""
+        return self.solver.kind == MOMENTUM
+
+    def _sections(self, pose: Pose):
+        height = _height_at(self.hull, pose.pitch)
+        if pose.draft > height:
+            pose = Pose(height, pose.pitch)
+        return sections_at(
+            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache
+        )
+
+    def __call__(
+        self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
+    ) -> ForceResult:
+        """The force result at a pose (its draft clipped to the body's height) and motion;
+        a momentum-form solver's with the body's ``acceleration`` (default: free in heave,
+        see :func:`~hullslice.forces.compute_force`)."""
+        return force_on(
+            self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
+            acceleration=acceleration, mass=self.hull.mass,
+        )  # fmt: skip
+
+    def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
+        """A momentum-form solver's terms before the body's accelerations are known."""
+        return momentum_terms(
+            self._sections(pose),
+            motion,
+            self.solver,
+            self.fluid,
+            float(self.hull.cg[0]),  # type: ignore[arg-type]
+        )
+
+    def settings(self) -> dict[str, object]:
+        """The model's inputs, for a history's settings."""
+        return {
+            "hull": self.hull.name,
+            "mass": self.hull.mass,
+            "slices": self.slices,
+            "solver": self.solver.name,
+            "solver_kind": self.solver.kind,
+            "solver_options": dict(self.solver.settings),
+            "rho": self.fluid.rho,
+            "g": self.fluid.g,
+            "deadrise": self.deadrise,
+            "slicing": self.slicing,
+        }
+
+    def draft(self, z_cg: float, pitch: float) -> float:
+        """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m)."""
+        return max(0.0, -(frame(self.hull, pitch).lowest + z_cg))
+
+
+def _positive(value: float, what: str, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"{what} {value!r} is not a number (in {unit})") from None
+    if not (math.isfinite(v) and v > 0.0):
+        raise InputError(f"{what} {value!r} {unit} is not positive")
+    return v
+
+
+def simulate(
+    hull: Hull,
+    velocity: float,
+    t_end: float,
+    *,
+    dt: float | None = None,
+    draft: float = 0.0,
+    pitch: float = 0.0,
+    forward_speed: float = 0.0,
+    pitch_rate: float = 0.0,
+    free_pitch: bool = False,
+    free_surge: bool = False,
+    slices: int = 32,
+    solver: str | SolverBase | type[SolverBase] | None = None,
+    fluid: Fluid | None = None,
+    deadrise: str = "wedge",
+    slicing: str = "wetted",
+    stop_on: Iterable[str] = DEFAULT_STOP_ON,
+    max_flagged_share: float = MAX_FLAGGED_SHARE,
+    progress: Callable[[float, float], None] | None = None,
+) -> History:
+    """The free motion of a body entering the water.
+
+    Parameters
+    ----------
+    hull : Hull
+        The body, with its mass (and, for free pitch, its pitch inertia).
+    velocity : float
+        Initial vertical velocity of the centre of gravity in m/s, negative (moving down).
+    t_end : float
+        Duration of the run in s.
+    dt : float, optional
+        Time step in s (default ``t_end / 1000``). A step in which the body could move
+        more than :data:`MAX_STEP_TRAVEL` of its height is refused: the run would step
+        through the impact.
+    draft : float
+        Initial draft of the lowest point in m (default 0: first contact).
+    pitch : float
+        Initial pitch in rad, nose up (default 0).
+    forward_speed : float
+        Initial forward speed in m/s (default 0).
+    pitch_rate : float
+        Initial pitch rate in rad/s, nose up (default 0); kept constant unless
+        ``free_pitch``.
+    free_pitch : bool
+        Integrate the pitch from the moment about the centre of gravity.
+    free_surge : bool
+        Integrate the forward speed from the horizontal force (default: constant).
+    slices : int
+        Slices over the wetted length at each instant (default 32), or over the body's
+        length with ``slicing="fixed"``.
+    solver, fluid, deadrise, slicing
+        As for :func:`~hullslice.forces.compute_force`; ``slicing="fixed"`` cuts the hull
+        once per pitch and is much faster on large meshes.
+    stop_on : iterable of str
+        Stop rules that end the run (default :data:`DEFAULT_STOP_ON`: all of
+        :data:`STOP_RULES` but ``slender``); pass ``()`` to go on to ``t_end`` with the
+        flagged values (the crossings are still recorded).
+    max_flagged_share : float
+        The ``validity`` rule ends the run once slices outside the solver's range carry more
+        than this share of the force (sum of the slices' absolute forces; default
+        :data:`MAX_FLAGGED_SHARE`, 0.1).
+    progress : callable, optional
+        Called as ``progress(t, t_end)`` after each step.
+
+    Returns
+    -------
+    History
+    """
+    model = ForceModel(
+        hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
+    )
+    w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
+    if w0 >= 0.0:
+        raise InputError(
+            f"initial velocity {w0:g} m/s is not downward: give a negative vertical velocity "
+            "(e.g. -4 for 4 m/s into the water)"
+        )
+    t_end = _positive(t_end, "end time", "s")
+    dt = t_end / 1000.0 if dt is None else _positive(dt, "time step", "s")
+    if dt > t_end:
+        raise InputError(f"time step {dt:g} s is longer than the run ({t_end:g} s): shorten it")
+    pose0 = Pose(draft, pitch)
+    height = _height_at(hull, pose0.pitch)
+    travel = abs(w0) * dt  # the water slows the body down: its first step is its longest
+    if travel > MAX_STEP_TRAVEL * height:
+        raise InputError(
+            f"time step {dt:g} s at {w0:g} m/s moves the body {travel:.3g} m a step, more than "
+            f"{MAX_STEP_TRAVEL:g} of its height {height:.6g} m: the run would step through the "
+            f"impact; give a time step below {MAX_STEP_TRAVEL * height / abs(w0):.3g} s"
+        )
+    ratio = t_end / dt
+    if not ratio <= MAX_STEPS:  # also catches an overflow to inf
+        raise InputError(
+            f"time step {dt:g} s over {t_end:g} s is {ratio:.3g} steps, more than the "
+            f"{MAX_STEPS} hullslice allows: give a longer time step (an impact is resolved "
+            "with a few hundred)"
+        )
+    if pose0.draft > height:
+        raise InputError(
+            f"initial draft {pose0.draft:g} m is deeper than the body's height {height:.6g} m"
+        )
+    m, g = hull.mass, model.fluid.g
+    inertia = hull.pitch_inertia if free_pitch else None
+    q0 = float(pitch_rate)
+    free = (True, bool(free_pitch), bool(free_surge))
+    clock = [0.0]
+
+    def state_pose(y) -> tuple[Pose, Motion]:
+        z, th, u, w, q = y
+        if abs(th) >= MAX_PITCH:
+            raise _PitchLimit
+        return Pose(model.draft(z, th), th), Motion(w, u, q)
+
+    def rate(y):
+        w, q = y[3], y[4]
+        pose, motion = state_pose(y)
+        if model.momentum:  # the added mass on the left, solved at this stage
+            terms = model.terms(pose, motion)
+            acc = solve_accelerations(terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s")
+            r = terms.result(acc, model.solver, model.fluid, motion, float(hull.cg[0]))
+            return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), r
+        r = model(pose, motion)
+        dq = r.moment / inertia if free_pitch else 0.0
+        du = r.total_x / m if free_surge else 0.0
+        return np.array([w, q, du, r.total / m - g, dq]), r
+
+    y = np.array([frame(hull, pose0.pitch).z_cg(pose0.draft), pose0.pitch, forward_speed, w0, q0])
+    rec = _Recorder(stop_on, max_flagged_share)
+    steps = math.ceil(t_end / dt - 1e-9)
+    t = 0.0
+    for k in range(steps + 1):
+        clock[0] = t
+        try:
+            k1, r = rate(y)
+        except _PitchLimit:  # past what the model describes: the run ends, whatever stop_on
+            rec.end("pitch", t)
+            break
+        if rec.add(t, r, k1[3], model.draft(y[0], y[1])) or k == steps:
+            break
+        h = min(dt, t_end - t)
+        try:
+            clock[0] = t + 0.5 * h
+            k2, _ = rate(y + 0.5 * h * k1)
+            k3, _ = rate(y + 0.5 * h * k2)
+            clock[0] = t + h
+            k4, _ = rate(y + h * k3)
+        except _PitchLimit:
+            rec.end("pitch", t)
+            break
+        y = y + h / 6.0 * (k1 + 2 * k2 + 2 * k3 + k4)
+        t = (k + 1) * dt if k + 1 < steps else t_end
+        if progress is not None:
+            progress(t, t_end)
+    level = pose0.pitch == 0.0 and q0 == 0.0 and forward_speed == 0.0 and not free_pitch
+    settings = {
+        **model.settings(),
+        "initial_velocity": w0,
+        "initial_draft": pose0.draft,
+        "initial_pitch_deg": math.degrees(pose0.pitch),
+        "forward_speed": float(forward_speed),
+        "pitch_rate_deg_s": math.degrees(q0),
+        "free_pitch": bool(free_pitch),
+        "free_surge": bool(free_surge),
+        "pitch_inertia": inertia,
+        "cg": [float(hull.cg[0]), float(hull.cg[2])],
+        "t_end": t_end,
+        "dt": dt,
+        "scheme": "classical Runge-Kutta, 4th order, fixed step",
+        "stop_on": list(rec.stop_on),
+        "max_flagged_share": rec.max_flagged_share,
+    }
+    return rec.history("t_end", "free fall" if level else "free motion", settings)
+
+
+def prescribed(
+    hull: Hull,
+    kinematics: Mapping[str, Sequence[float]],
+    *,
+    slices: int = 32,
+    solver: str | SolverBase | type[SolverBase] | None = None,
+    fluid: Fluid | None = None,
+    deadrise: str = "wedge",
+    slicing: str = "wetted",
+    stop_on: Iterable[str] = (),
+    max_flagged_share: float = MAX_FLAGGED_SHARE,
+    progress: Callable[[float, float], None] | None = None,
+) -> History:
+    """The force along a prescribed motion.
+
+    Parameters
+    ----------
+    hull : Hull
+        The body, with its mass.
+    hull : Hull
+        The body; its mass is needed by free-fall solvers only.
+    kinematics : mapping
+        Arrays ``t`` (s, increasing), ``penetration`` (m, draft of the lowest point, >= 0)
+        and ``velocity`` (m/s, vertical velocity of the centre of gravity, negative down),
+        optionally ``acceleration`` (m/s^2, up), ``pitch_deg`` (nose up),
+        ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, ``forward_speed`` (m/s) and
+        ``forward_acceleration`` (m/s^2); e.g. from :func:`read_kinematics`. A momentum-form
+        solver takes the body's accelerations from the table, or from the derivatives of
+        its velocities (:mod:`hullslice.motion.kinematics`).
+    stop_on : iterable of str
+        Stop rules that end the evaluation early (default none: the whole table).
+
+    Other parameters as for :func:`simulate`. The history's acceleration is the prescribed
+    one with a momentum-form solver, and the one the 2D+t force implies, ``F / m - g``,
+    with a free-fall solver.
+    """
+    kin = check_kinematics(kinematics, hull)
+    model = ForceModel(
+        hull,
+        slices=slices,
+        solver=solver,
+        fluid=fluid,
+        deadrise=deadrise,
+        slicing=slicing,
+        need_mass=False,
+    )
+    accelerations = kinematics_accelerations(kin) if model.momentum else None
+    rec = _Recorder(stop_on, max_flagged_share)
+    t_all = kin["t"]
+    g = model.fluid.g
+    for i, t in enumerate(t_all):
+        pose = Pose(kin["penetration"][i], math.radians(kin["pitch_deg"][i]))
+        motion = Motion(
+            kin["velocity"][i], kin["forward_speed"][i], math.radians(kin["pitch_rate_deg_s"][i])
+        )
+        if accelerations is not None:
+            r = model(pose, motion, accelerations[i])
+            acc = accelerations[i].vertical
+        else:
+            r = model(pose, motion)
+            acc = r.total / hull.mass - g  # type: ignore[operator]
+        if rec.add(float(t), r, acc):
+            break
+        if progress is not None:
+            progress(float(t), float(t_all[-1]))
+    settings = {
+        **model.settings(),
+        "stop_on": list(rec.stop_on),
+        "max_flagged_share": rec.max_flagged_share,
+        "rows": len(t_all),
+    }
+    return rec.history("end of table", "prescribed", settings)

@@ -1,0 +1,221 @@
+"""Prescribed kinematics: the table a motion is read from, checked, and its derivatives.
+
+A kinematics table has the columns ``t`` (s, increasing), ``penetration`` (m, the draft of
+the lowest point, >= 0) and ``velocity`` (m/s, vertical velocity of the centre of gravity,
+negative down); optionally ``acceleration`` (m/s^2, positive up), ``pitch_deg`` (nose up),
+``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, ``forward_speed`` (m/s) and
+``forward_acceleration`` (m/s^2).
+
+A momentum-form solver needs the body's accelerations. Where the table gives no
+``acceleration`` it is the derivative of ``velocity`` in time, and likewise the pitch and
+forward accelerations of the pitch rate and forward speed: second-order central
+differences inside the table and second-order one-sided ones at its ends
+(``numpy.gradient(..., edge_order=2)``), so three rows at least. A given ``acceleration``
+must agree with ``velocity``: its trapezoidal integral from the first row may differ from
+the velocity's change by at most :data:`ACCELERATION_TOLERANCE` of the largest speed.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import os
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import CaseError
+from ..mesh import Hull
+from ..sections import _height_at
+from ..state import Acceleration
+
+__all__ = [
+    "ACCELERATION_TOLERANCE",
+    "KINEMATICS_COLUMNS",
+    "KINEMATICS_OPTIONAL",
+    "check_kinematics",
+    "kinematics_accelerations",
+    "read_kinematics",
+]
+
+KINEMATICS_COLUMNS = ("t", "penetration", "velocity")
+#: Optional kinematics columns and their value when absent (NaN: derived when needed).
+KINEMATICS_OPTIONAL = {
+    "acceleration": math.nan,
+    "pitch_deg": 0.0,
+    "pitch_rate_deg_s": 0.0,
+    "pitch_acceleration_deg_s2": math.nan,
+    "forward_speed": 0.0,
+    "forward_acceleration": math.nan,
+}
+
+#: Largest disagreement between a given ``acceleration`` column, integrated in time, and
+#: the ``velocity`` column, as a share of the largest speed in the table.
+ACCELERATION_TOLERANCE = 0.02
+
+
+def check_kinematics(kin: Mapping[str, Sequence[float]], hull: Hull) -> dict[str, np.ndarray]:
+    missing = [c for c in KINEMATICS_COLUMNS if c not in kin]
+    if missing:
+        raise CaseError(
+            f"kinematics lack the column(s) {', '.join(missing)}: give t (s), penetration (m, "
+            "positive down) and velocity (m/s, negative down)"
+        )
+    out = {c: np.asarray(kin[c], dtype=np.float64).ravel() for c in KINEMATICS_COLUMNS}
+    n = len(out["t"])
+    if n == 0:
+        raise CaseError("the kinematics table has no rows")
+    given = [c for c in KINEMATICS_OPTIONAL if c in kin]
+    for c, default in KINEMATICS_OPTIONAL.items():
+        out[c] = np.asarray(kin[c], dtype=np.float64).ravel() if c in kin else np.full(n, default)
+    for c, a in out.items():
+        if len(a) != n:
+            raise CaseError(f"kinematics column {c!r} has {len(a)} values, t has {n}")
+        if (c in KINEMATICS_COLUMNS or c in given) and not np.all(np.isfinite(a)):
+            i = int(np.flatnonzero(~np.isfinite(a))[0])
+            raise CaseError(f"kinematics column {c!r} row {i + 1} is not a finite number")
+    back = np.flatnonzero(np.diff(out["t"]) <= 0)
+    if len(back):
+        i = int(back[0])
+        raise CaseError(
+            f"kinematics time goes backwards or repeats at row {i + 2} "
+            f"(t = {out['t'][i]:g} s, then {out['t'][i + 1]:g} s): sort the table by time"
+        )
+    if "acceleration" in given and n >= 2:
+        _check_acceleration(out["t"], out["velocity"], out["acceleration"])
+    p = out["penetration"]
+    steep = np.flatnonzero(np.abs(out["pitch_deg"]) >= 80.0)
+    if len(steep):
+        i = int(steep[0])
+        raise CaseError(
+            f"kinematics pitch at row {i + 1} ({out['pitch_deg'][i]:g} deg) is too steep for a "
+            "2D+t model: keep it between -80 and 80 deg"
+        )
+    if np.any(p < 0):
+        i = int(np.flatnonzero(p < 0)[0])
+        raise CaseError(
+            f"kinematics penetration at row {i + 1} is negative ({p[i]:g} m): the penetration "
+            "is the depth of the lowest point below the water, >= 0"
+        )
+    heights = np.array([_height_at(hull, math.radians(th)) for th in out["pitch_deg"]])
+    if np.any(p > heights):
+        i = int(np.flatnonzero(p > heights)[0])
+        raise CaseError(
+            f"kinematics penetration at row {i + 1} ({p[i]:g} m) is deeper than the body's "
+            f"height {heights[i]:.6g} m"
+        )
+    return out
+
+
+def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
+    """Read a kinematics table from CSV.
+
+    The header names the columns; ``t`` (s), ``penetration`` (m, the draft of the lowest
+    point, positive) and ``velocity`` (m/s, negative down) are required; the optional
+    columns of :data:`KINEMATICS_OPTIONAL` (module notes) are read when present; other
+    columns are ignored. Lines starting with ``#`` are comments.
+
+    Returns
+    -------
+    dict of (k,) float arrays
+        ``t``, ``penetration``, ``velocity`` and the optional columns present.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise CaseError(f"kinematics file {str(p)!r} does not exist")
+    if not p.is_file():
+        raise CaseError(f"kinematics path {str(p)!r} is not a file: give a CSV file")
+    try:
+        # utf-8-sig: a spreadsheet's CSV may start with a byte-order mark
+        text = p.read_bytes().decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise CaseError(
+            f"kinematics file {str(p)!r} is not UTF-8 text (byte {exc.start}): give a CSV "
+            "file with the columns t, penetration, velocity"
+        ) from None
+    except OSError as exc:
+        raise CaseError(
+            f"kinematics file {str(p)!r} cannot be read: {exc.strerror or exc}"
+        ) from None
+    if "\0" in text:
+        raise CaseError(f"kinematics file {str(p)!r} holds binary data: give a CSV text file")
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    reader = csv.reader(lines)
+    try:
+        header = [h.strip().lower() for h in next(reader)]
+    except StopIteration:
+        raise CaseError(f"kinematics file {str(p)!r} is empty") from None
+    missing = [c for c in KINEMATICS_COLUMNS if c not in header]
+    if missing:
+        raise CaseError(
+            f"kinematics file {str(p)!r} lacks the column(s) {', '.join(missing)} "
+            f"(its header: {', '.join(header)}); it needs t, penetration, velocity"
+        )
+    names = [*KINEMATICS_COLUMNS, *(c for c in KINEMATICS_OPTIONAL if c in header)]
+    idx = [header.index(c) for c in names]
+    rows = []
+    for lineno, row in enumerate(reader, start=2):
+        try:
+            rows.append([float(row[i]) for i in idx])
+        except (ValueError, IndexError):
+            raise CaseError(
+                f"kinematics file {str(p)!r} line {lineno}: {','.join(row)!r} does not hold "
+                f"numbers for {', '.join(names)}"
+            ) from None
+    arr = np.array(rows, dtype=np.float64).reshape(-1, len(names))
+    return {c: arr[:, i] for i, c in enumerate(names)}
+
+
+def _check_acceleration(t: np.ndarray, v: np.ndarray, a: np.ndarray) -> None:
+    integral = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * np.diff(t))])
+    miss = np.abs(integral - (v - v[0]))
+    scale = float(np.abs(v).max())
+    worst = int(np.argmax(miss))
+    if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
+        raise CaseError(
+            f"kinematics acceleration disagrees with velocity: integrated from t = {t[0]:g} s "
+            f"to t = {t[worst]:g} s it changes the velocity by {integral[worst]:.6g} m/s, the "
+            f"velocity column by {v[worst] - v[0]:.6g} m/s (more than "
+            f"{100 * ACCELERATION_TOLERANCE:g} % of the largest speed, {scale:.6g} m/s); fix the "
+            "acceleration column (m/s^2, positive up) or leave it out to derive it"
+        )
+
+
+def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration]:
+    """The body's acceleration at each row of checked kinematics (:func:`check_kinematics`).
+
+    Given columns are used as they are; missing ones are derived from the velocities (module
+    notes).
+
+    Raises
+    ------
+    CaseError
+        A derivative is needed and the table has fewer than three rows.
+    """
+    t = kin["t"]
+    cols = {}
+    for acc, vel, scale in (
+        ("acceleration", "velocity", 1.0),
+        ("pitch_acceleration_deg_s2", "pitch_rate_deg_s", 1.0),
+        ("forward_acceleration", "forward_speed", 1.0),
+    ):
+        a = np.asarray(kin[acc], dtype=np.float64)
+        if np.all(np.isfinite(a)):
+            cols[acc] = a
+            continue
+        v = np.asarray(kin[vel], dtype=np.float64)
+        if np.all(v == v[0]):
+            cols[acc] = np.zeros_like(v)  # a constant: no derivative needed
+            continue
+        if len(t) < 3:
+            raise CaseError(
+                f"the kinematics table has {len(t)} row(s), too few to differentiate {vel} in "
+                f"time (three at least): give more rows or an {acc} column"
+            )
+        cols[acc] = np.gradient(v, t, edge_order=2) * scale
+    pitch = np.radians(cols["pitch_acceleration_deg_s2"])
+    return [
+        Acceleration(float(a), float(q), float(u))
+        for a, q, u in zip(cols["acceleration"], pitch, cols["forward_acceleration"], strict=True)
+    ]
