@@ -80,6 +80,10 @@ _TEXT = {name for name, (units, _) in RESULTS.items() if not units}
 #: Seconds to wait for a scheduler given by its address.
 CONNECT_TIMEOUT = 10.0
 
+#: Tasks a sweep's cases are grouped into, per worker: more balance the workers' loads at
+#: the end, fewer share more cuts.
+TASKS_PER_WORKER = 8
+
 #: File of a partial sweep's description, in its folder.
 PARTIAL_SPEC = "sweep.json"
 
@@ -605,7 +609,7 @@ def _groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
             i,
         ),
     )
-    size = max(1, min(16, math.ceil(len(order) / (4 * max(1, n_workers)))))
+    size = max(1, min(16, math.ceil(len(order) / (TASKS_PER_WORKER * max(1, n_workers)))))
     groups: list[list[int]] = []
     for i in order:
         key = (repr(_mass_key(plan.case(i))), plan.case(i).get("pitch", 0.0))
