@@ -49,7 +49,7 @@ def add_parser(sub) -> None:
         "--scheduler",
         metavar="ADDRESS",
         help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 (waits up to 10 s "
-        "for it to answer)",
+        "for it to answer; default: a local cluster)",
     )
     where.add_argument(
         "--workers",
