@@ -358,6 +358,10 @@ def load_sweep(path: str | os.PathLike) -> Plan:
 
 # -- running one case ----------------------------------------------------------------------
 
+#: The hull each worker process keeps, by token (see run_batch).
+_SHARED: dict[str, Any] = {}
+_SHARED_KEPT = 2
+
 #: Hulls with their mass properties, kept by each worker process (key: mesh and mass).
 _HULLS: dict[tuple, Any] = {}
 _HULLS_KEPT = 8
@@ -479,9 +483,19 @@ def _history_record(history) -> dict[str, list]:
     }
 
 
-def run_batch(hull, items: Sequence[tuple[int, dict]], inputs: Mapping, keep: bool) -> list:
+def run_batch(
+    hull, items: Sequence[tuple[int, dict]], inputs: Mapping, keep: bool, token: str = ""
+) -> list:
     """Run cases one after the other on one hull: ``[(index, record), ...]``. A case that
-    fails gives a record with its one-line ``error``; the others are not affected."""
+    fails gives a record with its one-line ``error``; the others are not affected.
+
+    ``token`` names the hull (its mesh's SHA-256 and axes): a process keeps the first copy
+    it gets under that name and uses it for every later task, with the cuts it has made,
+    whichever copy Dask hands it."""
+    if token:
+        hull = _SHARED.setdefault(token, hull)
+        while len(_SHARED) > _SHARED_KEPT:
+            _SHARED.pop(next(iter(_SHARED)))
     out = []
     for index, case in items:
         start = time.perf_counter()
@@ -760,7 +774,8 @@ def sweep(
                 for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep_histories):
                     finish(index, record)
         elif todo:
-            _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish)
+            token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}"
+            _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish, token)
     finally:
         if owned:
             cluster = getattr(dask_client, "cluster", None)
@@ -792,46 +807,66 @@ def sweep(
     return ds
 
 
-def _run_on_dask(plan, hull, inputs, todo, keep, client, finish) -> None:
+def _value(x):
+    return x
+
+
+def _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token) -> None:
     from distributed import as_completed
 
     futures: dict = {}
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        # hash=False: a sweep's own copies, which another sweep's end cannot release
-        hull_f = client.scatter(hull, broadcast=True, hash=False)
-        inputs_f = client.scatter([inputs], broadcast=True, hash=False)[0]
+        # the hull and the files' contents as tasks of their own, not scattered data: Dask
+        # computes them again if the workers holding them die
+        hull_f = client.submit(_value, hull, pure=False)
+        inputs_f = client.submit(_value, inputs, pure=False)
 
         def submit(group: list[int]):
             items = [(i, plan.case(i)) for i in group]
-            return client.submit(run_batch, hull_f, items, inputs_f, keep, pure=False, retries=1)
+            return client.submit(
+                run_batch, hull_f, items, inputs_f, keep, token, pure=False, retries=1
+            )
 
         for group in _groups(plan, todo, n_workers):
             futures[submit(group)] = group
         queue = as_completed(list(futures))
+        # Cases whose worker died under them (Dask gave up: KilledWorker): the case that
+        # kills it, or one that was on the worker when another did. Each runs once more,
+        # alone and one after the other, so that only the case that kills its worker
+        # again is recorded as failed.
+        suspects: list[int] = []
+        alone: list = []  # the one suspect running, if any
         for fut in queue:
             group = futures.pop(fut)
+            retried = bool(alone) and fut is alone[0]
+            if retried:
+                alone.clear()
             try:
                 results = fut.result()
-            except Exception as exc:  # the worker died on every try (KilledWorker) or worse
-                if len(group) > 1:  # find the case that does it: one task per case
-                    for i in group:
-                        f = submit([i])
-                        futures[f] = [i]
-                        queue.add(f)
-                    continue
-                why = str(exc).splitlines()[0] if str(exc) else ""
-                results = [
-                    (
-                        group[0],
-                        {
-                            "error": f"the worker running this case stopped "
-                            f"({type(exc).__name__}: {why})",
-                            "runtime": math.nan,
-                            "lost": True,  # not the case's own failure: resuming reruns it
-                        },
-                    )
-                ]
+            except Exception as exc:
+                results = []
+                if not retried:
+                    suspects.extend(group)
+                else:
+                    why = str(exc).splitlines()[0] if str(exc) else ""
+                    results = [
+                        (
+                            group[0],
+                            {
+                                "error": f"the worker running this case stopped "
+                                f"({type(exc).__name__}: {why})",
+                                "runtime": math.nan,
+                                "lost": True,  # resuming runs it again
+                            },
+                        )
+                    ]
+            if suspects and not alone:
+                i = suspects.pop(0)
+                f = submit([i])
+                futures[f] = [i]
+                alone.append(f)
+                queue.add(f)
             for index, record in results:
                 finish(index, record)
     except BaseException:

@@ -287,3 +287,75 @@ def test_with_the_fixed_slicing_a_worker_reuses_its_cuts_to_rounding(client):
             assert got["peak_force"].item() == pytest.approx(ref.peak["force"], rel=1e-12)
             assert got["final_velocity"].item() == pytest.approx(ref.velocity[-1], rel=1e-12)
             assert got["steps"].item() == len(ref) == 11
+
+
+KILLER = '''
+import os
+
+import numpy as np
+
+from hullslice import SectionLoads, Solver
+
+
+class Killer(Solver):
+    """test: kills its process on sections heavier than 10 kg/m, else f = 3 M g"""
+
+    name = "killer"
+    description = "test: kills its process on sections heavier than 10 kg/m"
+
+    def section_loads(self, sections, velocity, fluid):
+        if sections.mass_per_metre.max() > 10.0:
+            os._exit(13)
+        n = len(sections)
+        return SectionLoads(
+            sections.mass_per_metre * 3.0 * fluid.g,
+            np.ones(n, dtype=bool),
+            np.full(n, "", dtype=object),
+        )
+'''
+
+
+@pytest.fixture
+def killer_solver(tmp_path, monkeypatch):
+    """The solver 'killer', installed by hand (a dist-info folder on sys.path, which worker
+    processes inherit)."""
+    import importlib
+
+    from hullslice.solvers import registry
+
+    root = tmp_path / "killer"
+    info = root / "hullslice_killer-1.0.dist-info"
+    info.mkdir(parents=True)
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: hullslice-killer\nVersion: 1.0\n")
+    (info / "entry_points.txt").write_text("[hullslice.solvers]\nkiller = killer_solver:Killer\n")
+    (root / "killer_solver.py").write_text(KILLER)
+    monkeypatch.syspath_prepend(str(root))
+    monkeypatch.setenv("PYTHONPATH", os.pathsep.join([str(root), str(ROOT)]))
+    importlib.invalidate_caches()
+    registry.refresh()
+    yield
+    sys.modules.pop("killer_solver", None)
+    registry.refresh()
+
+
+@pytest.mark.slow
+def test_a_case_that_kills_its_worker_every_time_is_recorded(killer_solver):
+    """The case of 12 kg kills its worker process whenever it runs: Dask gives up on it and
+    it is recorded as failed; the case of 8 kg completes."""
+    dask = pytest.importorskip("dask")
+    base = {**BASE, "solver": "killer", "continue_invalid": True}
+    with (
+        dask.config.set({"distributed.scheduler.allowed-failures": 0}),
+        distributed.LocalCluster(
+            n_workers=1, threads_per_worker=1, processes=True, dashboard_address=":0"
+        ) as cluster,
+        distributed.Client(cluster) as c,
+    ):
+        ds = hs.sweep(base, {"mass": [8.0, 12.0]}, client=c)
+    error = ds["error"].sel(mass=12.0).item()
+    assert error.startswith("the worker running this case stopped (KilledWorker")
+    assert math.isnan(ds["peak_force"].sel(mass=12.0).item())
+    hull = hs.load_hull(WEDGE, mass=8.0)
+    ref = hs.simulate(hull, -4.0, 0.01, dt=0.001, slices=8, solver="killer", stop_on=())
+    assert ds["error"].sel(mass=8.0).item() == ""
+    assert ds["peak_force"].sel(mass=8.0).item() == ref.peak["force"]
