@@ -91,6 +91,10 @@ def _not_negative(v: float) -> str | None:
     return None if v >= 0.0 else "must not be negative"
 
 
+def _share(v: float) -> str | None:
+    return None if 0.0 <= v <= 1.0 else "must be a share in [0, 1]"
+
+
 def _one_of(choices) -> Callable[[Any], str | None]:
     names = tuple(choices)
 
@@ -151,6 +155,10 @@ SCHEMA: dict[str, Key] = {
         Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
         Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
+        Key("max_flagged_share", "number", "", "largest share of the force that slices "
+            "outside the solver's range may carry before a run stops", 0.1, _share),
+        Key("acceleration", "number", "m/s^2", "vertical acceleration of the body, positive "
+            "up, for a momentum-form solver's force (default: free in heave)"),
         Key("stations", "count", "", "stations of the sectional area curve (info)"),
         Key("format", "text", "", "output format: table, json or csv", None,
             _one_of(("table", "json", "csv"))),
@@ -365,10 +373,10 @@ _MOTION = {"pitch", "forward_speed", "pitch_rate"}
 COMMAND_KEYS: dict[str, set[str]] = {
     "info": _COMMON | _MASS | {"stations", "plot"},
     "sections": _COMMON | _MASS | {"draft", "pitch", "slices", "deadrise", "slicing", "plot"},
-    "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "plot"},
+    "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "acceleration", "plot"},
     "simulate": _COMMON | _MASS | _METHOD | _MOTION | {
         "velocity", "t_end", "dt", "draft", "kinematics", "free_pitch", "free_surge",
-        "continue_invalid", "plot",
+        "continue_invalid", "max_flagged_share", "plot",
     },
 }  # fmt: skip
 

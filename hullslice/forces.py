@@ -378,29 +378,31 @@ def evaluate_added_mass(
     velocity = _readonly_velocity(velocity, n)
     wet = sections.wetted
     sections, flat = _flat_clamped(sections, wet)
-    m_a, rate, extra = np.zeros(n), np.zeros(n), np.zeros(n)
-    valid = np.ones(n, dtype=bool)
-    reason = np.full(n, "", dtype=object)
-    diagnostics: dict[str, np.ndarray] = {}
-    if wet.any():
-        every = bool(wet.all())
-        sub = sections if every else sections.subset(wet)
-        v_sub = velocity if every else velocity[wet]
+    every = bool(wet.all()) and n > 0
+    if every:  # the solver's arrays cover every section
+        out = _call(solver, solver.added_mass, sections, velocity, fluid)
+        _check_added_mass(solver, out, sections)
+        m_a, rate, extra = np.array(out.added_mass), np.array(out.rate), np.array(out.extra)
+        valid = np.array(out.valid)
+        reason = np.array(out.reason)
+        diagnostics = dict(out.diagnostics)
+    else:
+        m_a, rate, extra = np.zeros(n), np.zeros(n), np.zeros(n)
+        valid = np.ones(n, dtype=bool)
+        reason = np.full(n, "", dtype=object)
+        diagnostics = {}
+    if not every and wet.any():
+        sub = sections.subset(wet)
+        v_sub = velocity[wet]
         out = _call(solver, solver.added_mass, sub, v_sub, fluid)
         _check_added_mass(solver, out, sub)
-        if every:
-            m_a, rate, extra = np.array(out.added_mass), np.array(out.rate), np.array(out.extra)
-            valid = np.array(out.valid)
-            reason = np.array(out.reason)
-            diagnostics = dict(out.diagnostics)
-        else:
-            m_a[wet], rate[wet], extra[wet] = out.added_mass, out.rate, out.extra
-            valid[wet] = out.valid
-            reason[wet] = out.reason
-            for k, arr in out.diagnostics.items():
-                full = np.full(n, np.nan)
-                full[wet] = arr
-                diagnostics[k] = full
+        m_a[wet], rate[wet], extra[wet] = out.added_mass, out.rate, out.extra
+        valid[wet] = out.valid
+        reason[wet] = out.reason
+        for k, arr in out.diagnostics.items():
+            full = np.full(n, np.nan)
+            full[wet] = arr
+            diagnostics[k] = full
     _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics)
 
@@ -609,7 +611,19 @@ def solve_accelerations(
     when: str = "",
 ) -> Acceleration:
     """The body's accelerations from ``(M_body + A) q'' = Q0 - m g e_z`` over its free
-    degrees of freedom (heave, pitch, surge); the others take ``fixed``.
+    degrees of freedom (heave, pitch, surge); the others take ``fixed`` (default zero).
+
+    Parameters
+    ----------
+    terms : MomentumTerms
+    mass : float
+        Mass of the body, kg.
+    inertia : float or None
+        Pitch moment of inertia about the centre of gravity, kg m^2 (for a free pitch).
+    gravity : float
+        m/s^2.
+    free : (bool, bool, bool)
+        Whether heave, pitch and surge are free.
 
     Raises
     ------
@@ -617,25 +631,45 @@ def solve_accelerations(
         The matrix of the free degrees of freedom is singular or not positive definite;
         the message names the stage ``when``.
     """
-    fixed = fixed or Acceleration()
-    body = np.array([mass, inertia if inertia is not None else np.nan, mass])
     idx = [i for i in range(3) if free[i]]
-    acc = np.array(fixed.as_array(), dtype=np.float64)
+    acc = [0.0, 0.0, 0.0] if fixed is None else list(fixed.as_array())
     if not idx:
-        return fixed
-    total = terms.matrix
-    total[np.diag_indices(3)] += np.where(np.isnan(body), 0.0, body)
-    rhs = terms.generalized - total @ np.where(free, 0.0, acc)
-    rhs[0] -= mass * gravity
-    sub = total[np.ix_(idx, idx)]
-    if not (np.all(np.isfinite(sub)) and np.all(np.linalg.eigvalsh(sub) > 0.0)):
+        return fixed or Acceleration()
+    s = terms.sections
+    weight = terms.added.added_mass * s.dx
+    jac = terms.jac[:, idx] if len(idx) < 3 else terms.jac
+    total = (jac * weight[:, None]).T @ jac
+    rhs = jac.T @ (terms.f0 * s.dx)
+    body = {0: mass, 1: inertia, 2: mass}
+    for k, i in enumerate(idx):
+        if body[i] is None:
+            raise InputError("a free pitch needs the body's pitch inertia (kg m^2)")
+        total[k, k] += body[i]
+    if idx[0] == 0:
+        rhs[0] -= mass * gravity
+    held = [i for i in range(3) if not free[i] and acc[i] != 0.0]
+    if held:  # prescribed accelerations of the other degrees of freedom
+        cross = (terms.jac[:, idx] * weight[:, None]).T @ terms.jac[:, held]
+        rhs -= cross @ np.array([acc[i] for i in held])
+    if len(idx) == 1:
+        ok = bool(total[0, 0] > 0.0 and np.isfinite(total[0, 0]))
+        solved = rhs / total[0, 0] if ok else rhs
+    else:
+        try:
+            np.linalg.cholesky(total)
+            ok = bool(np.all(np.isfinite(total)))
+        except np.linalg.LinAlgError:
+            ok = False
+        solved = np.linalg.solve(total, rhs) if ok else rhs
+    if not ok:
         raise InputError(
             f"the mass matrix of the free motion (body plus added mass) is singular or not "
             f"positive definite{' ' + when if when else ''} (its diagonal: "
-            f"{', '.join(f'{d:.6g}' for d in np.diag(sub))}): check the body's mass and pitch "
-            "inertia"
+            f"{', '.join(f'{d:.6g}' for d in np.diag(total))}): check the body's mass and "
+            "pitch inertia"
         )
-    acc[idx] = np.linalg.solve(sub, rhs[idx])
+    for k, i in enumerate(idx):
+        acc[i] = float(solved[k])
     return Acceleration(*acc)
 
 

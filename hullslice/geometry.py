@@ -84,6 +84,25 @@ class KeelLine:
         inside = (i >= 0) & (i < len(k))
         return np.where(inside, k[np.clip(i, 0, len(k) - 1)], 0.0)
 
+    def mean_curvature(self, x: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """The keel line's curvature averaged over slices of thickness ``dx`` centred on
+        ``x``: ``(s(x + dx/2) - s(x - dx/2)) / dx`` with the slope ``s`` of :meth:`at`, 1/m.
+
+        A mesh's keel line zigzags about the true one by the mesh's resolution, and its
+        local curvature is noisy with it; over a slice the noise averages out, as it does
+        for the force. Where ``dx`` is zero, the local :meth:`curvature`.
+        """
+        x = np.asarray(x, dtype=np.float64)
+        dx = np.broadcast_to(np.asarray(dx, dtype=np.float64), x.shape)
+        mid, slopes = self._facets
+        if len(mid) < 2:
+            return np.zeros(x.shape)
+        ds = np.interp(x + dx / 2, mid, slopes) - np.interp(x - dx / 2, mid, slopes)
+        thin = dx <= 0.0
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = ds / np.where(thin, 1.0, dx)
+        return np.where(thin, self.curvature(x), out) if thin.any() else out
+
     @property
     def _facets(self) -> tuple[np.ndarray, np.ndarray]:
         facets = self.__dict__.get("_facet_cache")

@@ -277,4 +277,5 @@ def history_summary(history) -> dict[str, Any]:
         "stop_reason": history.stop_reason,
         "first_crossed": dict(history.first_crossed),
         "valid": bool(np.all(history.valid)),
+        "max_flagged_share": history.max_flagged_share,
     }

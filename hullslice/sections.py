@@ -146,7 +146,8 @@ class Sections:
     z_cg : float
         Earth height of the centre of gravity, m.
     keel_curvature : (n,) float
-        The keel line's ``d^2 Z_k / dX^2`` at the station, 1/m (zeros when not given).
+        The keel line's ``d^2 Z_k / dX^2`` averaged over the entry's slice, 1/m (zeros when
+        not given).
     """
 
     station: np.ndarray
@@ -485,7 +486,7 @@ def _assemble(
         pitch=pose.pitch,
         wetted_length=length,
         z_cg=z_cg,
-        keel_curvature=fr.keel.curvature(rel)[st],
+        keel_curvature=fr.keel.mean_curvature(rel, dx)[st],
     )
 
 

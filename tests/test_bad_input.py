@@ -793,6 +793,58 @@ CATALOGUE: tuple[Bad, ...] = (
         ],
         error="is not UTF-8 text (byte 0)",
     ),
+    Bad(
+        "kinematics-acceleration-disagrees",
+        "a kinematics CSV whose acceleration column disagrees with its velocity",
+        "error: kinematics acceleration disagrees with velocity: integrated from t = ... it "
+        "changes the velocity by ... m/s, the velocity column by ... m/s",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--solver",
+            "wagner",
+            "--kinematics",
+            kinematics(
+                t,
+                "t,penetration,velocity,acceleration\n0,0,-5,100\n0.001,0.005,-5,100\n"
+                "0.002,0.01,-5,100\n",
+            ),
+        ],
+        error="changes the velocity by 0.2 m/s, the velocity column by 0 m/s",
+    ),
+    Bad(
+        "kinematics-too-short",
+        "a prescribed motion too short to differentiate (momentum-form solver)",
+        "error: the kinematics table has 2 row(s), too few to differentiate velocity in time "
+        "(three at least): give more rows or an acceleration column",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--solver",
+            "wagner",
+            "--kinematics",
+            kinematics(t, "t,penetration,velocity\n0,0,-5\n0.001,0.005,-4.9\n"),
+        ],
+        error="has 2 row(s), too few to differentiate velocity in time",
+    ),
+    Bad(
+        "flagged-share-out-of-range",
+        "`--max-flagged-share 1.5` (or NaN)",
+        "error: largest flagged share 1.5 is not in [0, 1]: give the share of the force that "
+        "flagged slices may carry before a run stops (default 0.1)",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--velocity=-5",
+            "--t-end",
+            "0.01",
+            "--max-flagged-share",
+            "1.5",
+        ],
+        error="largest flagged share 1.5 is not in [0, 1]",
+    ),
     # -- solvers
     Bad(
         "unknown-solver",

@@ -163,5 +163,7 @@ def test_every_schema_key_has_a_documented_kind_and_unit():
         "pitch_rate": "deg/s",
         "t_end": "s",
         "dt": "s",
+        "acceleration": "m/s^2",
+        "max_flagged_share": "",  # a share of the force, 0 to 1
     }
     assert all(k.help for k in SCHEMA.values())

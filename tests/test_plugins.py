@@ -329,7 +329,7 @@ THROWAWAY = """
 
 FAULTY = """
     import numpy as np
-    from hullslice import MomentumFormSolver, SectionLoads, Solver
+    from hullslice import AddedMass, MomentumFormSolver, SectionLoads, Solver
 
     class Plain:
         name = "not-a-solver"
@@ -366,6 +366,24 @@ FAULTY = """
         name = "bad-init"
         def __init__(self, **options):
             raise RuntimeError("no licence")
+
+    class NegativeAddedMass(MomentumFormSolver):
+        name = "negative-added-mass"
+        def added_mass(self, sections, velocity, fluid):
+            n = len(sections)
+            return AddedMass(-np.ones(n), np.zeros(n), np.ones(n, bool), np.full(n, "", object))
+
+    class ShortAddedMass(MomentumFormSolver):
+        name = "short-added-mass"
+        def added_mass(self, sections, velocity, fluid):
+            n = len(sections) - 1
+            return AddedMass(np.ones(n), np.zeros(n), np.ones(n, bool), np.full(n, "", object))
+
+    class LoadsFromMomentum(MomentumFormSolver):
+        name = "loads-from-momentum"
+        def added_mass(self, sections, velocity, fluid):
+            n = len(sections)
+            return SectionLoads(np.zeros(n), np.ones(n, bool), np.full(n, "", object))
 """
 
 FAULTY_SOLVERS = {
@@ -377,6 +395,9 @@ FAULTY_SOLVERS = {
     "nan": "faulty_mod:NaNs",
     "wrong-shape": "faulty_mod:Short",
     "bad-init": "faulty_mod:BadInit",
+    "negative-added-mass": "faulty_mod:NegativeAddedMass",
+    "short-added-mass": "faulty_mod:ShortAddedMass",
+    "loads-from-momentum": "faulty_mod:LoadsFromMomentum",
 }
 FAULTY_SOURCES = {
     "faulty_import_mod": 'raise ImportError("needs libfoo")\n',
@@ -439,6 +460,9 @@ def test_broken_plugins_leave_the_others_working(install_plugin, paper_hull, cap
         ("nan", "non-finite force per metre"),
         ("wrong-shape", "returned force_per_metre of shape"),
         ("bad-init", "failed to start with options {}: RuntimeError: no licence"),
+        ("negative-added-mass", "returned a negative added mass (-1 kg/m at x = "),
+        ("short-added-mass", "returned added_mass of shape"),
+        ("loads-from-momentum", "returned SectionLoads, not hullslice.AddedMass"),
     ],
 )
 def test_faulty_plugins_give_clear_errors_on_every_path(

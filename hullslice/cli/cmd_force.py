@@ -59,6 +59,14 @@ def add_parser(sub) -> None:
     )
     add_pose_options(g)
     g.add_argument(
+        "--acceleration",
+        type=number("m/s^2"),
+        metavar="M/S2",
+        help="vertical acceleration of the body in m/s^2, positive up, for a momentum-form "
+        "solver's added-inertia force (default: the body free in heave, its acceleration "
+        "solved with its mass and added mass); free-fall solvers do not use it",
+    )
+    g.add_argument(
         "--slices",
         type=slice_list,
         default=[16, 32, 64],
@@ -101,6 +109,7 @@ def compute(args: argparse.Namespace) -> Outcome:
         fluid=fluid(args),
         deadrise=args.deadrise,
         slicing=args.slicing,
+        acceleration=args.acceleration,
     )
     finest = study.finest
     summary = convergence_summary(study)
@@ -123,6 +132,9 @@ def compute(args: argparse.Namespace) -> Outcome:
         "wetted_length": finest.sections.wetted_length,
         "deadrise_method": finest.sections.deadrise_method,
         "slicing": args.slicing,
+        "solver_kind": slv.kind,
+        "acceleration": finest.acceleration.vertical if finest.acceleration else None,
+        "added_mass": finest.added_mass if slv.kind == "momentum" else None,
         **summary,
         "valid": finest.all_valid,
         "slices": records,
@@ -167,6 +179,13 @@ def _table(hull, args, study, summary, records) -> str:
         "",
         f"force {finest.total:.4f} N at {study.counts[-1]} slices",
     ]
+    if finest.acceleration is not None:
+        how = "given" if args.acceleration is not None else "free in heave"
+        lines.insert(
+            -1,
+            f"momentum form: heave added mass {finest.added_mass:.6g} kg, body acceleration "
+            f"{finest.acceleration.vertical:.6g} m/s^2 ({how})",
+        )
     rich = study.richardson
     if finest.sections.wetted_length == 0.0:
         lines.append("no part of the body is in the water at this draft: no force")

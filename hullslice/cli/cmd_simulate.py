@@ -8,7 +8,14 @@ import sys
 import numpy as np
 
 from .. import plots
-from ..motion import STOP_RULES, prescribed, read_kinematics, simulate
+from ..motion import (
+    DEFAULT_STOP_ON,
+    MAX_FLAGGED_SHARE,
+    STOP_RULES,
+    prescribed,
+    read_kinematics,
+    simulate,
+)
 from ..report import (
     HISTORY_COLUMNS,
     HISTORY_PITCH_COLUMNS,
@@ -41,10 +48,12 @@ def add_parser(sub) -> None:
     p = sub.add_parser(
         "simulate",
         help="time history of a free fall, or of the force along prescribed kinematics",
-        description="Free fall: integrate the body's vertical motion m dw/dt = F - m g from "
-        "first contact (or --draft) with the 2D+t force. Prescribed: compute the force along "
-        "a table of t, penetration, velocity (--kinematics). The run stops early when the "
-        "body stops sinking, the water reaches a chine, or a slice leaves the solver's range "
+        description="Free fall: integrate the body's motion (M + A) dw/dt = F - m g from "
+        "first contact (or --draft) with the 2D+t force (A: the added mass of a momentum-form "
+        "solver, zero for a free-fall one), with pitch and surge when free. Prescribed: "
+        "compute the force along a table of t, penetration, velocity (--kinematics). The run "
+        "stops early when the body stops sinking, the water reaches a chine, or slices "
+        "outside the solver's range carry more than --max-flagged-share of the force "
         "(--continue-invalid goes on with flagged values).",
     )
     add_mesh_options(p, mass_required=True)
@@ -87,13 +96,22 @@ def add_parser(sub) -> None:
         "--kinematics",
         metavar="CSV",
         help="prescribed motion: CSV with columns t (s), penetration (m, positive), "
-        "velocity (m/s, negative down)",
+        "velocity (m/s, negative down), optionally acceleration (m/s^2, up; derived from "
+        "velocity when absent), pitch_deg, pitch_rate_deg_s, forward_speed (m/s)",
     )
     g.add_argument(
         "--continue-invalid",
         action="store_true",
         help="go on to the end when a stop rule is met, with flagged values "
-        f"(rules: {', '.join(STOP_RULES)})",
+        f"(rules: {', '.join(DEFAULT_STOP_ON)})",
+    )
+    g.add_argument(
+        "--max-flagged-share",
+        type=number(""),
+        default=MAX_FLAGGED_SHARE,
+        metavar="SHARE",
+        help="stop when slices outside the solver's range carry more than this share of "
+        f"the force, 0 to 1 (default: {MAX_FLAGGED_SHARE:g})",
     )
     m = p.add_argument_group("method")
     m.add_argument(
@@ -178,7 +196,7 @@ def compute(args: argparse.Namespace) -> Outcome:
     }
     try:
         if args.kinematics is None:
-            stop_on = () if args.continue_invalid else tuple(STOP_RULES)
+            stop_on = () if args.continue_invalid else DEFAULT_STOP_ON
             history = simulate(
                 hull,
                 args.velocity,
@@ -191,11 +209,17 @@ def compute(args: argparse.Namespace) -> Outcome:
                 free_pitch=args.free_pitch,
                 free_surge=args.free_surge,
                 stop_on=stop_on,
+                max_flagged_share=args.max_flagged_share,
                 **common,
             )
         else:
             # a prescribed motion is evaluated over the whole table, limits flagged
-            history = prescribed(hull, read_kinematics(args.kinematics), **common)
+            history = prescribed(
+                hull,
+                read_kinematics(args.kinematics),
+                max_flagged_share=args.max_flagged_share,
+                **common,
+            )
     finally:
         if progress is not None:
             progress.done()
@@ -226,7 +250,8 @@ def _table(hull, history, summary, solver_text) -> str:
     columns = HISTORY_COLUMNS
     if np.any(history.pitch != 0) or np.any(history.forward_speed != 0):
         columns = (*HISTORY_COLUMNS[:5], *HISTORY_PITCH_COLUMNS, *HISTORY_COLUMNS[5:])
-    head = f"{hull.name}: {history.mode}, mass {hull.mass:g} kg, solver {solver_text}, " + (
+    mass = f"mass {hull.mass:g} kg" if hull.mass is not None else "no mass (not needed)"
+    head = f"{hull.name}: {history.mode}, {mass}, solver {solver_text}, " + (
         f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
     )
     lines = [head, "", table_text(columns, history_records(history, every))]
@@ -241,6 +266,11 @@ def _table(hull, history, summary, solver_text) -> str:
         )
     reason = history.stop_reason
     lines.append(f"ended: {STOP_RULES.get(reason, reason)}")
+    lines.append(
+        f"flagged share of the force: largest {100 * summary['max_flagged_share']:.3g} % "
+        f"(slices outside the solver's range; a run stops above "
+        f"{100 * s.get('max_flagged_share', MAX_FLAGGED_SHARE):g} %)"
+    )
     for rule, t in history.first_crossed.items():
         if t is not None:
             lines.append(f"limit '{rule}' first crossed at t = {t:.5f} s: {STOP_RULES[rule]}")

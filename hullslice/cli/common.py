@@ -16,7 +16,7 @@ from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
 from ..report import csv_text, json_text, write_atomic
-from ..solvers.base import Solver
+from ..solvers.base import SolverBase
 from ..solvers.registry import DEFAULT_SOLVER, get_solver
 from ..state import Fluid
 
@@ -105,7 +105,7 @@ def add_solver_options(g: argparse._ArgumentGroup) -> None:
     )
 
 
-def solver(args: argparse.Namespace) -> Solver:
+def solver(args: argparse.Namespace) -> SolverBase:
     """The solver named by ``--solver``, built with the ``--solver-option`` values."""
     options: dict[str, Any] = {}
     for key, value in args.solver_option:
@@ -356,13 +356,20 @@ def finish(args: argparse.Namespace, outcome: Outcome) -> int:
     return 0
 
 
+def _mass_free(args: argparse.Namespace) -> bool:
+    """A momentum-form solver's force along a prescribed motion needs no mass."""
+    if getattr(args, "kinematics", None) is None:
+        return False
+    return solver(args).kind == "momentum"
+
+
 def load(args: argparse.Namespace) -> Hull:
     """The hull of the command's mesh and mass options (the output path is checked first)."""
     check_output(args)
     dist = None
     if args.mass_distribution:
         dist = read_mass_distribution(args.mass_distribution)
-    elif args.mass_required and args.mass is None:
+    elif args.mass_required and args.mass is None and not _mass_free(args):
         raise UsageError(
             f"hullslice {args.command}: error: give the body's mass, --mass KG or "
             "--mass-distribution CSV"

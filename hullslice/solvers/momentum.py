@@ -342,8 +342,10 @@ class MomentumSolver(MomentumFormSolver):
     def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:
         n = len(sections)
         p = sections.penetration
-        v = np.broadcast_to(np.asarray(velocity, dtype=np.float64), (n,))
-        gam = np.broadcast_to(np.asarray(self.pile_up(sections.deadrise), dtype=np.float64), (n,))
+        v = np.asarray(velocity, dtype=np.float64)
+        gam = np.asarray(self.pile_up(sections.deadrise), dtype=np.float64)
+        if gam.shape != (n,):
+            gam = np.broadcast_to(gam, (n,))
         chine = chine_half_width(sections)
         c_sides, dc_sides = [], []
         for beta in (sections.deadrise_port, sections.deadrise_stbd):
