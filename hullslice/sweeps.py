@@ -402,14 +402,12 @@ def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = N
     ``hull`` is the mesh without mass (its mass properties come from the case); ``inputs``
     holds the case's files already read (``mass_distribution``, ``kinematics``).
     """
-    from .motion import STOP_RULES, prescribed, simulate
+    from .motion import DEFAULT_STOP_ON, prescribed, simulate
     from .solvers.registry import DEFAULT_SOLVER, get_solver
     from .state import Fluid
 
     inputs = inputs or {}
     h = _hull_for(hull, case, inputs)
-    if h.mass is None:
-        raise InputError("give the body's mass: mass (kg) or mass_distribution in the case")
     slices = case.get("slices", [32])
     slices = slices if isinstance(slices, int) else slices[0]
     common = {
@@ -418,6 +416,7 @@ def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = N
         "fluid": Fluid(rho=case["rho"], g=case["g"]),
         "deadrise": case["deadrise"],
         "slicing": case["slicing"],
+        "max_flagged_share": case["max_flagged_share"],
     }
     if "kinematics" in case:
         return prescribed(h, inputs["kinematics"], **common)
@@ -438,7 +437,7 @@ def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = N
         pitch_rate=math.radians(case.get("pitch_rate", 0.0)),
         free_pitch=case.get("free_pitch", False),
         free_surge=case.get("free_surge", False),
-        stop_on=() if case.get("continue_invalid", False) else tuple(STOP_RULES),
+        stop_on=() if case.get("continue_invalid", False) else DEFAULT_STOP_ON,
         **common,
     )
 
