@@ -737,8 +737,10 @@ def sweep(
     _hull_for(hull, base, inputs)
     solver = get_solver(base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {}))
     mesh_sha = sha256(mesh_path)
-    spec = {
-        "base": _jsonable(base),
+    spec = {  # what a partial folder must match to be resumed (paths absolute: any cwd)
+        "base": _jsonable(
+            {k: Path(v).resolve() if isinstance(v, Path) else v for k, v in base.items()}
+        ),
         "grid": _jsonable(plan.grid),
         "cases": len(plan.cases),
         "mesh_sha256": mesh_sha,
