@@ -287,6 +287,19 @@ def test_with_the_fixed_slicing_a_worker_reuses_its_cuts_to_rounding(client):
             assert got["peak_force"].item() == pytest.approx(ref.peak["force"], rel=1e-12)
             assert got["final_velocity"].item() == pytest.approx(ref.velocity[-1], rel=1e-12)
             assert got["steps"].item() == len(ref) == 11
+    # the workers kept their hull of this mesh, and on it the frames (and cuts) of the pitches
+    kept = client.run(_pitches_kept, ds.attrs["mesh_sha256"])
+    assert set().union(*kept.values()) == {round(math.radians(p), 12) for p in grid["pitch"]}
+
+
+def _pitches_kept(sha: str) -> list[float]:
+    """On a worker: the pitches (rad) whose frames its 10 kg hull of the mesh ``sha`` keeps."""
+    import hullslice.sweeps as sw
+
+    shared = [h for token, h in sw._SHARED.items() if token.startswith(sha)]
+    assert len(shared) <= 1  # the mesh is kept once, whatever copies Dask handed over
+    hulls = [h for base, h in sw._HULLS.values() if base in shared and h.mass == 10.0]
+    return sorted(round(p, 12) for h in hulls for p in h.__dict__.get("_frames", {}))
 
 
 KILLER = '''
