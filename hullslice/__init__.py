@@ -50,6 +50,7 @@ from .solvers import (
     list_solvers,
 )
 from .state import Acceleration, Fluid, Motion, Pose
+from .sweeps import sweep
 
 try:
     __version__ = version("hullslice")
@@ -108,5 +109,6 @@ __all__ = [
     "read_mass_distribution",
     "richardson",
     "simulate",
+    "sweep",
     "validate_case",
 ]

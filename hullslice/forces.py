@@ -201,6 +201,18 @@ class ForceResult:
     def __len__(self) -> int:
         return len(self.sections)
 
+    def to_xarray(self):
+        """The per-slice results as an ``xarray.Dataset`` with units (needs xarray)."""
+        from .xarray_io import force_to_xarray
+
+        return force_to_xarray(self)
+
+    def to_dataframe(self):
+        """The per-slice results as a ``pandas.DataFrame``, units in ``attrs``."""
+        from .xarray_io import force_to_dataframe
+
+        return force_to_dataframe(self)
+
     def columns(self) -> dict[str, np.ndarray]:
         """Per-slice columns by name, SI units (deadrise in degrees)."""
         s = self.sections

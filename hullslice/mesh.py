@@ -384,6 +384,16 @@ class Hull:
         """Mean density in kg/m^3 (mass / volume), or None without a mass."""
         return None if self.mass is None else self.mass / self.volume
 
+    def __getstate__(self) -> dict:
+        """Pickled: the arrays, name, source and mass properties; the ``Manifold`` (which
+        cannot be pickled) is rebuilt from the arrays, and the caches refill on use."""
+        return {k: self.__dict__[k] for k in _PICKLED if k in self.__dict__}
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        self._manifold = _to_manifold(self._vertices.copy(), self._faces.copy(), self.name)
+        self._vertices, self._faces = _readonly(self._vertices), _readonly(self._faces)
+
     def __repr__(self) -> str:
         mass = "no mass" if self.mass is None else f"{self.mass:g} kg"
         L, B, H = self.extents
@@ -405,6 +415,19 @@ _GEOMETRY = (
     "volume",
     "centroid",
     "edges",
+)
+
+
+#: What a pickled hull holds (see Hull.__getstate__).
+_PICKLED = (
+    "_vertices",
+    "_faces",
+    "name",
+    "source",
+    "mass",
+    "mass_distribution",
+    "_cg_given",
+    "_inertia_given",
 )
 
 

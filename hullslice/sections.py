@@ -242,6 +242,18 @@ class Sections:
             z_cg=self.z_cg,
         )
 
+    def to_xarray(self):
+        """The entries as an ``xarray.Dataset`` with units (needs xarray)."""
+        from .xarray_io import sections_to_xarray
+
+        return sections_to_xarray(self)
+
+    def to_dataframe(self):
+        """The entries as a ``pandas.DataFrame``, units in ``attrs``."""
+        from .xarray_io import sections_to_dataframe
+
+        return sections_to_dataframe(self)
+
     def as_dict(self) -> dict[str, np.ndarray]:
         """The per-entry arrays by name, deadrise also in degrees (``*_deg``)."""
         d = {name: getattr(self, name) for name in self._ARRAYS}

@@ -19,7 +19,16 @@ from collections.abc import Sequence
 
 from ..errors import HullsliceError, HullsliceWarning
 from ..safety import Terminated, terminated_cleanly
-from . import cmd_force, cmd_info, cmd_report, cmd_run, cmd_sections, cmd_simulate, cmd_solvers
+from . import (
+    cmd_force,
+    cmd_info,
+    cmd_report,
+    cmd_run,
+    cmd_sections,
+    cmd_simulate,
+    cmd_solvers,
+    cmd_sweep,
+)
 from .common import UsageError
 
 __all__ = ["EXIT", "main", "run"]
@@ -34,7 +43,16 @@ EXIT = {
     "terminated": 143,  # kill PID (128 + SIGTERM)
 }
 
-COMMANDS = (cmd_solvers, cmd_info, cmd_sections, cmd_force, cmd_simulate, cmd_run, cmd_report)
+COMMANDS = (
+    cmd_solvers,
+    cmd_info,
+    cmd_sections,
+    cmd_force,
+    cmd_simulate,
+    cmd_run,
+    cmd_report,
+    cmd_sweep,
+)
 
 
 class Parser(argparse.ArgumentParser):

@@ -212,6 +212,18 @@ class History:
         cols["x_fore"] = self.footprint[:, 1] if len(self) else np.empty(0)
         return {name: cols[name] for name in self.COLUMNS}
 
+    def to_xarray(self):
+        """The history as an ``xarray.Dataset`` along ``t``, with units (needs xarray)."""
+        from ..xarray_io import history_to_xarray
+
+        return history_to_xarray(self)
+
+    def to_dataframe(self):
+        """The history as a ``pandas.DataFrame`` indexed by ``t``, with units in ``attrs``."""
+        from ..xarray_io import history_to_dataframe
+
+        return history_to_dataframe(self)
+
     def at(self, t: float) -> dict[str, float]:
         """The numeric columns interpolated linearly at time ``t`` (s)."""
         if not (self.t[0] <= t <= self.t[-1]):

@@ -1,0 +1,195 @@
+"""``hullslice sweep CASE.toml``: many time histories on Dask, as one labelled dataset."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+from ..errors import InputError
+from .common import check_path
+
+#: Shown by a terminal table of cases: result, heading, unit, format.
+TABLE = (
+    ("peak_force", "peak F", "N", ".4g"),
+    ("peak_time", "at t", "s", ".5f"),
+    ("peak_acceleration", "peak a", "m/s^2", ".4g"),
+    ("peak_moment", "peak M", "N m", ".4g"),
+    ("max_flagged_share", "flagged", "", ".3f"),
+    ("stop_reason", "ended", "", ""),
+    ("error", "error", "", ""),
+)
+
+
+def add_parser(sub) -> None:
+    p = sub.add_parser(
+        "sweep",
+        help="run a case file's [sweep] of time histories on Dask, results as one dataset",
+        description="Run the time history of a case file (command 'simulate') for every "
+        "combination of the values in its [sweep] table (key = [values], full factorial, in "
+        'the case file\'s units: SI, angles in degrees; or cases = "design.csv", one case '
+        "per row) on Dask: a local cluster of worker processes by default, one per core. "
+        "The results are an xarray dataset with one dimension per swept key: peak force (N), "
+        "acceleration (m/s^2) and moment (N m) with their times (s), the final state, why "
+        "each run ended, the share of the force on flagged slices and any error. Needs the "
+        "optional extra: pip install 'hullslice[sweep]'.",
+    )
+    p.add_argument("case", metavar="CASE.toml", help="the case file, with a [sweep] table")
+    p.add_argument(
+        "-o",
+        "--output",
+        metavar="PATH",
+        help="write the dataset to PATH.nc (netCDF), PATH.zarr (Zarr) or PATH.parquet (one "
+        "row per case), completely or not at all; finished cases are kept in PATH.partial/ "
+        "until then (default: a table of the cases on the terminal)",
+    )
+    where = p.add_mutually_exclusive_group()
+    where.add_argument(
+        "--scheduler",
+        metavar="ADDRESS",
+        help="run on an existing Dask cluster, e.g. tcp://10.0.0.5:8786 (waits up to 10 s "
+        "for it to answer; default: a local cluster)",
+    )
+    where.add_argument(
+        "--workers",
+        type=_workers,
+        metavar="N",
+        help="worker processes of the local cluster (default: one per core); 1 runs in this "
+        "process, without a cluster",
+    )
+    p.add_argument(
+        "--resume",
+        action="store_true",
+        help="continue an interrupted sweep from PATH.partial/, skipping the finished cases",
+    )
+    p.add_argument(
+        "--keep-histories",
+        action="store_true",
+        help="also keep every case's time history along a dimension t (s) (netCDF or Zarr)",
+    )
+    p.set_defaults(func=run)
+
+
+def _workers(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
+    if n < 1:
+        raise argparse.ArgumentTypeError(f"{text!r} is not positive (give 1 or more)")
+    return n
+
+
+class Progress:
+    """Cases done, total, failures and the time left, on one line of a terminal's stderr."""
+
+    def __init__(self) -> None:
+        self.start = time.monotonic()
+        self.first: int | None = None
+        self.shown = False
+
+    def __call__(self, done: int, total: int, failed: int) -> None:
+        if self.first is None:
+            self.first = done  # cases found finished by --resume do not count for the pace
+            self.start = time.monotonic()
+        ran = done - self.first
+        left = ""
+        if ran > 0 and done < total:
+            seconds = (time.monotonic() - self.start) / ran * (total - done)
+            left = f", {_duration(seconds)} left"
+        sys.stderr.write(f"\rsweep: {done}/{total} cases done, {failed} failed{left}   ")
+        sys.stderr.flush()
+        self.shown = True
+
+    def done(self) -> None:
+        if self.shown:
+            sys.stderr.write("\r" + " " * 72 + "\r")
+            sys.stderr.flush()
+
+
+def _duration(seconds: float) -> str:
+    s = round(seconds)
+    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
+
+
+def run(args: argparse.Namespace) -> int:
+    from .. import sweeps
+    from ..xarray_io import output_format, write_dataset
+
+    sweeps._require("xarray")
+    if args.workers != 1 or args.scheduler:
+        sweeps._require("distributed")
+    partial = None
+    if args.output:
+        ext = output_format(args.output)
+        target = Path(args.output)
+        store = ext == ".zarr" and target.is_dir()
+        if store and not ((target / "zarr.json").is_file() or (target / ".zgroup").is_file()):
+            raise InputError(
+                f"cannot write {args.output!r} (--output): it is a folder that is not a Zarr "
+                "store; give another name"
+            )
+        if not store:
+            check_path(args.output, args, "--output")
+        if args.keep_histories and ext == ".parquet":
+            raise InputError(
+                f"cannot write {args.output!r} with --keep-histories: a Parquet file holds one "
+                "row per case; write the histories to .nc or .zarr"
+            )
+        partial = Path(args.output + ".partial")
+    elif args.resume:
+        raise InputError("--resume continues the sweep written to -o PATH: give -o PATH")
+    plan = sweeps.load_sweep(args.case)
+    progress = Progress() if sys.stderr.isatty() else None
+    try:
+        ds = sweeps.sweep(
+            plan,
+            client=args.scheduler,
+            workers=args.workers,
+            keep_histories=args.keep_histories,
+            partial=partial,
+            resume=args.resume,
+            progress=progress,
+        )
+    finally:
+        if progress is not None:
+            progress.done()
+    failures = list(sweeps.iter_failures(ds))
+    for label, error in failures[:5]:
+        print(f"hullslice: case {label} failed: {error}", file=sys.stderr)
+    if len(failures) > 5:
+        print(f"hullslice: ... and {len(failures) - 5} more failed cases", file=sys.stderr)
+    if args.output:
+        ds.attrs.pop("partial", None)
+        try:
+            write_dataset(ds, args.output)
+        except OSError as exc:
+            raise InputError(f"cannot write {args.output!r}: {exc.strerror or exc}") from None
+        if partial is not None:
+            sweeps.remove_partial(partial)
+        print(
+            f"wrote {args.output} ({len(plan.cases)} cases, {len(failures)} failed)",
+            file=sys.stderr,
+        )
+    else:
+        sys.stdout.write(_table(plan, ds) + "\n")
+    return 0
+
+
+def _table(plan, ds) -> str:
+    from ..report import Column, table_text
+
+    keys = list(plan.table) + [d for d in plan.dims if d != "case"]
+    columns = [Column(k, k, ds[k].attrs.get("units", ""), "g") for k in keys]
+    columns += [Column(k, label, unit, fmt) for k, label, unit, fmt in TABLE]
+    flat = ds.stack(point=plan.dims) if plan.dims else ds
+    rows = []
+    for i in range(len(plan.cases)):
+        row = {k: v for k, v in plan.cases[i].items()}
+        point = flat.isel(point=i)
+        for k, *_ in TABLE:
+            v = point[k].values.item()
+            row[k] = v
+        rows.append(row)
+    return table_text(columns, rows)
