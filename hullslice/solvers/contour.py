@@ -124,9 +124,9 @@ def _clipped_area(c: np.ndarray) -> float:
     if not in1.any():
         return 0.0
     cross = in1 != in2
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore"):  # t is used only where it crosses
         t = p1[:, 1] / (p1[:, 1] - p2[:, 1])
-    xing = p1 + t[:, None] * (p2 - p1)
+        xing = p1 + t[:, None] * (p2 - p1)
     pts = np.empty((2 * len(c), 2))
     pts[0::2], pts[1::2] = p1, xing
     keep = np.empty(2 * len(c), dtype=bool)
