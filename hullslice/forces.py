@@ -296,6 +296,35 @@ def _call(solver: SolverBase, method, sections: Sections, velocity, fluid: Fluid
         raise SolverError(f"solver {describe(solver)} failed: {failure(exc)}") from exc
 
 
+#: What a section the solver was not given (dry, or without mass) holds.
+_FILL = {
+    "force_per_metre": (0.0, np.float64),
+    "added_mass": (0.0, np.float64),
+    "rate": (0.0, np.float64),
+    "extra": (0.0, np.float64),
+    "valid": (True, bool),
+    "reason": ("", object),
+}
+
+
+def _spread(record, names, wet: np.ndarray, every: bool):
+    """A solver's arrays over every section, and its diagnostics (NaN where it was not
+    called): its own arrays, copied, when it was given every section."""
+    n = len(wet)
+    if record is not None and every:
+        return {k: np.array(getattr(record, k)) for k in names}, dict(record.diagnostics)
+    arrays = {k: np.full(n, _FILL[k][0], dtype=_FILL[k][1]) for k in names}
+    diagnostics: dict[str, np.ndarray] = {}
+    if record is not None:
+        for k in names:
+            arrays[k][wet] = getattr(record, k)
+        for k, arr in record.diagnostics.items():
+            full = np.full(n, np.nan)
+            full[wet] = arr
+            diagnostics[k] = full
+    return arrays, diagnostics
+
+
 def _flag(valid: np.ndarray, reason: np.ndarray, masks) -> None:
     for mask, why in masks:
         if mask.any():
@@ -325,37 +354,23 @@ def evaluate(
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
         raise InputError("the hull has no mass: give its mass in kg (mass=...)")
-    force = np.zeros(n)
-    valid = np.ones(n, dtype=bool)
-    reason = np.full(n, "", dtype=object)
-    diagnostics: dict[str, np.ndarray] = {}
     # a wetted section that carries no mass (between a distribution's point masses, or
     # beyond its line) is in no free fall: it gets no force, flagged
     massless = wet & (sections.mass_per_metre <= 0.0)
-    if massless.any():
-        wet = wet & ~massless
-        valid[massless] = False
-        reason[massless] = MASSLESS_REASON
+    wet = wet & ~massless
     sections, flat = _flat_clamped(sections, wet)
+    loads = None
+    every = bool(wet.all()) and n > 0
     if wet.any():
-        every = bool(wet.all())
         sub = sections if every else sections.subset(wet)
         v_sub = velocity if every else velocity[wet]
         loads = _call(solver, solver.section_loads, sub, v_sub, fluid)  # type: ignore[attr-defined]
         _check_loads(solver, loads, sub, v_sub)
-        if every:  # the solver's arrays cover every section (none massless)
-            force = np.array(loads.force_per_metre)
-            valid = np.array(loads.valid)
-            reason = np.array(loads.reason)
-            diagnostics = dict(loads.diagnostics)
-        else:
-            force[wet] = loads.force_per_metre
-            valid[wet] = loads.valid
-            reason[wet] = loads.reason
-            for k, arr in loads.diagnostics.items():
-                full = np.full(n, np.nan)
-                full[wet] = arr
-                diagnostics[k] = full
+    arrays, diagnostics = _spread(loads, ("force_per_metre", "valid", "reason"), wet, every)
+    force, valid, reason = arrays["force_per_metre"], arrays["valid"], arrays["reason"]
+    if massless.any():
+        valid[massless] = False
+        reason[massless] = MASSLESS_REASON
     _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
     return SectionLoads(force, valid, reason, diagnostics)
 
@@ -380,30 +395,16 @@ def evaluate_added_mass(
     wet = sections.wetted
     sections, flat = _flat_clamped(sections, wet)
     every = bool(wet.all()) and n > 0
-    if every:  # the solver's arrays cover every section
-        out = _call(solver, solver.added_mass, sections, velocity, fluid)
-        _check_added_mass(solver, out, sections)
-        m_a, rate, extra = np.array(out.added_mass), np.array(out.rate), np.array(out.extra)
-        valid = np.array(out.valid)
-        reason = np.array(out.reason)
-        diagnostics = dict(out.diagnostics)
-    else:
-        m_a, rate, extra = np.zeros(n), np.zeros(n), np.zeros(n)
-        valid = np.ones(n, dtype=bool)
-        reason = np.full(n, "", dtype=object)
-        diagnostics = {}
-    if not every and wet.any():
-        sub = sections.subset(wet)
-        v_sub = velocity[wet]
+    out = None
+    if wet.any():
+        sub = sections if every else sections.subset(wet)
+        v_sub = velocity if every else velocity[wet]
         out = _call(solver, solver.added_mass, sub, v_sub, fluid)
         _check_added_mass(solver, out, sub)
-        m_a[wet], rate[wet], extra[wet] = out.added_mass, out.rate, out.extra
-        valid[wet] = out.valid
-        reason[wet] = out.reason
-        for k, arr in out.diagnostics.items():
-            full = np.full(n, np.nan)
-            full[wet] = arr
-            diagnostics[k] = full
+    names = ("added_mass", "rate", "extra", "valid", "reason")
+    arrays, diagnostics = _spread(out, names, wet, every)
+    m_a, rate, extra = arrays["added_mass"], arrays["rate"], arrays["extra"]
+    valid, reason = arrays["valid"], arrays["reason"]
     chine = sections.chine_wetted
     if getattr(solver, "models_separation", False):
         chine = np.zeros(n, dtype=bool)

@@ -57,6 +57,21 @@ SOLVER_KINDS: dict[str, str] = {
 }
 
 
+def _freeze(fields: dict, arrays: Sequence[tuple[str, Any]]) -> None:
+    """Make a frozen record's fields read-only arrays of their dtypes (no copy when they are
+    already), and its ``diagnostics`` a dict of read-only float arrays."""
+    for name, dtype in arrays:
+        a = np.asarray(fields[name], dtype=dtype)
+        a.flags.writeable = False
+        fields[name] = a
+    diags = {}
+    for k, a in dict(fields["diagnostics"]).items():
+        arr = np.asarray(a, dtype=np.float64)  # no copy: the solver's own arrays
+        arr.flags.writeable = False
+        diags[str(k)] = arr
+    fields["diagnostics"] = diags
+
+
 @dataclass(frozen=True, eq=False)
 class SectionLoads:
     """What a 2D solver returns for a set of sections.
@@ -87,16 +102,7 @@ class SectionLoads:
                 f"SectionLoads.valid must be a boolean array (True inside the solver's range), "
                 f"not {valid.dtype} values such as {valid.ravel()[:1].tolist()}"
             )
-        for name, dtype in (("force_per_metre", np.float64), ("valid", bool), ("reason", object)):
-            a = np.asarray(fields[name], dtype=dtype)  # no copy when it is one already
-            a.flags.writeable = False
-            fields[name] = a
-        diags = {}
-        for k, a in dict(self.diagnostics).items():
-            arr = np.asarray(a, dtype=np.float64)  # no copy: the solver's own arrays
-            arr.flags.writeable = False
-            diags[str(k)] = arr
-        fields["diagnostics"] = diags
+        _freeze(fields, (("force_per_metre", np.float64), ("valid", bool), ("reason", object)))
 
     def __len__(self) -> int:
         return len(self.force_per_metre)
@@ -212,24 +218,12 @@ class AddedMass:
         fields = self.__dict__  # frozen: set once here, read-only arrays
         if fields["extra"] is None:
             fields["extra"] = np.zeros(np.shape(fields["added_mass"]))
-        for name, dtype in (
-            ("added_mass", np.float64),
-            ("rate", np.float64),
-            ("extra", np.float64),
-            ("reason", object),
-        ):
-            a = np.asarray(fields[name], dtype=dtype)
-            a.flags.writeable = False
-            fields[name] = a
-        valid = np.asarray(fields["valid"])  # kept as given: checked by hullslice
-        valid.flags.writeable = False
-        fields["valid"] = valid
-        diags = {}
-        for k, a in dict(self.diagnostics).items():
-            arr = np.asarray(a, dtype=np.float64)
-            arr.flags.writeable = False
-            diags[str(k)] = arr
-        fields["diagnostics"] = diags
+        fields["valid"] = np.asarray(fields["valid"])  # kept as given: checked by hullslice
+        _freeze(
+            fields,
+            (("added_mass", np.float64), ("rate", np.float64), ("extra", np.float64),
+             ("valid", None), ("reason", object)),
+        )  # fmt: skip
 
     def __len__(self) -> int:
         return len(self.added_mass)
