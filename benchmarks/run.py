@@ -145,20 +145,27 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
         "< 1 ms" if size == "1M" else "",
         (t_cached < 1e-3) if size == "1M" else None,
     )
+
     # the same evaluation with a momentum-form solver, as a stage of a time step: the added
     # mass and its rate, the section accelerations' terms, the body's accelerations solved
     # with the added mass on the left, and the forces formed
-    momentum = ForceModel(hull, slices=128, slicing="fixed", solver="wagner")
+    # (the closed form on the equivalent wedge, as the paper's solver; and the same solver
+    # with each round section's own contour, Wagner's condition)
+    def stage_of(model: ForceModel):
+        def stage(i: int) -> None:
+            pose = hs.Pose(drafts[i % 50], 0.08)
+            terms = model.terms(pose, motion)
+            acc = solve_accelerations(terms, 60000.0, None, 9.81, (True, False, False))
+            terms.result(acc, model.solver, model.fluid, motion, float(hull.cg[0]))
 
-    def stage(i: int) -> None:
-        pose = hs.Pose(drafts[i % 50], 0.08)
-        terms = momentum.terms(pose, motion)
-        acc = solve_accelerations(terms, 60000.0, None, 9.81, (True, False, False))
-        terms.result(acc, momentum.solver, momentum.fluid, motion, float(hull.cg[0]))
+        for i in range(50):
+            stage(i)
+        return stage
 
-    for i in range(50):
-        stage(i)
-    t_momentum = per_call(stage, 50, repeat)
+    wedge = hs.get_solver("wagner", section_method="wedge")
+    t_momentum = per_call(
+        stage_of(ForceModel(hull, slices=128, solver=wedge, slicing="fixed")), 50, repeat
+    )
     table.add(
         f"{size}: the same with the momentum-form wagner solver (a stage, solved)",
         fmt(t_momentum),
@@ -168,6 +175,13 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
         f"{t_momentum / t_cached:.2f}",
         "<= 1.2",
         t_momentum <= 1.2 * t_cached,
+    )
+    contour = hs.get_solver("wagner", section_method="contour")
+    t_contour = per_call(
+        stage_of(ForceModel(hull, slices=128, solver=contour, slicing="fixed")), 10, repeat
+    )
+    table.add(
+        f"{size}: the same, round sections by their contour (Wagner's condition)", fmt(t_contour)
     )
     table.add(f"{size}: same, naive (re-cut the 3D hull every step)", fmt(t_naive))
     table.add(f"{size}: ratio naive / cached", f"{t_naive / t_cached:.0f}")
