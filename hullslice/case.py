@@ -483,11 +483,11 @@ def case_from_args(args) -> dict[str, Any]:
         if name in ("title", "command") or name not in COMMAND_KEYS[command] | {"mesh"}:
             continue
         if name == "solver_options":
-            value = dict(getattr(args, "solver_option", []) or [])
-            if value:
-                out[name] = value
+            options = dict(getattr(args, "solver_option", []) or [])
+            if options:
+                out[name] = options
             continue
-        value = getattr(args, name, None)
+        value: Any = getattr(args, name, None)
         if value is None or (name in _FLAGS and not value):
             continue
         if name in ("pitch", "pitch_rate"):
@@ -501,7 +501,10 @@ def case_from_args(args) -> dict[str, Any]:
         if name == "keep_box":
             from .parts import parse_box
 
-            value = [float(x) for x in parse_box(value).T.ravel()]
+            box = parse_box(value)
+            if box is None:
+                continue
+            value = [float(x) for x in box.T.ravel()]
         if name == "repair" and value == "none":
             continue
         if name in ("mesh", "kinematics", "mass_distribution", "output", "plot"):

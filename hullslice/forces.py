@@ -49,6 +49,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
+from typing import cast
 
 import numpy as np
 
@@ -522,7 +523,7 @@ def section_kinematics(
         -q * u
         + q * (velocity - w) * slope
         - slide * q * (1.0 + slope * slope)
-        + slide * slide * sections.keel_curvature
+        + slide * slide * cast(np.ndarray, sections.keel_curvature)
     )
     return jac, bias
 
@@ -583,7 +584,7 @@ class MomentumTerms:
             **self.added.diagnostics,
             "added_mass": m_a,
             "added_mass_rate": self.added.rate,
-            "extra_force": self.added.extra,
+            "extra_force": cast(np.ndarray, self.added.extra),
         }
         loads = SectionLoads(force, self.added.valid, self.added.reason, diagnostics)
         s = self.sections

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -197,7 +198,7 @@ class Frame:
     lowest: float
     highest: float
     keel: KeelLine
-    _hull: object = field(repr=False)
+    _hull: Any = field(repr=False)
     _matrix: np.ndarray = field(repr=False)  # body point -> cutter (Y, Z, X), 3 x 4
     _offset: np.ndarray = field(repr=False)  # (Y, Z, X) of the cutter's origin, rel. cg
     _scale: float = 1.0  # the cutter's coordinates are metres times this
@@ -275,6 +276,7 @@ class Frame:
         The whole hull while it has been cut at one pitch only: a region costs more to make
         than turning the whole once, and pays off only over several pitches.
         """
+        body: Any
         if len(self._hull.__dict__.get("_frames", ())) > 1:
             key, body = region(self._hull, lo, hi)
         else:

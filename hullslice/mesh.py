@@ -16,6 +16,7 @@ import warnings
 from array import array
 from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -551,7 +552,7 @@ def load_hull(
         from .parts import parse_box
 
         box = parse_box(keep_box)
-    mass_options = {
+    mass_options: dict[str, Any] = {
         "mass": mass, "mass_distribution": mass_distribution, "cg": cg, "inertia": inertia
     }  # fmt: skip
     hull = Hull.from_arrays(

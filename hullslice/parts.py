@@ -56,7 +56,8 @@ class Body:
     @property
     def extents(self) -> tuple[float, float, float]:
         """Length, beam and height of its bounding box in m."""
-        return tuple(float(b - a) for a, b in zip(self.bounds_min, self.bounds_max, strict=True))
+        lo, hi = self.bounds_min, self.bounds_max
+        return (float(hi[0] - lo[0]), float(hi[1] - lo[1]), float(hi[2] - lo[2]))
 
     def as_dict(self) -> dict:
         return {
@@ -153,8 +154,8 @@ def find_bodies(vertices: np.ndarray, faces: np.ndarray) -> tuple[list[Body], np
             closed=bool(closed[i]),
             volume=float(size[i]) if closed[i] else None,
             size_volume=float(size[i]),
-            bounds_min=tuple(float(x) for x in lo_b[i]),
-            bounds_max=tuple(float(x) for x in hi_b[i]),
+            bounds_min=(float(lo_b[i][0]), float(lo_b[i][1]), float(lo_b[i][2])),
+            bounds_max=(float(hi_b[i][0]), float(hi_b[i][1]), float(hi_b[i][2])),
         )
         for i in order
     ]
@@ -200,7 +201,7 @@ def keep_faces(
     choice = parse_keep(keep)
     if choice is None:
         return np.ones(len(numbers), dtype=bool), tuple(b.number for b in bodies)
-    kept = (1,) if choice == "largest" else choice
+    kept: tuple[int, ...] = (1,) if isinstance(choice, str) else choice
     missing = [k for k in kept if k > len(bodies)]
     if missing:
         raise InputError(

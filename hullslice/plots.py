@@ -230,7 +230,7 @@ def plot_sections(hull, sections, title: str | None = None):
 
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.2), gridspec_kw={"width_ratios": [3, 2]})
     ax1.add_collection(
-        LineCollection(np.stack([earth(a), earth(b)], axis=1), colors="0.3", linewidths=0.6)
+        LineCollection(list(np.stack([earth(a), earth(b)], axis=1)), colors="0.3", linewidths=0.6)
     )
     ax1.axhline(0.0, color="C0", lw=1.2, label="waterline")
     stations = np.unique(sections.station)

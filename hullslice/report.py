@@ -188,21 +188,25 @@ def write_atomic(path: str | os.PathLike, data: str | bytes) -> Path:
     if target.is_symlink():
         target = Path(os.path.realpath(target))
     if target.exists() and not target.is_file() and not target.is_dir():
-        binary = isinstance(data, bytes)
-        with open(
-            target, "wb" if binary else "w", **({} if binary else {"encoding": "utf-8"})
-        ) as fh:
-            fh.write(data)
+        if isinstance(data, bytes):
+            with open(target, "wb") as fb:
+                fb.write(data)
+        else:
+            with open(target, "w", encoding="utf-8") as ft:
+                ft.write(data)
         return Path(path)
     parent = target.parent if str(target.parent) else Path(".")
     if not parent.is_dir():
         raise FileNotFoundError(f"folder {str(parent)!r} does not exist")
     remove_stale(parent, target.name)
-    mode = "wb" if isinstance(data, bytes) else "w"
     fd, tmp = tempfile.mkstemp(prefix=temp_prefix(target.name), suffix=".tmp", dir=parent)
     try:
-        with os.fdopen(fd, mode, **({} if mode == "wb" else {"encoding": "utf-8"})) as fh:
-            fh.write(data)
+        if isinstance(data, bytes):
+            with os.fdopen(fd, "wb") as fb:
+                fb.write(data)
+        else:
+            with os.fdopen(fd, "w", encoding="utf-8") as ft:
+                ft.write(data)
         os.chmod(tmp, 0o666 & ~_umask())  # as an ordinary file, not mkstemp's private one
         os.replace(tmp, target)
     except BaseException:  # an error, Ctrl-C or SIGTERM (hullslice.safety): no file left

@@ -76,7 +76,7 @@ def check_options(
                 f"value (default {defaults.get(key)!r})"
             )
         default = defaults.get(key)
-        if key not in own and _is_number(default) and default > 0:
+        if key not in own and default is not None and _is_number(default) and default > 0:
             if not _is_number(value) or value <= 0:
                 raise InputError(
                     f"solver {solver!r} option {key}={value!r} is not a positive number: give "

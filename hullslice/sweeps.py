@@ -623,7 +623,7 @@ def _groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
         ),
     )
     size = max(1, min(16, math.ceil(len(order) / (TASKS_PER_WORKER * max(1, n_workers)))))
-    groups: list[list[int]] = []
+    groups: list[list[tuple[tuple[str, Any], int]]] = []
     for i in order:
         key = (repr(_mass_key(plan.case(i))), plan.case(i).get("pitch", 0.0))
         if groups and len(groups[-1]) < size and groups[-1][0][0] == key:
@@ -778,7 +778,7 @@ def sweep(
             token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}"
             _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish, token)
     finally:
-        if owned:
+        if owned and dask_client is not None:
             cluster = getattr(dask_client, "cluster", None)
             dask_client.close()
             if cluster is not None:

@@ -58,7 +58,7 @@ COMMANDS = (
 class Parser(argparse.ArgumentParser):
     """An ArgumentParser whose errors are exceptions, so that main() prints one line."""
 
-    def error(self, message: str):  # type: ignore[override]
+    def error(self, message: str):
         raise UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
 
 

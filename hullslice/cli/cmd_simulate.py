@@ -19,6 +19,7 @@ from ..motion import (
 from ..report import (
     HISTORY_COLUMNS,
     HISTORY_PITCH_COLUMNS,
+    Column,
     history_records,
     history_summary,
     table_text,
@@ -247,7 +248,7 @@ def compute(args: argparse.Namespace) -> Outcome:
 def _table(hull, history, summary, solver_text) -> str:
     s = history.settings
     every = max(1, -(-len(history) // TABLE_ROWS))
-    columns = HISTORY_COLUMNS
+    columns: tuple[Column, ...] = HISTORY_COLUMNS
     if np.any(history.pitch != 0) or np.any(history.forward_speed != 0):
         columns = (*HISTORY_COLUMNS[:5], *HISTORY_PITCH_COLUMNS, *HISTORY_COLUMNS[5:])
     mass = f"mass {hull.mass:g} kg" if hull.mass is not None else "no mass (not needed)"

@@ -33,6 +33,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterable, Mapping, Sequence
+from typing import cast
 
 import numpy as np
 
@@ -42,7 +43,7 @@ from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve
 from ..geometry import frame
 from ..mesh import Hull
 from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
-from ..solvers.base import MOMENTUM, SolverBase
+from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
 from ..solvers.registry import get_solver
 from ..state import Acceleration, Fluid, Motion, Pose
 from .history import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, MAX_PITCH, History, _Recorder
@@ -133,12 +134,9 @@ class ForceModel:
 
     def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
         """A momentum-form solver's terms before the body's accelerations are known."""
+        solver = cast(MomentumFormSolver, self.solver)
         return momentum_terms(
-            self._sections(pose),
-            motion,
-            self.solver,
-            self.fluid,
-            float(self.hull.cg[0]),  # type: ignore[arg-type]
+            self._sections(pose), motion, solver, self.fluid, float(self.hull.cg[0])
         )
 
     def settings(self) -> dict[str, object]:
@@ -348,7 +346,7 @@ def simulate(
 
 def prescribed(
     hull: Hull,
-    kinematics: Mapping[str, Sequence[float]],
+    kinematics: Mapping[str, Sequence[float] | np.ndarray],
     *,
     slices: int = 32,
     solver: str | SolverBase | type[SolverBase] | None = None,
@@ -406,7 +404,7 @@ def prescribed(
             acc = accelerations[i].vertical
         else:
             r = model(pose, motion)
-            acc = r.total / hull.mass - g  # type: ignore[operator]
+            acc = r.total / cast(float, hull.mass) - g
         if rec.add(float(t), r, acc):
             break
         if progress is not None:

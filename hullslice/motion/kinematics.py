@@ -55,7 +55,9 @@ KINEMATICS_OPTIONAL = {
 ACCELERATION_TOLERANCE = 0.02
 
 
-def check_kinematics(kin: Mapping[str, Sequence[float]], hull: Hull) -> dict[str, np.ndarray]:
+def check_kinematics(
+    kin: Mapping[str, Sequence[float] | np.ndarray], hull: Hull
+) -> dict[str, np.ndarray]:
     missing = [c for c in KINEMATICS_COLUMNS if c not in kin]
     if missing:
         raise CaseError(

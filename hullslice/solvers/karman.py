@@ -18,7 +18,7 @@ import os
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any, ClassVar, cast
 
 import numpy as np
 
@@ -192,7 +192,8 @@ class CharacteristicCurves:
     @property
     def peak(self) -> tuple[float, float]:
         """``(z~, a~)`` at the peak of ``a~`` inside the range."""
-        z = np.linspace(*self.z_range, 20001)
+        lo, hi = cast(tuple[float, float], self.z_range)  # set in __post_init__
+        z = np.linspace(lo, hi, 20001)
         a = self.a(z)
         i = int(np.argmax(a))
         return float(z[i]), float(a[i])
@@ -372,7 +373,7 @@ class CurveSolver(Solver):
         force = np.where(velocity < 0.0, force, 0.0)
         froude = peak_froude(v0, m_eq, beta, gam, curves.rho, fluid.g)
 
-        lo, hi = curves.z_range
+        lo, hi = cast(tuple[float, float], curves.z_range)
         fr_min = float(self.settings["froude_min"])
         checks = [
             ((zt < lo) | (zt > hi), f"z~ outside the curves' range [{lo:.4g}, {hi:.4g}]"),
