@@ -16,6 +16,7 @@ References:
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 
 import numpy as np
@@ -253,3 +254,23 @@ def test_the_readme_plugin_example_is_a_working_momentum_solver(paper_hull):
     ref = hs.compute_force(paper_hull, 0.0383, -3.4943, slices=16, solver="wagner")
     got = hs.compute_force(paper_hull, 0.0383, -3.4943, slices=16, solver=mine)
     assert got.total == pytest.approx(ref.total, rel=1e-12)
+
+
+def test_the_command_line_needs_no_mass_for_a_given_acceleration(capsys):
+    # force at a state with the body's acceleration given: the momentum form's force is
+    # the closed form m_a' V^2 - m_a a, whatever the body's mass, which is not asked for
+    from hullslice.cli import main
+
+    beta, p, V, a = math.radians(30.0), 0.02, 5.0, 40.0
+    argv = [
+        "force", str(MESHES / "wedge_prism.stl"), "--draft", str(p), f"--velocity={-V}",
+        "--acceleration", str(a), "--solver", "wagner", "--slices", "8", "--format", "json",
+    ]  # fmt: skip
+    assert main(argv) == 0
+    data = json.loads(capsys.readouterr().out)
+    k = RHO * math.pi * (math.pi / 2) ** 2 / (2 * math.tan(beta) ** 2)
+    assert data["mass"] is None
+    assert data["force"] == pytest.approx(2 * k * p * V**2 - k * p**2 * a, rel=1e-6)
+    # without the acceleration the body is free in heave: its mass is a missing option
+    assert main(argv[:5] + argv[7:]) == 2
+    assert "give the body's mass" in capsys.readouterr().err

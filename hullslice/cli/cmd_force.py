@@ -167,7 +167,9 @@ def compute(args: argparse.Namespace) -> Outcome:
 def _table(hull, args, study, summary, records) -> str:
     finest = study.finest
     lines = [
-        f"{hull.name}: mass {hull.mass:g} kg, draft {args.draft:g} m, velocity "
+        f"{hull.name}: "
+        + (f"mass {hull.mass:g} kg" if hull.mass is not None else "no mass (not needed)")
+        + f", draft {args.draft:g} m, velocity "
         f"{args.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
         f"solver {solver_label(args)}, water {finest.fluid.rho:g} kg/m^3, "
         f"g {finest.fluid.g:g} m/s^2, deadrise by {finest.sections.deadrise_method}",

@@ -409,8 +409,11 @@ def finish(args: argparse.Namespace, outcome: Outcome) -> int:
 
 
 def _mass_free(args: argparse.Namespace) -> bool:
-    """A momentum-form solver's force along a prescribed motion needs no mass."""
-    if getattr(args, "kinematics", None) is None:
+    """A momentum-form solver's force along a prescribed motion, or at a state with the
+    body's acceleration given, needs no mass."""
+    prescribed = getattr(args, "kinematics", None) is not None
+    given = getattr(args, "acceleration", None) is not None
+    if not (prescribed or given):
         return False
     return solver(args).kind == "momentum"
 
