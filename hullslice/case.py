@@ -293,6 +293,11 @@ def validate_case(
     where = f"case file {source!r}: " if source else "case: "
     if not isinstance(case, Mapping):
         raise CaseError(f"{where}a case is a table of keys, not {_describe(case)}")
+    if "sweep" in case:
+        raise CaseError(
+            f"{where}it has a [sweep] table: it is a sweep of many cases; run it with "
+            "'hullslice sweep CASE.toml' (or hullslice.sweep in Python)"
+        )
     unknown = [k for k in case if k not in SCHEMA]
     if unknown:
         k = unknown[0]

@@ -169,3 +169,12 @@ def test_every_schema_key_has_a_documented_kind_and_unit():
         "max_flagged_share": "",  # a share of the force, 0 to 1
     }
     assert all(k.help for k in SCHEMA.values())
+
+
+def test_a_sweep_case_run_as_one_case_names_the_sweep_command(tmp_path):
+    case = tmp_path / "sweep.toml"
+    case.write_text('mesh = "m.stl"\nmass = 1.0\n\n[sweep]\nvelocity = [-1.0, -2.0]\n')
+    with pytest.raises(
+        hs.CaseError, match=r"has a \[sweep\] table: .* 'hullslice sweep CASE.toml'"
+    ):
+        hs.load_case(case)
