@@ -409,6 +409,9 @@ def evaluate_added_mass(
     chine = sections.chine_wetted
     if getattr(solver, "models_separation", False):
         chine = np.zeros(n, dtype=bool)
+    contour = diagnostics.get("contour")
+    if contour is not None:  # read from its own contour: not limited by a wedge's deadrise
+        flat = flat & ~(contour > 0)
     _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics)
 

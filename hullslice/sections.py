@@ -538,12 +538,19 @@ def _fixed_sections(hull, fr, pose, n, deadrise, level, extent, tol, cache) -> S
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
     source = k.copy()
-    # a partial slice whose own mid-station is dry borrows its wetted neighbour's section
-    inward = np.where(k == k.min(), 1, -1)
-    borrow = ~full & ~wet_mid[k]
-    source[borrow] = np.minimum(np.maximum(k[borrow] + inward[borrow], 0), n - 1)
-    fresh = ~full & ~wet_mid[source]
+    # a partial slice whose own mid-station is dry borrows its wetted neighbour's section;
+    # so does one whose mid-station is wetted less than half as deep as the slice's own
+    # middle: scaling a barely wetted section up by the depth ratio would stretch the few
+    # facets at its keel into a flat bottom
     keel = fr.keel.at(x)
+    pen_mid = np.zeros(n)
+    np.maximum.at(pen_mid, props["station"], props["penetration"])
+    inward = np.where(k == k.min(), 1, -1)
+    neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
+    weak = wet_mid[k] & (2.0 * pen_mid[k] < level - keel[0]) & (pen_mid[neighbour] > pen_mid[k])
+    borrow = ~full & (~wet_mid[k] | weak)
+    source[borrow] = neighbour[borrow]
+    fresh = ~full & ~wet_mid[source]
     ratio = np.ones(len(x))
     part = ~full & ~fresh
     if part.any():

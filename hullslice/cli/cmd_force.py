@@ -17,6 +17,7 @@ from ..report import (
 from ..state import Motion, Pose
 from .common import (
     Outcome,
+    UsageError,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
@@ -98,8 +99,14 @@ def run(args: argparse.Namespace) -> int:
 
 def compute(args: argparse.Namespace) -> Outcome:
     """The force at the state of ``args``, for one or more slice counts."""
-    hull = load(args)
     slv = solver(args)
+    if args.acceleration is not None and slv.kind != "momentum":
+        raise UsageError(
+            f"hullslice force: error: --acceleration is for momentum-form solvers; "
+            f"{slv.name!r} is of the free-fall form, whose force follows from each slice's "
+            "own free fall (leave --acceleration out, or choose e.g. --solver wagner)"
+        )
+    hull = load(args)
     study = convergence(
         hull,
         Pose(args.draft, args.pitch),

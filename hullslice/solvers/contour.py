@@ -22,10 +22,11 @@ bottom above its keel at the distance ``y`` from it:
 
 The contour is read from the station's polygons (the lowest crossing of each vertical
 line, sampled at :data:`SAMPLES` points from the keel to a little past where Wagner's
-``c`` can reach). A section whose contour at half its calm-water half-width is within
-:data:`WEDGE_TOLERANCE` of a straight side is a wedge: ``auto`` uses the closed form there.
-So does an entry whose polygon is not at its keel's depth (a partial slice at an end of the
-wetted part that borrows its neighbour's section under the fixed slicing).
+``c`` can reach). A section whose contour is within :data:`WEDGE_TOLERANCE` of a straight
+side at half its calm-water half-width and out to where the wetted half-width reaches
+(``gamma`` times it) is a wedge: ``auto`` uses the closed form there, and on a flat bottom
+(no keel). A partial slice at an end of the wetted part that carries its neighbour's
+section (the fixed slicing) is read from that section made similar to its own depth.
 
 The submerged area (for a buoyancy force) is the area of the station's polygons below the
 water ``z = 0``, by the shoelace formula of the polygons clipped to that half-plane.
@@ -45,6 +46,7 @@ __all__ = [
     "WEDGE_TOLERANCE",
     "contour_half_widths",
     "submerged_areas",
+    "submerged_parts",
 ]
 
 #: How the wetted half-width of a section is found, by name.
@@ -115,6 +117,55 @@ def submerged_areas(polygons: Sequence[Sequence[np.ndarray]], stations: np.ndarr
     return out
 
 
+def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
+    """Each wetted entry's area below the water and its part's whole area, m^2.
+
+    A part is an outer contour of the station (a float of a catamaran); an entry belongs to
+    the part whose width holds its keel and whose bottom is at its keel's depth. The pieces
+    of one part (twin keels joined above the water) share its areas by their widths at the
+    waterline. Holes are not subtracted.
+
+    Returns
+    -------
+    below : (n,) float
+        The entry's share of its part's area below ``z = 0``.
+    whole : (n,) float
+        The entry's share of its part's whole area.
+    """
+    n = len(sections)
+    below, whole = np.zeros(n), np.zeros(n)
+    width = np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64)
+    station = np.asarray(sections.station)
+    for st in np.unique(station):
+        idx = np.flatnonzero(station == st)
+        parts = []
+        for c in sections.polygons[int(st)]:
+            c = np.asarray(c, dtype=np.float64)
+            if len(c) < 3:
+                continue
+            y, z = c[:, 0], c[:, 1]
+            full = 0.5 * float(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1)))
+            if full > 0:  # an outer contour
+                parts.append((float(y.min()), float(y.max()), float(z.min()), c, full))
+        owner = np.full(len(idx), -1)
+        for j, i in enumerate(idx):
+            yk, zk = float(sections.y_keel[i]), -float(sections.penetration[i])
+            best = None
+            for k, (y0, y1, z0, _, _) in enumerate(parts):
+                if y0 <= yk <= y1 and (best is None or abs(z0 - zk) < best[0]):
+                    best = (abs(z0 - zk), k)
+            owner[j] = -1 if best is None else best[1]
+        for k, (_, _, _, c, full) in enumerate(parts):
+            mine = idx[owner == k]
+            if not len(mine):
+                continue
+            total = width[mine].sum()
+            share = width[mine] / total if total > 0 else np.full(len(mine), 1.0 / len(mine))
+            below[mine] = max(_clipped_area(c), 0.0) * share
+            whole[mine] = full * share
+    return below, whole
+
+
 def _clipped_area(c: np.ndarray) -> float:
     """Signed area of one closed contour clipped to ``z <= 0`` (Sutherland-Hodgman)."""
     if len(c) < 3:
@@ -179,37 +230,44 @@ def contour_half_widths(
         if edges is None:
             edges = by_station[st] = _edges(sections.polygons[st])
         yk = float(sections.y_keel[i])
-        y = yk + np.concatenate([reach[0, i] * unit, -reach[1, i] * unit])
+        # a slice at an end of the wetted part may carry its neighbour's section made
+        # similar to its own depth (the fixed slicing): its contour is that section scaled
+        # by the depth ratio about the waterline above the keel
+        lowest = float(_lowest(edges, np.array([yk]))[0])
+        ratio = p[i] / -lowest if lowest < 0 and p[i] > 0 else 1.0
+        y = yk + np.concatenate([reach[0, i] * unit, -reach[1, i] * unit]) / ratio
         # only the edges below the keel's height plus the reach, over the sampled width
-        lo_y, hi_y = yk - reach[1, i], yk + reach[0, i]
-        z_top = -p[i] + 4.0 * max(reach[0, i], reach[1, i])
+        lo_y, hi_y = yk - reach[1, i] / ratio, yk + reach[0, i] / ratio
+        z_top = lowest + 4.0 * max(reach[0, i], reach[1, i]) / ratio
         near = (
             (np.maximum(edges[:, 0], edges[:, 2]) >= lo_y)
             & (np.minimum(edges[:, 0], edges[:, 2]) <= hi_y)
             & (np.minimum(edges[:, 1], edges[:, 3]) <= z_top)
         )
-        heights[:, i, :] = (_lowest(edges[near], y) + p[i]).reshape(2, SAMPLES)
+        heights[:, i, :] = (ratio * (_lowest(edges[near], y) - lowest)).reshape(2, SAMPLES)
     ds = reach / (SAMPLES - 1)  # (2, n)
+    gamma = 0.5 * np.pi if law == "wagner" else 1.0
     with np.errstate(invalid="ignore", divide="ignore"):
+        # a wedge: a straight side from the keel out to where the wetted width can reach
         half = _interp(heights, ds, 0.5 * calm)
-        wedge = np.all(np.abs(half / p - 0.5) <= 0.5 * WEDGE_TOLERANCE, axis=0)
+        far = _interp(heights, ds, np.minimum(gamma * calm, reach))
+        straight = (np.abs(half / p - 0.5) <= 0.5 * WEDGE_TOLERANCE) & (
+            np.abs(far / (p * np.minimum(gamma, reach / np.maximum(calm, 1e-300))) - 1.0)
+            <= WEDGE_TOLERANCE
+        )
+        wedge = np.all(straight, axis=0)
         wedge |= np.any(calm <= 0, axis=0) | (p <= 0)
+    near = heights[:, :, : max(2, SAMPLES // 10)]
+    flat = np.any(np.all(np.abs(near) <= 1e-9 * p[None, :, None] + 1e-12, axis=2), axis=0)
+    if method == "contour" and flat.any():
+        i = int(np.flatnonzero(flat)[0])
+        raise InputError(
+            f"the section at x = {float(sections.x[i]):.6g} m has no keel (its bottom is "
+            "flat at its lowest point): the contour method needs one; use "
+            "section_method=auto or wedge"
+        )
     used = ~wedge if method == "auto" else np.ones(n, dtype=bool)
-    used &= np.all(calm > 0, axis=0) & (p > 0)
-    # an entry whose contour is not at its keel (a slice at an end of the wetted part that
-    # borrows its neighbour's section, scaled to its own depth) keeps the equivalent wedge
-    at_keel = np.all(np.abs(heights[:, :, 0]) <= 1e-3 * p + 1e-12, axis=0)
-    used &= at_keel
-    if method == "contour":
-        near = heights[:, :, : max(2, SAMPLES // 10)]
-        flat = np.any(np.all(np.abs(near) <= 1e-9 * p[None, :, None] + 1e-12, axis=2), axis=0)
-        if flat.any():
-            i = int(np.flatnonzero(flat)[0])
-            raise InputError(
-                f"the section at x = {float(sections.x[i]):.6g} m has no keel (its bottom is "
-                "flat at its lowest point): the contour method needs one; use "
-                "section_method=auto or wedge"
-            )
+    used &= np.all(calm > 0, axis=0) & (p > 0) & ~flat  # a flat bottom: the equivalent wedge
     c_out = np.full((2, n), np.nan)
     dc_out = np.full((2, n), np.nan)
     if used.any():

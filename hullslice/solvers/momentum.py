@@ -395,7 +395,9 @@ class MomentumSolver(MomentumFormSolver):
         c_raw, dc_raw, contour = self._half_widths(sections, gam)
         c_sides, dc_sides = [], []
         for c, dc in zip(c_raw, dc_raw, strict=True):
-            past = ~(c <= chine)  # NaN: the contour's spray root past the side's extent
+            # NaN: the contour's spray root past the side's extent; and once the calm water
+            # is at the section's widest point, the wetted width stays there
+            past = ~(c <= chine) | sections.chine_wetted
             c_sides.append(np.where(past, chine, c))
             dc_sides.append(np.where(past, 0.0, dc))
         width = c_sides[0] + c_sides[1]

@@ -16,7 +16,8 @@ each side:
   (``dc/dp = 0``: the added mass is frozen at its chine value) and a cross-flow drag takes
   over, ``C_D,c rho b v^2`` per metre (``b`` half the wetted width, on a section moving
   down). ``C_D,c = 1.0`` by default (Zarnick 1978; Keuning 1994 proposes 1.33).
-- **Buoyancy.** ``a_B rho g A`` per metre, ``A`` the section's area below the calm water,
+- **Buoyancy.** ``a_B rho g A`` per metre, ``A`` the area below the calm water of the
+  section's part that the entry is on (one float of a catamaran),
   with the empirical factor ``a_B = 0.5`` by default (Zarnick 1978, at planing speeds;
   ``a_B = 1`` is the full hydrostatic force of a body at rest).
 - **Transom.** Behind the transom there is no section, so no force: the momentum leaves
@@ -38,7 +39,7 @@ import numpy as np
 
 from hullslice import AddedMass, InputError, MomentumSolver
 from hullslice.solvers import join_reasons
-from hullslice.solvers.contour import submerged_areas
+from hullslice.solvers.contour import submerged_parts
 
 __all__ = ["Zarnick"]
 __version__ = "0.1.0"
@@ -101,9 +102,9 @@ class Zarnick(MomentumSolver):
         drag = np.where(
             separated & (v < 0.0), self.settings["cross_flow_drag"] * fluid.rho * b * v * v, 0.0
         )
-        area = _submerged_share(sections)
+        area, whole = submerged_parts(sections)
         buoyancy = self.settings["buoyancy_factor"] * fluid.rho * fluid.g * area
-        under = area >= (1.0 - 1e-9) * sections.area
+        under = (whole > 0) & (area >= (1.0 - 1e-9) * whole)
         reason = join_reasons(
             n, [(under, "the whole section is under the water (not a planing bottom)")]
         )
@@ -124,15 +125,3 @@ class Zarnick(MomentumSolver):
                 "contour": t["contour"].astype(np.float64),
             },
         )
-
-
-def _submerged_share(sections) -> np.ndarray:
-    """Each entry's share of its station's area below the water, m^2: the station's area
-    split between its wetted pieces by their widths at the waterline."""
-    st = np.asarray(sections.station)
-    area = submerged_areas(sections.polygons, st)
-    width = np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64)
-    total = np.bincount(st, weights=width, minlength=int(st.max()) + 1 if len(st) else 0)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        share = np.where(total[st] > 0, width / total[st], 1.0)
-    return area * share
