@@ -1244,7 +1244,8 @@ CATALOGUE: tuple[Bad, ...] = (
         "kinematics-acceleration-disagrees",
         "a kinematics CSV whose acceleration column disagrees with its velocity",
         "error: kinematics acceleration disagrees with velocity: integrated from t = ... it "
-        "changes the velocity by ... m/s, the velocity column by ... m/s",
+        "changes the velocity by ... m/s, the velocity column by ... m/s (the same check for "
+        "the pitch rate, pitch acceleration and forward acceleration columns)",
         lambda t: [
             "simulate",
             wedge_file(t),

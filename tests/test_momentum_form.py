@@ -274,3 +274,27 @@ def test_the_command_line_needs_no_mass_for_a_given_acceleration(capsys):
     # without the acceleration the body is free in heave: its mass is a missing option
     assert main(argv[:5] + argv[7:]) == 2
     assert "give the body's mass" in capsys.readouterr().err
+
+
+def test_kinematics_rates_are_derived_or_checked():
+    # a pitch that changes without its rate: the rate is its derivative, so the force is
+    # that of the table with the rate given; a forward acceleration that contradicts the
+    # forward speed is refused
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    hull = hs.Hull.from_arrays(v, f)
+    t = np.linspace(0.0, 0.004, 9)
+    kin = {
+        "t": t,
+        "penetration": 0.005 + 2.0 * t,
+        "velocity": np.full_like(t, -2.0),
+        "pitch_deg": 4.0 + 100.0 * t,
+        "forward_speed": np.full_like(t, 5.0),
+    }
+    derived = hs.prescribed(hull, kin, solver="wagner", slices=8)
+    given = hs.prescribed(
+        hull, {**kin, "pitch_rate_deg_s": np.full_like(t, 100.0)}, solver="wagner", slices=8
+    )
+    np.testing.assert_allclose(derived.force, given.force, rtol=1e-9)
+    bad = {**kin, "forward_acceleration": np.full_like(t, 100.0)}
+    with pytest.raises(hs.CaseError, match="forward_acceleration disagrees with forward_speed"):
+        hs.prescribed(hull, bad, solver="wagner", slices=8)

@@ -4,15 +4,19 @@ A kinematics table has the columns ``t`` (s, increasing), ``penetration`` (m, th
 the lowest point, >= 0) and ``velocity`` (m/s, vertical velocity of the centre of gravity,
 negative down); optionally ``acceleration`` (m/s^2, positive up), ``pitch_deg`` (nose up),
 ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, ``forward_speed`` (m/s) and
-``forward_acceleration`` (m/s^2).
+``forward_acceleration`` (m/s^2). A pitch that changes without a ``pitch_rate_deg_s``
+column has its derivative as its rate.
 
 A momentum-form solver needs the body's accelerations. Where the table gives no
 ``acceleration`` it is the derivative of ``velocity`` in time, and likewise the pitch and
 forward accelerations of the pitch rate and forward speed: second-order central
 differences inside the table and second-order one-sided ones at its ends
-(``numpy.gradient(..., edge_order=2)``), so three rows at least. A given ``acceleration``
-must agree with ``velocity``: its trapezoidal integral from the first row may differ from
-the velocity's change by at most :data:`ACCELERATION_TOLERANCE` of the largest speed.
+(``numpy.gradient(..., edge_order=2)``), so three rows at least. A given rate must agree
+with its value (``acceleration`` with ``velocity``, ``pitch_rate_deg_s`` with
+``pitch_deg``, ``pitch_acceleration_deg_s2`` with ``pitch_rate_deg_s``,
+``forward_acceleration`` with ``forward_speed``): its trapezoidal integral from the first
+row may differ from the value's change by at most :data:`ACCELERATION_TOLERANCE` of the
+value's largest size.
 """
 
 from __future__ import annotations
@@ -84,8 +88,14 @@ def check_kinematics(
             f"kinematics time goes backwards or repeats at row {i + 2} "
             f"(t = {out['t'][i]:g} s, then {out['t'][i + 1]:g} s): sort the table by time"
         )
-    if "acceleration" in given and n >= 2:
-        _check_acceleration(out["t"], out["velocity"], out["acceleration"])
+    if n >= 2:
+        t = out["t"]
+        if "pitch_rate_deg_s" not in given and np.any(out["pitch_deg"] != out["pitch_deg"][0]):
+            # a pitch that changes without its rate: the rate is its derivative
+            out["pitch_rate_deg_s"] = np.gradient(out["pitch_deg"], t, edge_order=min(2, n - 1))
+        for rate, value in RATES:
+            if rate in given and (value in given or value in KINEMATICS_COLUMNS):
+                _check_rate(t, out[value], out[rate], value, rate)
     p = out["penetration"]
     steep = np.flatnonzero(np.abs(out["pitch_deg"]) >= 80.0)
     if len(steep):
@@ -136,18 +146,31 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
     return {c: arr[:, i] for i, c in enumerate(names)}
 
 
-def _check_acceleration(t: np.ndarray, v: np.ndarray, a: np.ndarray) -> None:
-    integral = np.concatenate([[0.0], np.cumsum(0.5 * (a[1:] + a[:-1]) * np.diff(t))])
-    miss = np.abs(integral - (v - v[0]))
-    scale = float(np.abs(v).max())
+#: Columns that are the time derivatives of others, with their units: ``(rate, value)``.
+RATES = (
+    ("acceleration", "velocity"),
+    ("pitch_rate_deg_s", "pitch_deg"),
+    ("pitch_acceleration_deg_s2", "pitch_rate_deg_s"),
+    ("forward_acceleration", "forward_speed"),
+)
+
+
+def _check_rate(t: np.ndarray, x: np.ndarray, rate: np.ndarray, value: str, name: str) -> None:
+    """A given rate must agree with its value: integrated in time (trapezoids) it changes the
+    value as the table does, within :data:`ACCELERATION_TOLERANCE` of the value's largest
+    size."""
+    integral = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])
+    miss = np.abs(integral - (x - x[0]))
+    scale = float(np.abs(x).max())
     worst = int(np.argmax(miss))
+    unit = {"velocity": "m/s", "pitch_deg": "deg", "pitch_rate_deg_s": "deg/s"}.get(value, "m/s")
     if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
         raise CaseError(
-            f"kinematics acceleration disagrees with velocity: integrated from t = {t[0]:g} s "
-            f"to t = {t[worst]:g} s it changes the velocity by {integral[worst]:.6g} m/s, the "
-            f"velocity column by {v[worst] - v[0]:.6g} m/s (more than "
-            f"{100 * ACCELERATION_TOLERANCE:g} % of the largest speed, {scale:.6g} m/s); fix the "
-            "acceleration column (m/s^2, positive up) or leave it out to derive it"
+            f"kinematics {name} disagrees with {value}: integrated from t = {t[0]:g} s to "
+            f"t = {t[worst]:g} s it changes the {value} by {integral[worst]:.6g} {unit}, the "
+            f"{value} column by {x[worst] - x[0]:.6g} {unit} (more than "
+            f"{100 * ACCELERATION_TOLERANCE:g} % of its largest size, {scale:.6g} {unit}); fix "
+            f"the {name} column or leave it out to derive it"
         )
 
 
