@@ -92,7 +92,10 @@ def check_kinematics(
         t = out["t"]
         if "pitch_rate_deg_s" not in given and np.any(out["pitch_deg"] != out["pitch_deg"][0]):
             # a pitch that changes without its rate: the rate is its derivative
-            out["pitch_rate_deg_s"] = np.gradient(out["pitch_deg"], t, edge_order=min(2, n - 1))
+            pitch = out["pitch_deg"]
+            out["pitch_rate_deg_s"] = (
+                np.gradient(pitch, t, edge_order=2) if n > 2 else np.gradient(pitch, t)
+            )
         for rate, value in RATES:
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
