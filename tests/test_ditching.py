@@ -55,9 +55,9 @@ def test_model_scale_is_froude_similar(fuselage):
 
 @pytest.mark.slow
 def test_zarnick_ditching_with_free_pitch_converges(fuselage):
-    # the README's ditching with the strip theory and free pitch, to 0.16 s: measured 1.2 %
-    # from 64 to 128 slices and 0.006 % from a 4 ms to a 2 ms step on the force at its end,
-    # 0.002 deg on the pitch
+    # the README's ditching with the strip theory and free pitch, to 0.16 s: measured 1.7 %
+    # from 64 to 128 slices and 0.008 % from a 4 ms to a 2 ms step on the force at its end,
+    # 0.0007 deg on the pitch
     def run(slices, dt):
         return hs.simulate(
             fuselage, -1.5, 0.16, dt=dt, pitch=np.radians(8.0), forward_speed=60.0,
@@ -66,6 +66,6 @@ def test_zarnick_ditching_with_free_pitch_converges(fuselage):
 
     coarse, fine_slices, fine_dt = run(64, 0.004), run(128, 0.004), run(64, 0.002)
     assert coarse.stop_reason == "t_end" and coarse.max_flagged_share == 0.0
-    assert fine_slices.force[-1] == pytest.approx(coarse.force[-1], rel=0.02)
-    assert fine_dt.force[-1] == pytest.approx(coarse.force[-1], rel=0.02)
+    assert fine_slices.force[-1] == pytest.approx(coarse.force[-1], rel=0.03)
+    assert fine_dt.force[-1] == pytest.approx(coarse.force[-1], rel=0.01)
     assert fine_slices.pitch[-1] == pytest.approx(coarse.pitch[-1], abs=np.radians(0.02))
