@@ -139,8 +139,14 @@ class ForceResult:
 
     @property
     def force_x(self) -> np.ndarray:
-        """(n,) float: horizontal force on each slice in N, positive forward."""
-        return -self.force * self.sections.keel_slope
+        """(n,) float: horizontal force on each slice in N, positive forward: the force
+        normal to the keel line has a horizontal part, a vertical (hydrostatic) force of a
+        momentum-form solver has none."""
+        normal = self.force
+        vertical = self.loads.diagnostics.get("vertical_force")
+        if vertical is not None:
+            normal = normal - np.nan_to_num(vertical) * self.sections.dx
+        return -normal * self.sections.keel_slope
 
     @property
     def total(self) -> float:
@@ -303,6 +309,7 @@ _FILL = {
     "added_mass": (0.0, np.float64),
     "rate": (0.0, np.float64),
     "extra": (0.0, np.float64),
+    "vertical": (0.0, np.float64),
     "valid": (True, bool),
     "reason": ("", object),
 }
@@ -402,7 +409,7 @@ def evaluate_added_mass(
         v_sub = velocity if every else velocity[wet]
         out = _call(solver, solver.added_mass, sub, v_sub, fluid)
         _check_added_mass(solver, out, sub)
-    names = ("added_mass", "rate", "extra", "valid", "reason")
+    names = ("added_mass", "rate", "extra", "vertical", "valid", "reason")
     arrays, diagnostics = _spread(out, names, wet, every)
     m_a, rate, extra = arrays["added_mass"], arrays["rate"], arrays["extra"]
     valid, reason = arrays["valid"], arrays["reason"]
@@ -413,7 +420,7 @@ def evaluate_added_mass(
     if contour is not None:  # read from its own contour: not limited by a wedge's deadrise
         flat = flat & ~(contour > 0)
     _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
-    return AddedMass(m_a, rate, valid, reason, extra, diagnostics)
+    return AddedMass(m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"])
 
 
 def _check_loads(solver: SolverBase, loads: object, sections: Sections, velocity) -> None:
@@ -439,7 +446,7 @@ def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> No
     if not isinstance(out, AddedMass):
         problem = f"{type(out).__name__}, not hullslice.AddedMass"
     else:
-        for name in ("added_mass", "rate", "extra", "valid", "reason"):
+        for name in ("added_mass", "rate", "extra", "vertical", "valid", "reason"):
             shape = getattr(out, name).shape
             if shape != (n,):
                 problem = f"{name} of shape {shape} for {n} sections"
@@ -452,7 +459,7 @@ def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> No
         if not problem and out.valid.dtype != bool:
             problem = f"valid of type {out.valid.dtype}, not a boolean array"
         if not problem:
-            for name in ("added_mass", "rate", "extra"):
+            for name in ("added_mass", "rate", "extra", "vertical"):
                 bad = ~np.isfinite(getattr(out, name))
                 if bad.any():
                     i = int(np.flatnonzero(bad)[0])
@@ -567,8 +574,15 @@ class MomentumTerms:
 
     @property
     def generalized(self) -> np.ndarray:
-        """(3,) generalised forces ``sum J f0 dx`` (N, N m, N) with no body acceleration."""
-        return self.jac.T @ (self.f0 * self.sections.dx)
+        """(3,) generalised forces (N, N m, N) with no body acceleration: ``sum J f0 dx``
+        for the force normal to the keel line, and the vertical force's own heave force
+        and moment ``(X - X_g)`` (no surge)."""
+        s = self.sections
+        vertical = cast(np.ndarray, self.added.vertical) * s.dx
+        q = self.jac.T @ (self.f0 * s.dx - vertical)
+        q[0] += vertical.sum()
+        q[1] += (self.jac[:, 1] - (s.keel_z - s.z_cg) * s.keel_slope) @ vertical
+        return q
 
     def result(
         self,
@@ -588,6 +602,7 @@ class MomentumTerms:
             "added_mass": m_a,
             "added_mass_rate": self.added.rate,
             "extra_force": cast(np.ndarray, self.added.extra),
+            "vertical_force": cast(np.ndarray, self.added.vertical),
         }
         loads = SectionLoads(force, self.added.valid, self.added.reason, diagnostics)
         s = self.sections
@@ -606,7 +621,7 @@ def momentum_terms(
     added = evaluate_added_mass(solver, sections, velocity, fluid)
     jac, bias = section_kinematics(sections, motion, x_cg, velocity)
     flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
-    f0 = flux - added.added_mass * bias + added.extra
+    f0 = flux - added.added_mass * bias + added.extra + added.vertical
     return MomentumTerms(sections, velocity, added, jac, bias, f0)
 
 

@@ -251,3 +251,19 @@ def test_fixed_slicing_has_no_spike_where_a_slice_starts_to_wet():
     ]  # fmt: skip
     assert max(abs(f) for f in forces) < 1000.0
     assert abs(forces[1] - forces[0]) < 0.5 * max(abs(forces[0]), abs(forces[1]))
+
+
+def test_buoyancy_is_vertical_on_a_pitched_body():
+    # a box at rest, pitched 3 deg and half sunk, a_B = 1: Archimedes' force is vertical,
+    # whatever the slope of the keel line, so no horizontal force
+    import trimesh
+
+    box = trimesh.creation.box(extents=(2.0, 0.4, 0.3))
+    hull = hs.Hull.from_arrays(box.vertices, box.faces, mass=40.0)
+    solver = hs.get_solver("zarnick", buoyancy_factor=1.0)
+    r = hs.compute_force(
+        hull, hs.Pose(0.1, math.radians(3.0)), hs.Motion(0.0, 0.0), slices=64,
+        solver=solver, acceleration=0.0,
+    )  # fmt: skip
+    assert r.total_x == 0.0
+    assert r.total > 0

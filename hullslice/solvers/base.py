@@ -197,14 +197,18 @@ class AddedMass:
         Its rate with the penetration, ``dm_a/dp``, kg/m^2. Zero once the flow has
         separated (the spray root past the chine).
     extra : (n,) float
-        Force per metre that does not depend on an acceleration (cross-flow drag,
-        buoyancy), N/m, positive up. Zeros by default.
+        Force per metre normal to the keel line that does not depend on an acceleration
+        (a cross-flow drag), N/m, positive up. Zeros by default.
     valid : (n,) bool
         True where the section is inside the solver's range of validity.
     reason : (n,) str
         Why a section is not valid (``""`` where it is).
     diagnostics : mapping of str to (n,) float
         Named intermediate arrays, for reports and checks.
+    vertical : (n,) float
+        Vertical force per metre that does not depend on an acceleration (a hydrostatic
+        force: buoyancy), N/m, positive up; unlike ``extra`` it has no horizontal part
+        along a sloping keel. Zeros by default.
     """
 
     added_mass: np.ndarray
@@ -213,16 +217,18 @@ class AddedMass:
     reason: np.ndarray
     extra: np.ndarray | None = None
     diagnostics: Mapping[str, np.ndarray] = field(default_factory=dict)
+    vertical: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # frozen: set once here, read-only arrays
-        if fields["extra"] is None:
-            fields["extra"] = np.zeros(np.shape(fields["added_mass"]))
+        for name in ("extra", "vertical"):
+            if fields[name] is None:
+                fields[name] = np.zeros(np.shape(fields["added_mass"]))
         fields["valid"] = np.asarray(fields["valid"])  # kept as given: checked by hullslice
         _freeze(
             fields,
             (("added_mass", np.float64), ("rate", np.float64), ("extra", np.float64),
-             ("valid", None), ("reason", object)),
+             ("vertical", np.float64), ("valid", None), ("reason", object)),
         )  # fmt: skip
 
     def __len__(self) -> int:

@@ -113,7 +113,8 @@ class Zarnick(MomentumSolver):
             rate=t["rate"],
             valid=reason == "",
             reason=reason,
-            extra=drag + buoyancy,
+            extra=drag,
+            vertical=buoyancy,  # hydrostatic: vertical, whatever the keel's slope
             diagnostics={
                 "gamma": t["gamma"],
                 "wetted_half_width": b,
