@@ -48,13 +48,22 @@ class Prepared:
     kept: tuple[int, ...] = ()
 
 
+#: Largest ``scale`` factor and ``length`` (m) taken: beyond, the coordinates would lose
+#: their precision or overflow.
+MAX_SIZE = 1e12
+
+
 def _positive(value, what: str, fix: str) -> float:
+    if isinstance(value, bool):
+        raise InputError(f"{what} {value!r} is not a number: {fix}")
     try:
         x = float(value)
     except (TypeError, ValueError):
         raise InputError(f"{what} {value!r} is not a number: {fix}") from None
     if not math.isfinite(x) or x <= 0.0:
         raise InputError(f"{what} {value!r} is not a positive number: {fix}")
+    if not 1.0 / MAX_SIZE <= x <= MAX_SIZE:
+        raise InputError(f"{what} {value!r} is outside {1 / MAX_SIZE:g} to {MAX_SIZE:g}: {fix}")
     return x
 
 

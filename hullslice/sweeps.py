@@ -25,7 +25,6 @@ options, the base case, the grid, the date).
 
 from __future__ import annotations
 
-import csv
 import datetime
 import difflib
 import hashlib
@@ -46,15 +45,24 @@ import numpy as np
 
 from .case import COMMAND_KEYS, MAX_CASE_BYTES, SCHEMA, case_command, validate_case
 from .errors import CaseError, HullsliceError, InputError
+from .paths import printable
 from .plots import MissingDependencyError
 
 __all__ = ["RESULTS", "SWEEP_KEYS", "Plan", "load_sweep", "make_plan", "sweep"]
+
+#: Keys that shape the mesh: one mesh per sweep, so a sweep does not vary them.
+MESH_KEYS = ("scale", "length")
+#: Keys of a case that a sweep does not take: it writes one dataset (``-o``), not a file
+#: per case.
+OUTPUT_KEYS = ("output", "plot", "format")
 
 #: Keys a sweep can vary: the number keys of a ``simulate`` case, and the slice count.
 SWEEP_KEYS: tuple[str, ...] = tuple(
     name
     for name, key in SCHEMA.items()
-    if name in COMMAND_KEYS["simulate"] and (key.kind == "number" or name == "slices")
+    if name in COMMAND_KEYS["simulate"]
+    and (key.kind == "number" or name == "slices")
+    and name not in MESH_KEYS
 )
 
 #: Per-case results: name -> (units, long name). Besides these, every history column ``c``
@@ -170,36 +178,36 @@ def _sweep_key(key: Any, where: str) -> str:
 
 
 def _read_table(path: Path, where: str) -> dict[str, list]:
-    """The columns of a cases table (CSV, header of case keys, one case per row)."""
-    name = str(path)
-    if not path.is_file():
-        raise CaseError(f"{where}[sweep] cases file {name!r} does not exist: give a CSV file")
-    if path.stat().st_size > 64 * MAX_CASE_BYTES:
-        raise CaseError(f"{where}[sweep] cases file {name!r} is larger than 64 MiB")
+    """The columns of a cases table (CSV, header of case keys, one case per row), read as
+    every table hullslice reads (:func:`hullslice.tables.read_csv`: UTF-8 or UTF-16, true
+    line numbers, no content of a file that is not a table quoted)."""
+    from .tables import header_text, read_csv
+
+    name = printable(path)
     try:
-        text = path.read_bytes().decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise CaseError(
-            f"{where}[sweep] cases file {name!r} is not UTF-8 text (byte {exc.start})"
-        ) from None
-    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
-    rows = list(csv.reader(lines))
-    if len(rows) < 2:
+        header, rows = read_csv(path, f"{where}[sweep] cases")
+    except CaseError as exc:
+        raise CaseError(str(exc)) from None
+    if not rows:
         raise CaseError(
             f"{where}[sweep] cases file {name!r} has no rows: give a header of case keys and "
             "one case per row"
         )
-    header = [h.strip() for h in rows[0]]
+    if header_text(header) != f"its header: {', '.join(header)}":
+        raise CaseError(
+            f"{where}[sweep] cases file {name!r}: {header_text(header)}; give a header of "
+            "case keys and one case per row"
+        )
     for h in header:
         if h not in SWEEP_KEYS:
             _sweep_key(h, f"{where}[sweep] cases file {name!r}: column {h!r}: ")
     if len(set(header)) != len(header):
         raise CaseError(f"{where}[sweep] cases file {name!r} repeats a column: {header!r}")
     columns: dict[str, list] = {h: [] for h in header}
-    for lineno, row in enumerate(rows[1:], start=2):
+    for lineno, row in rows:
         if len(row) != len(header):
             raise CaseError(
-                f"{where}[sweep] cases file {name!r} row {lineno} has {len(row)} values for "
+                f"{where}[sweep] cases file {name!r} line {lineno} has {len(row)} values for "
                 f"{len(header)} columns"
             )
         for h, cell in zip(header, row, strict=True):
@@ -211,8 +219,8 @@ def _read_table(path: Path, where: str) -> dict[str, list]:
             if not math.isfinite(value) or (whole and value != round(value)):
                 what = "a whole number" if whole else "a finite number"
                 raise CaseError(
-                    f"{where}[sweep] cases file {name!r} row {lineno} column {h!r}: "
-                    f"{cell.strip()!r} is not {what}"
+                    f"{where}[sweep] cases file {name!r} line {lineno} column {h!r}: "
+                    f"{printable(cell.strip())!r} is not {what}"
                 )
             columns[h].append(int(value) if whole else value)
     return columns
@@ -249,6 +257,12 @@ def make_plan(
         message names the case).
     """
     where = f"case file {source!r}: " if source else "case: "
+    given = [k for k in OUTPUT_KEYS if k in case]
+    if given:
+        raise CaseError(
+            f"{where}a sweep writes one dataset, given by -o OUT (.nc, .zarr or .parquet); "
+            f"leave out the key {given[0]!r}"
+        )
     checked = validate_case(_raw(case), base=base, source=source)
     command = case_command(checked)
     if command != "simulate":
@@ -727,7 +741,10 @@ def sweep(
     ):
         raise InputError(f"workers {workers!r} is not a positive whole number: give 1 or more")
     mesh_path = Path(base["mesh"])
-    hull = load_hull(mesh_path, units=base["units"], forward=base["forward"], up=base["up"])
+    shaping = {k: base[k] for k in ("scale", "length", "repair", "keep", "keep_box") if k in base}
+    hull = load_hull(
+        mesh_path, units=base["units"], forward=base["forward"], up=base["up"], **shaping
+    )
     inputs: dict[str, Any] = {}
     if "mass_distribution" in base:
         inputs["mass_distribution"] = read_mass_distribution(base["mass_distribution"])
@@ -775,7 +792,7 @@ def sweep(
                 for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep_histories):
                     finish(index, record)
         elif todo:
-            token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}"
+            token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}:{shaping!r}"
             _run_on_dask(plan, hull, inputs, todo, keep_histories, dask_client, finish, token)
     finally:
         if owned and dask_client is not None:

@@ -76,8 +76,8 @@ def test_a_bad_sweep_table_is_refused_by_name(grid, message, tmp_path, capsys):
     [
         ("pich,mass\n4.0,10.0\n", "column 'pich': [sweep] unknown key 'pich'; did you mean"),
         ("mesh,mass\nx.stl,10.0\n", "column 'mesh': [sweep] key 'mesh' is not a number key"),
-        ("pitch,mass\n4.0,heavy\n", "row 2 column 'mass': 'heavy' is not a finite number"),
-        ("pitch,mass\n4.0\n", "row 2 has 1 values for 2 columns"),
+        ("pitch,mass\n4.0,heavy\n", "line 2 column 'mass': 'heavy' is not a finite number"),
+        ("pitch,mass\n4.0\n", "line 2 has 1 values for 2 columns"),
         ("pitch,mass\n", "has no rows: give a header of case keys and one case per row"),
     ],
 )  # fmt: skip
@@ -181,3 +181,30 @@ def test_the_progress_line_counts_cases_failures_and_time_left(capsys, monkeypat
     # 2 cases in 4 s, 6 to go: 12 s left
     assert "\rsweep: 4/10 cases done, 1 failed, 0:00:12 left" in err
     assert "\rsweep: 2/10 cases done, 0 failed   " in err
+
+
+def test_a_sweep_applies_the_mesh_options_and_protects_its_inputs(tmp_path, capsys):
+    # the base case's scale reaches the sweep's hull (a sweep equals single runs of its
+    # cases); -o onto the cases table is refused; a non-header first line is not quoted
+    import shutil
+
+    import hullslice as hs
+
+    shutil.copy(WEDGE, tmp_path / "wedge.stl")
+    (tmp_path / "doe.nc").write_text("velocity\n-1.0\n-2.0\n")  # a CSV, oddly named
+    case = tmp_path / "case.toml"
+    case.write_text(
+        'mesh = "wedge.stl"\nmass = 10.0\nvelocity = -2.0\nt_end = 0.004\ndt = 0.001\n'
+        'continue_invalid = true\nscale = 2.0\n\n[sweep]\ncases = "doe.nc"\n'
+    )
+    ds = hs.sweep(case, workers=1)
+    hull = hs.load_hull(tmp_path / "wedge.stl", mass=10.0, scale=2.0)
+    ref = hs.simulate(hull, -1.0, 0.004, dt=0.001, stop_on=())
+    assert ds["peak_force"].values[0] == ref.peak["force"]
+    refused(
+        capsys, tmp_path, ["sweep", str(case), "--workers", "1", "-o", str(tmp_path / "doe.nc")],
+        "it is the input cases table file",
+    )  # fmt: skip
+    (tmp_path / "doe.nc").write_text("SECRET=abc,zz\n1,2\n")
+    message = refused(capsys, tmp_path, ["sweep", str(case), "--workers", "1"], "not a header")
+    assert "SECRET" not in message

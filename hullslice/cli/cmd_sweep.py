@@ -8,6 +8,7 @@ import time
 from pathlib import Path
 
 from ..errors import InputError
+from ..paths import check_not_an_input
 from .common import check_path
 
 #: Shown by a terminal table of cases: result, heading, unit, format.
@@ -113,6 +114,22 @@ def _duration(seconds: float) -> str:
     return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
 
 
+def _inputs(case: str, plan) -> list[tuple[str, Path]]:
+    """The files a sweep reads: its case file, the mesh, the cases table, the kinematics
+    and mass distribution, and every solver option that names a file."""
+    found = [("case", Path(case)), ("mesh", Path(plan.base["mesh"]))]
+    for key, what in (("kinematics", "kinematics"), ("mass_distribution", "mass distribution")):
+        if key in plan.base:
+            found.append((what, Path(plan.base[key])))
+    table = plan.grid.get("cases")
+    if isinstance(table, str):
+        found.append(("cases table", Path(case).parent / table))
+    for key, value in plan.base.get("solver_options", {}).items():
+        if isinstance(value, str) and Path(value).is_file():
+            found.append((f"solver option {key}", Path(value)))
+    return found
+
+
 def run(args: argparse.Namespace) -> int:
     from .. import sweeps
     from ..xarray_io import output_format, write_dataset
@@ -141,6 +158,8 @@ def run(args: argparse.Namespace) -> int:
     elif args.resume:
         raise InputError("--resume continues the sweep written to -o PATH: give -o PATH")
     plan = sweeps.load_sweep(args.case)
+    if args.output:
+        check_not_an_input(args.output, _inputs(args.case, plan), "--output")
     progress = Progress() if sys.stderr.isatty() else None
     try:
         ds = sweeps.sweep(
