@@ -208,3 +208,14 @@ def test_a_sweep_applies_the_mesh_options_and_protects_its_inputs(tmp_path, caps
     (tmp_path / "doe.nc").write_text("SECRET=abc,zz\n1,2\n")
     message = refused(capsys, tmp_path, ["sweep", str(case), "--workers", "1"], "not a header")
     assert "SECRET" not in message
+
+
+def test_a_sweep_whose_every_case_fails_exits_with_the_bad_input_status(tmp_path, capsys):
+    case = tmp_path / "case.toml"
+    case.write_text(
+        f'mesh = "{WEDGE.as_posix()}"\nmass = 10.0\nvelocity = -2.0\nt_end = 0.004\n'
+        "dt = 0.001\n\n[sweep]\ndraft = [1.0, 2.0]\n"
+    )
+    assert main(["sweep", str(case), "--workers", "1"]) == 3
+    err = capsys.readouterr().err
+    assert "deeper than the body's height" in err and "every case of the sweep failed" in err

@@ -193,6 +193,11 @@ def run(args: argparse.Namespace) -> int:
         )
     else:
         sys.stdout.write(_table(plan, ds) + "\n")
+    if failures and len(failures) == len(plan.cases):
+        # every case failed: the results are written (each with its error), and the exit
+        # status says the inputs were refused (3), as for a single run
+        print("hullslice: every case of the sweep failed", file=sys.stderr)
+        return 3
     return 0
 
 
