@@ -9,7 +9,7 @@ from pathlib import Path
 
 from ..errors import InputError
 from ..paths import check_not_an_input
-from .common import check_path
+from .common import check_path, positive_int
 
 #: Shown by a terminal table of cases: result, heading, unit, format.
 TABLE = (
@@ -54,7 +54,7 @@ def add_parser(sub) -> None:
     )
     where.add_argument(
         "--workers",
-        type=_workers,
+        type=positive_int,
         metavar="N",
         help="worker processes of the local cluster (default: one per core); 1 runs in this "
         "process, without a cluster",
@@ -70,16 +70,6 @@ def add_parser(sub) -> None:
         help="also keep every case's time history along a dimension t (s) (netCDF or Zarr)",
     )
     p.set_defaults(func=run)
-
-
-def _workers(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"{text!r} is not a whole number") from None
-    if n < 1:
-        raise argparse.ArgumentTypeError(f"{text!r} is not positive (give 1 or more)")
-    return n
 
 
 class Progress:
