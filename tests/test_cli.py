@@ -150,3 +150,19 @@ def test_output_file_is_written_whole(capsys, tmp_path):
 def test_version(capsys):
     code, out, _ = run(capsys, "--version")
     assert code == 0 and out.startswith("hullslice ")
+
+
+def test_messages_suggest_what_was_meant(capsys):
+    # a misspelt solver (any case) or option gets the closest name; slice counts given
+    # without commas get the hint
+    prism = str(MESHES / "paper_prism.stl")
+    state = [prism, "--mass", "1", "--draft", "0.03", "--velocity=-3"]
+    for extra, hint in (
+        (["--solver", "Wagnr"], "did you mean 'wagner'?"),
+        (["--solver", "WAGNER"], "did you mean 'wagner'?"),
+        (["--solver", "wagner", "--solver-option", "pileup=wagner"], "did you mean 'pile_up'?"),
+        (["--slices", "16", "32", "64"], "several slice counts take commas: --slices 16,32,64"),
+    ):
+        assert main(["force", *state, *extra]) in (2, 3)
+        err = capsys.readouterr().err
+        assert hint in err and len(err.strip().splitlines()) == 1, err

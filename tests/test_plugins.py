@@ -603,7 +603,7 @@ def test_simulate_records_the_solver_options(capsys):
         (["--solver-option", "=3"], "is not KEY=VALUE", 2),
         (
             ["--solver-option", "froude_mn=5"],
-            "has no option 'froude_mn'; its options: froude_min",
+            "has no option 'froude_mn'; did you mean 'froude_min'? its options: froude_min",
             3,
         ),
         (["--solver-option", "froude_min=5", "--solver-option", "froude_min=6"], "given twice", 2),

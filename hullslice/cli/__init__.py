@@ -59,6 +59,9 @@ class Parser(argparse.ArgumentParser):
     """An ArgumentParser whose errors are exceptions, so that main() prints one line."""
 
     def error(self, message: str):
+        extra = message.partition("unrecognized arguments:")[2].split()
+        if extra and all(t.lstrip("-").isdigit() for t in extra):
+            message += " (several slice counts take commas: --slices 16,32,64)"
         raise UsageError(f"{self.prog}: error: {message} (see {self.prog} --help)")
 
 

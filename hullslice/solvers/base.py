@@ -141,9 +141,10 @@ class SolverBase(abc.ABC):  # noqa: B024 (its two subclasses each add the abstra
         unknown = sorted(set(options) - set(self.options))
         if unknown:
             known = ", ".join(self.options) or "none"
+            close = did_you_mean(unknown[0], self.options)
             raise InputError(
                 f"solver {self.name!r} has no option {', '.join(map(repr, unknown))}; "
-                f"its options: {known}"
+                f"{close}its options: {known}"
             )
         check_options(  # no NaN, no threshold switched off
             self.name or type(self).__name__, self.options, options, frozenset(self.own_checks)
@@ -277,6 +278,22 @@ class MomentumFormSolver(SolverBase):
         AddedMass
             Arrays of the same length as ``sections``.
         """
+
+
+def did_you_mean(name: str, choices: Sequence[str] | Mapping[str, Any]) -> str:
+    """``"did you mean 'x'? "`` for the choice closest to ``name`` (case, ``-`` and ``_``
+    ignored), or ``""`` when none is close."""
+    import difflib
+
+    def norm(s: str) -> str:
+        return str(s).strip().lower().replace("-", "_")
+
+    by_norm = {norm(c): c for c in choices}
+    found = by_norm.get(norm(name))
+    if found is None:
+        close = difflib.get_close_matches(norm(name), list(by_norm), n=1, cutoff=0.7)
+        found = by_norm[close[0]] if close else None
+    return f"did you mean {found!r}? " if found is not None and found != name else ""
 
 
 def join_reasons(n: int, checks: Sequence[tuple[np.ndarray, str]]) -> np.ndarray:

@@ -28,7 +28,7 @@ from typing import Any, NoReturn
 
 from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
 from ..safety import failure
-from .base import SolverBase
+from .base import SolverBase, did_you_mean
 
 __all__ = [
     "DEFAULT_SOLVER",
@@ -264,8 +264,9 @@ def get_solver(solver: str | type[SolverBase] | SolverBase | None = None, **opti
         hint = ""
         if _plugins_disabled():
             hint = f" (plugins are off: {NO_PLUGINS_ENV} is set)"
+        close = did_you_mean(solver, reg.winners)
         raise UnknownSolverError(
-            f"no solver named {solver!r} is installed{hint}; installed solvers: {installed}"
+            f"no solver named {solver!r} is installed{hint}; {close}installed solvers: {installed}"
         )
     return _build(reg.load(solver), options, lambda: reg.distribution(solver))
 
