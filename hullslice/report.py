@@ -110,9 +110,18 @@ def _plain(value: Any) -> Any:
     return value
 
 
+#: Version of the layout of hullslice's JSON outputs: raised when a key changes meaning
+#: or goes away (new keys do not raise it).
+JSON_SCHEMA_VERSION = 1
+
+
 def json_text(data: Mapping[str, Any]) -> str:
-    """JSON with plain types; NaN and infinite numbers become ``null``."""
-    return json.dumps(_plain(data), indent=2, allow_nan=False) + "\n"
+    """JSON with plain types; NaN and infinite numbers become ``null``. Every document
+    starts with ``hullslice_version`` and ``schema_version`` (:data:`JSON_SCHEMA_VERSION`)."""
+    from . import __version__
+
+    head = {"hullslice_version": __version__, "schema_version": JSON_SCHEMA_VERSION}
+    return json.dumps(_plain({**head, **data}), indent=2, allow_nan=False) + "\n"
 
 
 def csv_text(columns: Sequence[str], rows: Sequence[Mapping[str, Any]]) -> str:

@@ -166,3 +166,13 @@ def test_messages_suggest_what_was_meant(capsys):
         assert main(["force", *state, *extra]) in (2, 3)
         err = capsys.readouterr().err
         assert hint in err and len(err.strip().splitlines()) == 1, err
+
+
+def test_json_outputs_carry_the_version_and_the_schema(capsys):
+    import json
+
+    import hullslice as hs
+
+    assert main(["solvers", "--format", "json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["hullslice_version"] == hs.__version__ and data["schema_version"] == 1
