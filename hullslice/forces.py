@@ -43,6 +43,12 @@ applied at its keel point, normal to the keel line) and the horizontal force ``-
 added-mass matrix of the body is then ``A = sum m_a J J^T dx``, symmetric and positive
 semi-definite, and the equations of motion read ``(M_body + A) q'' = Q0 + gravity`` with
 ``Q0 = sum J f0 dx``, ``f0 = m_a' v^2 [v < 0] - m_a b + extra`` (:class:`MomentumTerms`).
+A solver's ``vertical`` force (buoyancy) is vertical whatever the keel's slope: it adds
+``(1, X - X_g, 0) f_v dx`` instead.
+
+A momentum solver that reads an entry's wetted width from the section's own contour says
+so with the diagnostic ``contour`` (1): such an entry is not flagged for a deadrise below
+:data:`MIN_DEADRISE`, which limits the equivalent wedge only.
 """
 
 from __future__ import annotations

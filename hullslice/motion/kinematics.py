@@ -92,10 +92,7 @@ def check_kinematics(
         t = out["t"]
         if "pitch_rate_deg_s" not in given and np.any(out["pitch_deg"] != out["pitch_deg"][0]):
             # a pitch that changes without its rate: the rate is its derivative
-            pitch = out["pitch_deg"]
-            out["pitch_rate_deg_s"] = (
-                np.gradient(pitch, t, edge_order=2) if n > 2 else np.gradient(pitch, t)
-            )
+            out["pitch_rate_deg_s"] = _derivative(out["pitch_deg"], t)
         for rate, value in RATES:
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
@@ -149,6 +146,14 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
     return {c: arr[:, i] for i, c in enumerate(names)}
 
 
+def _derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Time derivative of a column: second-order differences inside the table and at its
+    ends (``numpy.gradient``); first-order with two rows."""
+    if len(t) > 2:
+        return np.gradient(values, t, edge_order=2)
+    return np.gradient(values, t)
+
+
 #: Columns that are the time derivatives of others, with their units: ``(rate, value)``.
 RATES = (
     ("acceleration", "velocity"),
@@ -190,10 +195,10 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
     """
     t = kin["t"]
     cols = {}
-    for acc, vel, scale in (
-        ("acceleration", "velocity", 1.0),
-        ("pitch_acceleration_deg_s2", "pitch_rate_deg_s", 1.0),
-        ("forward_acceleration", "forward_speed", 1.0),
+    for acc, vel in (
+        ("acceleration", "velocity"),
+        ("pitch_acceleration_deg_s2", "pitch_rate_deg_s"),
+        ("forward_acceleration", "forward_speed"),
     ):
         a = np.asarray(kin[acc], dtype=np.float64)
         if np.all(np.isfinite(a)):
@@ -208,7 +213,7 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
                 f"the kinematics table has {len(t)} row(s), too few to differentiate {vel} in "
                 f"time (three at least): give more rows or an {acc} column"
             )
-        cols[acc] = np.gradient(v, t, edge_order=2) * scale
+        cols[acc] = _derivative(v, t)
     pitch = np.radians(cols["pitch_acceleration_deg_s2"])
     return [
         Acceleration(float(a), float(q), float(u))
