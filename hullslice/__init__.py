@@ -12,8 +12,7 @@ solvers through plugins), and the 2D forces are summed along the body.
 All quantities are SI: m, kg, s, N; angles in rad inside the library.
 """
 
-from importlib.metadata import PackageNotFoundError, version
-
+from ._version import __version__
 from .case import load_case, validate_case
 from .constants import RHO_WATER, TOL, G
 from .convergence import Richardson, richardson
@@ -24,6 +23,7 @@ from .errors import (
     InputError,
     MeshError,
     MeshRepairWarning,
+    MissingDependencyError,
     OrientationWarning,
     PluginError,
     PluginWarning,
@@ -52,11 +52,6 @@ from .solvers import (
 from .state import Acceleration, Fluid, Motion, Pose
 from .sweeps import sweep
 
-try:
-    __version__ = version("hullslice")
-except PackageNotFoundError:  # running from a source tree that is not installed
-    __version__ = "0.0.0+unknown"
-
 __all__ = [
     "DEADRISE_ESTIMATORS",
     "RHO_WATER",
@@ -81,6 +76,7 @@ __all__ = [
     "MassDistribution",
     "MeshError",
     "MeshRepairWarning",
+    "MissingDependencyError",
     "MomentumFormSolver",
     "MomentumSolver",
     "Motion",

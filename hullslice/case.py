@@ -542,7 +542,7 @@ def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
     files; ``solver_options`` becomes a table at the end. An ``output`` or ``plot`` outside
     the folder is left out (a comment says so): a case file writes only inside its folder.
     """
-    from .report import write_atomic
+    from .atomic import write_atomic
 
     target = Path(path)
     folder = target.resolve().parent

@@ -15,6 +15,7 @@ __all__ = [
     "InputError",
     "MeshError",
     "MeshRepairWarning",
+    "MissingDependencyError",
     "OrientationWarning",
     "PluginError",
     "PluginWarning",
@@ -70,3 +71,7 @@ class OrientationWarning(HullsliceWarning):
 
 class PluginWarning(HullsliceWarning):
     """A solver plugin is broken or shadowed by another with the same name."""
+
+
+class MissingDependencyError(ImportError, HullsliceError):
+    """An optional dependency is needed and not installed."""

@@ -12,8 +12,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from .errors import HullsliceError
-from .report import write_atomic
+from .atomic import write_atomic
+from .errors import MissingDependencyError
 
 __all__ = [
     "plot_area_curve",
@@ -25,10 +25,6 @@ __all__ = [
     "plot_views",
     "save",
 ]
-
-
-class MissingDependencyError(ImportError, HullsliceError):
-    """An optional dependency is needed and not installed."""
 
 
 def _pyplot():

@@ -161,7 +161,7 @@ def _meshfix():
     try:
         import pymeshfix
     except ImportError:
-        from .plots import MissingDependencyError
+        from .errors import MissingDependencyError
 
         raise MissingDependencyError(
             "repair close needs pymeshfix: pip install 'hullslice[repair]' (or pip install "

@@ -44,9 +44,8 @@ from typing import Any
 import numpy as np
 
 from .case import COMMAND_KEYS, MAX_CASE_BYTES, SCHEMA, case_command, validate_case
-from .errors import CaseError, HullsliceError, InputError
+from .errors import CaseError, HullsliceError, InputError, MissingDependencyError
 from .paths import printable
-from .plots import MissingDependencyError
 
 __all__ = ["RESULTS", "SWEEP_KEYS", "Plan", "load_sweep", "make_plan", "sweep"]
 
@@ -535,7 +534,7 @@ def run_batch(
 
 
 def _dump(path: Path, data: Any) -> None:
-    from .report import write_atomic
+    from .atomic import write_atomic
 
     write_atomic(path, json.dumps(data, allow_nan=True, default=str))
 
@@ -721,7 +720,7 @@ def sweep(
         message in ``error``.
     """
     _require("xarray")
-    from . import __version__
+    from ._version import __version__
     from .mass import read_mass_distribution
     from .mesh import load_hull
     from .motion import read_kinematics

@@ -2,7 +2,7 @@
 DataFrames with units, and Datasets written to netCDF, Zarr or Parquet.
 
 xarray and pandas are the optional extra ``hullslice[sweep]``; importing this module does not
-need them, converting does (a :class:`~hullslice.plots.MissingDependencyError` says what to
+need them, converting does (a :class:`~hullslice.errors.MissingDependencyError` says what to
 install). Units are CF/UDUNITS strings (``m s-1``) in each variable's ``units`` attribute
 (``DataFrame.attrs["units"]`` for a DataFrame), with a ``long_name``.
 """
@@ -20,8 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InputError
-from .plots import MissingDependencyError
+from .errors import InputError, MissingDependencyError
 
 __all__ = [
     "OUTPUT_FORMATS",
@@ -263,7 +262,7 @@ def write_dataset(ds, path: str | os.PathLike) -> Path:
 
 
 def _write(ds, target: Path) -> Path:
-    from .report import write_atomic
+    from .atomic import write_atomic
 
     ext = output_format(target)
     if ext == ".nc":

@@ -1847,7 +1847,7 @@ def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
 
 def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
     # the report cannot be written (disk full, ...): the target is absent, not half written
-    from hullslice import report
+    from hullslice import atomic as report
 
     def fail(fh_write):
         def write(data):
@@ -1885,7 +1885,7 @@ def test_a_run_stopped_while_writing_leaves_no_file(
     tmp_path, capsys, monkeypatch, stop, line, status
 ):
     # Ctrl-C or SIGTERM in the middle of the write: neither the target nor the temporary file
-    from hullslice import report
+    from hullslice import atomic as report
 
     real_fdopen = report.os.fdopen
 

@@ -66,7 +66,7 @@ class Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> Parser:
-    from .. import __version__
+    from .._version import __version__
 
     parser = Parser(
         prog="hullslice",

@@ -9,11 +9,12 @@ import sys
 import tempfile
 from pathlib import Path
 
-from .. import __version__
+from .._version import __version__
+from ..atomic import _umask, remove_stale, temp_prefix, write_atomic
 from ..case import SCHEMA, case_argv, case_command, load_case, write_case
 from ..errors import InputError
 from ..paths import markdown_fence, markdown_text, printable, run_inputs
-from ..report import _umask, csv_text, json_text, remove_stale, temp_prefix, write_atomic
+from ..report import csv_text, json_text
 from . import cmd_force, cmd_info, cmd_sections, cmd_simulate
 
 COMPUTE = {

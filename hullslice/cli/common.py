@@ -11,12 +11,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from ..atomic import write_atomic
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
 from ..paths import check_not_an_input, printable, run_inputs
-from ..report import csv_text, json_text, write_atomic
+from ..report import csv_text, json_text
 from ..safety import non_finite
 from ..solvers.base import SolverBase
 from ..solvers.registry import DEFAULT_SOLVER, get_solver
