@@ -61,6 +61,7 @@ import numpy as np
 
 from .convergence import Richardson, richardson
 from .errors import HullsliceError, InputError, SolverError
+from .limits import no_mass
 from .mesh import Hull
 from .safety import failure
 from .sections import Sections, _as_pose, _slice_count, cut
@@ -367,7 +368,7 @@ def evaluate(
     velocity = _readonly_velocity(velocity, n)
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
-        raise InputError("the hull has no mass: give its mass in kg (mass=...)")
+        raise no_mass()
     # a wetted section that carries no mass (between a distribution's point masses, or
     # beyond its line) is in no free fall: it gets no force, flagged
     massless = wet & (sections.mass_per_metre <= 0.0)

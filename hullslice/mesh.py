@@ -23,6 +23,7 @@ import numpy as np
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
 from .integrity import check_sections_match_volume
+from .limits import no_mass
 from .mass import MassDistribution
 from .paths import printable
 
@@ -352,7 +353,7 @@ class Hull:
         if self._inertia_given is not None:
             return self._inertia_given
         if self.mass is None:
-            raise InputError(f"hull {self.name!r} has no mass: give its mass in kg (mass=...)")
+            raise no_mass(self.name)
         if self.mass_distribution is not None:
             return self.mass_distribution.pitch_inertia(self.cg[[0, 2]], self.centroid[2])
         second = self._second_moment(self.cg)

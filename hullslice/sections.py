@@ -35,9 +35,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .constants import MAX_SLICES, TOL
+from .constants import TOL
 from .errors import InputError
 from .geometry import frame
+from .limits import check_slice_count
 from .mesh import Hull
 from .state import Pose
 
@@ -270,17 +271,7 @@ def _as_pose(pose: Pose | float) -> Pose:
     return pose if isinstance(pose, Pose) else Pose(draft=pose)
 
 
-def _slice_count(slices: int) -> int:
-    if isinstance(slices, bool) or not isinstance(slices, int | np.integer):
-        raise InputError(f"slice count {slices!r} is not a whole number: give n >= 1")
-    if slices < 1:
-        raise InputError(f"slice count {slices!r} is not positive: give n >= 1 (e.g. 32)")
-    if slices > MAX_SLICES:
-        raise InputError(
-            f"slice count {slices!r} is more than the {MAX_SLICES} hullslice allows: the "
-            "force converges with far fewer (the paper uses 16 to 64)"
-        )
-    return int(slices)
+_slice_count = check_slice_count
 
 
 def _check_deadrise(deadrise: str) -> str:

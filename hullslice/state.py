@@ -11,6 +11,7 @@ from dataclasses import dataclass
 
 from .constants import RHO_WATER, G
 from .errors import InputError
+from .limits import check_pitch
 
 __all__ = ["Acceleration", "Fluid", "Motion", "Pose"]
 
@@ -49,12 +50,7 @@ class Pose:
                 f"draft {self.draft!r} m is negative: the draft is the depth of the body's "
                 "lowest point below the water, 0 at first contact"
             )
-        pitch = _finite(self.pitch, "pitch", "rad")
-        if abs(pitch) >= math.radians(80.0):
-            raise InputError(
-                f"pitch {math.degrees(pitch):.4g} deg is too steep for a 2D+t model: give a "
-                "pitch between -80 and 80 deg (in rad to the library, deg on the command line)"
-            )
+        pitch = check_pitch(_finite(self.pitch, "pitch", "rad"))
         object.__setattr__(self, "draft", d)
         object.__setattr__(self, "pitch", pitch)
 

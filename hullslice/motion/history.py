@@ -10,6 +10,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..forces import MIN_SLENDERNESS, ForceResult
+from ..limits import MAX_PITCH
 
 __all__ = [
     "DEFAULT_STOP_ON",
@@ -36,9 +37,6 @@ DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "chine", "validity", "pitch")
 #: Default largest share of the force (sum of the slices' absolute forces) that slices
 #: outside the solver's range may carry before the ``validity`` rule ends a run.
 MAX_FLAGGED_SHARE = 0.1
-
-#: Largest pitch a run may reach, rad.
-MAX_PITCH = math.radians(80.0)
 
 
 @dataclass(frozen=True, eq=False)

@@ -41,6 +41,7 @@ from ..constants import MAX_STEPS
 from ..errors import InputError
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_accelerations
 from ..geometry import frame
+from ..limits import no_mass
 from ..mesh import Hull
 from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
 from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
@@ -100,7 +101,7 @@ class ForceModel:
     ) -> None:
         self.solver = get_solver(solver)
         if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
-            raise InputError(f"hull {hull.name!r} has no mass: give its mass in kg (mass=...)")
+            raise no_mass(hull.name)
         self.hull = hull
         self.slices = _slice_count(slices)
         self.fluid = fluid or Fluid()

@@ -28,6 +28,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..errors import CaseError
+from ..limits import MAX_PITCH_DEG
 from ..mesh import Hull
 from ..paths import printable
 from ..sections import _height_at
@@ -97,12 +98,12 @@ def check_kinematics(
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
     p = out["penetration"]
-    steep = np.flatnonzero(np.abs(out["pitch_deg"]) >= 80.0)
+    steep = np.flatnonzero(np.abs(out["pitch_deg"]) >= MAX_PITCH_DEG)
     if len(steep):
         i = int(steep[0])
         raise CaseError(
             f"kinematics pitch at row {i + 1} ({out['pitch_deg'][i]:g} deg) is too steep for a "
-            "2D+t model: keep it between -80 and 80 deg"
+            f"2D+t model: keep it between -{MAX_PITCH_DEG:g} and {MAX_PITCH_DEG:g} deg"
         )
     if np.any(p < 0):
         i = int(np.flatnonzero(p < 0)[0])
