@@ -97,9 +97,9 @@ class FixedCut:
                     cuts = fr.cut(fr.fixed_stations(n)[1][missing])
                     polys.update(zip(missing.tolist(), cuts, strict=True))
                 self.rows = [polys[k] for k in range(lo, hi)]
-                self.range = (lo, hi)
+                self.range = held = (lo, hi)
                 self.outline = Outline.of(self.rows, self.tol, fr.origin, fr.scale)
-            return self.outline, self.rows, self.range[0]
+            return self.outline, self.rows, held[0]
 
     def tabulated(
         self, outline: Outline, level: float, deadrise: str, k0: int, k1: int

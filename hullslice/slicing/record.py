@@ -177,13 +177,13 @@ class Sections:
 
     def to_xarray(self):
         """The entries as an ``xarray.Dataset`` with units (needs xarray)."""
-        from .xarray_io import sections_to_xarray
+        from ..xarray_io import sections_to_xarray
 
         return sections_to_xarray(self)
 
     def to_dataframe(self):
         """The entries as a ``pandas.DataFrame``, units in ``attrs``."""
-        from .xarray_io import sections_to_dataframe
+        from ..xarray_io import sections_to_dataframe
 
         return sections_to_dataframe(self)
 
