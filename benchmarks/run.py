@@ -36,7 +36,7 @@ import numpy as np
 import hullslice as hs
 from hullslice import shapes
 from hullslice.forces import solve_accelerations
-from hullslice.geometry import frame
+from hullslice.geometry import REGIONS, frame
 from hullslice.motion import ForceModel
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -195,7 +195,7 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
     t_region = median_time(lambda: turning(hs.Pose(0.1, 0.09), motion), 1)
     pitches = np.radians(np.linspace(6.0, 7.0, 15))
     t_pitch = per_call(lambda i: turning(hs.Pose(0.1, pitches[i % 15] + 1e-7 * i), motion), 15, 1)
-    regions = turning.hull.__dict__.get("_regions", {})
+    regions = turning.hull.cache[REGIONS]
     band = ", ".join(f"x {a:.1f} to {b:.1f} m" for a, b in regions) or "the whole hull"
     table.add(f"{size}: first evaluation at a second pitch (makes a region: {band})", fmt(t_region))
     table.add(

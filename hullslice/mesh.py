@@ -20,6 +20,7 @@ from typing import Any
 
 import numpy as np
 
+from .caching import Cache
 from .constants import AXES, LENGTH_UNITS, TOL
 from .errors import InputError, MeshError, MeshRepairWarning, UnitsWarning
 from .integrity import check_sections_match_volume
@@ -151,6 +152,7 @@ class Hull:
         src = dict(source or {})
         src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
         self.source = src
+        self.cache = Cache()  # what the layers above compute about this body
         self._set_mass(mass, mass_distribution, cg, inertia)
 
     def _set_mass(self, mass, distribution, cg, inertia) -> None:
@@ -271,6 +273,7 @@ class Hull:
         """
         new = object.__new__(Hull)
         new.__dict__.update({k: self.__dict__[k] for k in _GEOMETRY if k in self.__dict__})
+        new.cache = self.cache.geometry()  # the same geometry: its caches are shared
         new._set_mass(mass, mass_distribution, cg, inertia)
         return new
 
@@ -393,6 +396,7 @@ class Hull:
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
+        self.cache = Cache()
         self._manifold = _to_manifold(self._vertices.copy(), self._faces.copy(), self.name)
         self._vertices, self._faces = _readonly(self._vertices), _readonly(self._faces)
 

@@ -32,6 +32,7 @@ LAYERS: dict[str, int] = {
     "hullslice.state": 0,
     "hullslice.convergence": 0,
     "hullslice.xarray_io": 0,
+    "hullslice.caching": 0,
     # 1 kernel: pure numpy on 2D contours and waterlines
     "hullslice.kernel": 1,
     # 2 mesh: the body, its files, repair and mass
@@ -49,6 +50,7 @@ LAYERS: dict[str, int] = {
     "hullslice.waterline": 3,
     "hullslice.sections": 3,
     "hullslice.cut": 3,
+    "hullslice.slicing": 3,
     # 4 the 2D solvers and their registry
     "hullslice.solvers": 4,
     # 5 forces on the body

@@ -9,17 +9,18 @@ import numpy as np
 import pytest
 
 import hullslice as hs
-from hullslice import geometry, sections
+from hullslice import geometry
 from hullslice.constants import TOL
-from hullslice.geometry import frame
+from hullslice.geometry import REGIONS, frame
 from hullslice.motion import ForceModel, simulate
+from hullslice.slicing import fixed as fixed_slicing
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
 
 
 @pytest.mark.parametrize("pitch_deg", [0.0, 5.0])
 def test_cached_fixed_slicing_equals_cutting_afresh(paper_hull, pitch_deg, monkeypatch):
-    monkeypatch.setattr(sections, "TABLE_AFTER", 1)  # the waterline table from the start
+    monkeypatch.setattr(fixed_slicing, "TABLE_AFTER", 1)  # the waterline table from the start
     paper_hull = paper_hull.with_mass(1.0)  # frames of its own
     cached = ForceModel(paper_hull, slices=96, slicing="fixed")
     fresh = ForceModel(paper_hull, slices=96, slicing="fixed", cache=False)
@@ -28,8 +29,10 @@ def test_cached_fixed_slicing_equals_cutting_afresh(paper_hull, pitch_deg, monke
     for draft in (0.0005, 0.004, 0.02, 0.05, 0.09):
         pose = hs.Pose(draft, np.radians(pitch_deg))
         a, b = cached(pose, motion), fresh(pose, motion)
-        store = frame(paper_hull, pose.pitch)._fixed[(96, TOL.coordinate * paper_hull.size)]
-        tabulated.append("wedge" in store.get("tables", {}))
+        store = fixed_slicing.fixed_cut(
+            frame(paper_hull, pose.pitch), 96, TOL.coordinate * paper_hull.size
+        )
+        tabulated.append("wedge" in store.tables)
         # the same planes cut by the same manifold3d calls; the cached path reads the
         # sections' penetration and half-beams from affine fits of the waterline table
         # (hullslice.waterline), within a few rounding errors of the fresh evaluation
@@ -105,12 +108,12 @@ def _points(polygons) -> np.ndarray:
 def test_region_cut_has_the_same_points_as_the_whole_hull(fuselage_model, pitch_deg):
     hull = fuselage_model.with_mass(60.0)  # frames and regions of its own
     fr = frame(hull, np.radians(pitch_deg))
-    assert fr.cut(fr.fixed_stations(8)[1]) and "_regions" not in hull.__dict__  # one pitch
+    assert fr.cut(fr.fixed_stations(8)[1]) and not hull.cache[REGIONS]  # one pitch
     frame(hull, 0.1)  # a second pitch: regions from now on
     x = fr.fixed_stations(128)[1][20:30]  # a tenth of the body, near the tail
     through_region = fr.cut(x)
-    assert len(hull.__dict__["_regions"]) == 1  # a region was made ...
-    (key,) = hull.__dict__["_regions"]
+    assert len(hull.cache[REGIONS]) == 1  # a region was made ...
+    (key,) = hull.cache[REGIONS]
     span = key[1] - key[0]
     assert span < 0.3 * hull.extents[0]  # ... and it is a band of the body
     whole = hull.manifold.transform(fr._matrix)
@@ -129,11 +132,11 @@ def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
 
     banded_hull = fuselage_model.with_mass(60.0)
     banded = run(ForceModel(banded_hull, slices=96, slicing="fixed"))
-    assert banded_hull.__dict__["_regions"]
+    assert banded_hull.cache[REGIONS]
     monkeypatch.setattr(geometry, "REGION_MIN_FACES", 10**9)
     whole_hull = fuselage_model.with_mass(60.0)
     whole = run(ForceModel(whole_hull, slices=96, slicing="fixed", cache=False))
-    assert "_regions" not in whole_hull.__dict__
+    assert not whole_hull.cache[REGIONS]
     for a, b in zip(banded, whole, strict=True):
         assert len(a.sections) == len(b.sections) > 3
         # the same points in another order: sums may differ in the last bits only

@@ -22,6 +22,7 @@ from hullslice.constants import TOL
 from hullslice.geometry import frame
 from hullslice.motion import ForceModel
 from hullslice.sections import TABLE_AFTER, Outline, wetted_properties
+from hullslice.slicing.fixed import fixed_cut
 from hullslice.waterline import WaterlineTable
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
@@ -32,7 +33,7 @@ FIELDS = ("half_beam", "half_beam_port", "half_beam_stbd", "y_keel", "part_half_
 def outline_of(hull, pitch_deg, n):
     fr = frame(hull, np.radians(pitch_deg))
     tol = TOL.coordinate * hull.size
-    outline, _, c0 = fr.fixed_outline(n, tol)
+    outline, _, c0 = fixed_cut(fr, n, tol).window(fr)
     assert c0 == 0 and outline.n_stations == n
     return outline, tol, fr
 
@@ -171,23 +172,23 @@ def evaluate_often(hull, deadrise, drafts):
     for d in drafts:
         a, b = model(hs.Pose(d), motion), fresh(hs.Pose(d), motion)
         assert a.total == pytest.approx(b.total, rel=1e-12)
-    return frame(hull, 0.0)._fixed[(32, TOL.coordinate * hull.size)]
+    return fixed_cut(frame(hull, 0.0), 32, TOL.coordinate * hull.size)
 
 
 def test_tables_are_made_for_time_histories_only(paper_hull):
     hull = paper_hull.with_mass(1.0)  # frames of its own
     drafts = np.linspace(0.01, 0.03, 3 * TABLE_AFTER)
     store = evaluate_often(hull, "wedge", drafts[: TABLE_AFTER - 1])
-    assert "tables" not in store  # a few evaluations: none (it would cost more than it saves)
+    assert not store.tables  # a few evaluations: none (it would cost more than it saves)
     store = evaluate_often(hull, "wedge", drafts)
-    assert store["tables"]["wedge"].top >= drafts[-1] + frame(hull, 0.0).lowest
+    assert store.tables["wedge"].top >= drafts[-1] + frame(hull, 0.0).lowest
 
 
 def test_keel_fit_is_not_tabulated(paper_hull):
     # its slopes are ratios of cubics in the height: the fixed slicing evaluates it afresh
     hull = paper_hull.with_mass(1.0)
     store = evaluate_often(hull, "keel-fit", np.linspace(0.01, 0.03, 3 * TABLE_AFTER))
-    assert "keel-fit" not in store.get("tables", {})
+    assert "keel-fit" not in store.tables
 
 
 def wavy_hull(points=1200):
@@ -212,8 +213,8 @@ def test_a_costly_table_is_not_made():
     low = WaterlineTable.of(outline, fr.lowest + 0.001, tol, "wedge")  # a little: fits
     assert low is not None and low.top < high
     store = evaluate_often(hull, "wedge", np.linspace(0.045, 0.05, 2 * TABLE_AFTER))
-    assert fr.lowest + 0.045 <= store["too_high"]["wedge"][1] <= high
-    assert "wedge" not in store.get("tables", {})
+    assert fr.lowest + 0.045 <= store.too_high["wedge"][1] <= high
+    assert "wedge" not in store.tables
 
 
 def test_simple_stations_evaluate_few_edges():

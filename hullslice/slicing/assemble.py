@@ -1,0 +1,113 @@
+"""From stations and their wetted properties to :class:`~hullslice.slicing.record.Sections`.
+
+Both slicings (over the wetted length, or fixed over the body's length) end here: the
+stations' positions and thicknesses, the keel line at them, and the mass per metre of each
+station shared between its wetted pieces.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+from ..geometry import Frame
+from ..kernel.outline import Polygons
+from ..mesh import Hull
+from ..state import Pose
+from .record import Sections, ShiftedPolygons
+
+__all__ = ["assemble", "station_mass"]
+
+
+def station_mass(hull: Hull, fr: Frame, area: np.ndarray, rel: np.ndarray) -> np.ndarray:
+    """Mass per metre (kg/m) of the stations at ``rel`` (m, relative ``X``) with section
+    ``area`` (m^2); NaN without a hull mass."""
+    if hull.mass is None:
+        return np.full(len(rel), np.nan)
+    if hull.mass_distribution is None:
+        return hull.mass / hull.volume * area
+    # the distribution's parts, each at its own height, crossed by the tilted planes
+    return hull.mass_distribution.on_planes(
+        rel, fr.pitch, (fr.cg[0], fr.cg[2]), float(hull.centroid[2])
+    )
+
+
+def assemble(
+    hull: Hull,
+    fr: Frame,
+    *,
+    pose: Pose,
+    level: float,
+    length: float,
+    rel: np.ndarray,
+    dx: np.ndarray,
+    props: Mapping[str, np.ndarray],
+    polys: Sequence[Polygons],
+    deadrise: str,
+    scale: np.ndarray | None = None,
+    keel: tuple[np.ndarray, np.ndarray] | None = None,
+) -> Sections:
+    """:class:`Sections` from per-station positions and per-entry properties.
+
+    Parameters
+    ----------
+    hull, fr : Hull, Frame
+        The body and its frame at the pose's pitch.
+    pose : Pose
+        The pose.
+    level : float
+        Height of the water above the centre of gravity in the pitched frame, m.
+    length : float
+        Length of the wetted part along ``X``, m.
+    rel, dx : (s,) float
+        Stations relative to the centre of gravity and their slices' thicknesses, m.
+    props : mapping of arrays
+        Per-entry wetted properties (see :func:`~hullslice.kernel.wetted.wetted_properties`).
+    polys : (s,) sequence of contours
+        Each station's contours in the cutter's coordinates (see :meth:`Frame.cut`).
+    deadrise : str
+        The deadrise estimator used.
+    scale : (s,) float, optional
+        Factor on the penetration and half-beams of each station's entries.
+    keel : ((s,) float, (s,) float), optional
+        The keel line's height and slope at the stations when already known.
+    """
+    st = props["station"]
+    keel_z, slope = fr.keel.at(rel) if keel is None else keel
+    if scale is None:
+        penetration, half_beam = props["penetration"], props["half_beam"]
+        port, stbd = props["half_beam_port"], props["half_beam_stbd"]
+    else:
+        r = scale[st]
+        penetration, half_beam = props["penetration"] * r, props["half_beam"] * r
+        port, stbd = props["half_beam_port"] * r, props["half_beam_stbd"] * r
+    z_cg = -level
+    shift = (fr.origin[0], fr.origin[1] + z_cg)
+    m_station = station_mass(hull, fr, props["area"], rel)
+    return Sections(
+        station=st,
+        x=(rel + fr.cg[0])[st],
+        dx=dx[st],
+        penetration=penetration,
+        half_beam=half_beam,
+        half_beam_port=port,
+        half_beam_stbd=stbd,
+        deadrise=props["deadrise"],
+        deadrise_port=props["deadrise_port"],
+        deadrise_stbd=props["deadrise_stbd"],
+        area=props["area"][st],
+        mass_per_metre=m_station[st] * props["mass_share"],
+        chine_wetted=props["chine_wetted"],
+        keel_slope=slope[st],
+        keel_z=(keel_z + z_cg)[st],
+        y_keel=props["y_keel"],
+        part_half_beam=props["part_half_beam"],
+        polygons=ShiftedPolygons(polys, shift, fr.scale),
+        deadrise_method=deadrise,
+        draft=pose.draft,
+        pitch=pose.pitch,
+        wetted_length=length,
+        z_cg=z_cg,
+        keel_curvature=fr.keel.mean_curvature(rel, dx)[st],
+    )

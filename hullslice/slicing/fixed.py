@@ -1,0 +1,293 @@
+"""Fixed slicing: ``n`` equal slices over the body's length, cut once per pitch and kept.
+
+The stations of a pitch are cut when first wetted and kept in a :class:`FixedCut` on the
+pitch's :class:`~hullslice.geometry.Frame`; after :data:`TABLE_AFTER` evaluations their
+wetted properties come from a :class:`~hullslice.kernel.waterline_table.WaterlineTable`
+instead of a fresh evaluation. The slices at the ends of the wetted part count their wetted
+length only.
+"""
+
+from __future__ import annotations
+
+import threading
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..caching import Entry
+from ..geometry import Frame
+from ..kernel.outline import Outline, Polygons, prefix_index
+from ..kernel.waterline_table import TABULATED, WaterlineTable
+from ..kernel.wetted import wetted_properties
+from ..mesh import Hull
+from ..state import Pose
+from .assemble import assemble
+from .record import Sections
+
+__all__ = ["FIXED_PAD", "TABLE_AFTER", "FixedCut", "fixed_cut", "fixed_sections", "outline_of"]
+
+#: A kept outline gets a waterline table from its this many-th evaluation on (a table
+#: costs some evaluations' time to make: it pays off over a time history, not at once).
+TABLE_AFTER = 8
+#: Fixed stations cut beyond the ones asked for, on either side (see FixedCut.window).
+FIXED_PAD = 2
+
+
+@dataclass(eq=False)
+class FixedCut:
+    """The fixed stations of one pitch cut so far, and their waterline tables.
+
+    Attributes
+    ----------
+    n : int
+        Number of fixed slices over the body's length.
+    tol : float
+        Coordinate tolerance, m.
+    polys : dict of int to contours
+        The stations cut so far, by index, in the cutter's coordinates.
+    range : (int, int) or None
+        The stations ``range[0]`` to ``range[1] - 1`` of :attr:`outline` and :attr:`rows`.
+    outline : Outline or None
+        The outline of those stations.
+    rows : list of contours
+        Their contours.
+    evaluations : int
+        How many evaluations asked for wetted properties.
+    tables : dict of str to WaterlineTable
+        The waterline table of :attr:`outline` by deadrise estimator.
+    too_high : dict of str to (Outline, float)
+        By estimator, the outline and the water's height at which a table cost too much
+        (none is tried again for that outline at a higher water).
+    """
+
+    n: int
+    tol: float
+    polys: dict[int, Polygons] = field(default_factory=dict)
+    range: tuple[int, int] | None = None
+    outline: Outline | None = None
+    rows: list[Polygons] = field(default_factory=list)
+    evaluations: int = 0
+    tables: dict[str, WaterlineTable] = field(default_factory=dict)
+    too_high: dict[str, tuple[Outline, float]] = field(default_factory=dict)
+    _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
+
+    def window(self, fr: Frame, k0: int = 0, k1: int | None = None) -> tuple[Outline, list, int]:
+        """The outline of fixed stations ``k0`` to ``k1 - 1`` (mid-stations of equal slices
+        over the body's length), cut once and kept.
+
+        Returns ``(outline, polygons, c0)``: the outline and contours (relative to the cg)
+        of stations ``c0`` to ``c0 + len(polygons) - 1``, a range holding the ones asked
+        for. Stations are cut when first asked for, a couple beyond the range on either
+        side once the range has had to grow, so that a wetted part growing along the body
+        is cut a few stations at a time.
+        """
+        n = self.n
+        k1 = n if k1 is None else k1
+        with self._lock:
+            held = self.range
+            if held is None or self.outline is None or k0 < held[0] or k1 > held[1]:
+                if held is None:  # a new pitch: only what is asked for
+                    lo, hi = k0, k1
+                else:  # the wetted part grows at this pitch: some stations ahead
+                    lo = max(min(k0, held[0]) - FIXED_PAD, 0)
+                    hi = min(max(k1, held[1]) + FIXED_PAD, n)
+                polys = self.polys
+                missing = np.array([k for k in range(lo, hi) if k not in polys], dtype=np.int64)
+                if len(missing):
+                    cuts = fr.cut(fr.fixed_stations(n)[1][missing])
+                    polys.update(zip(missing.tolist(), cuts, strict=True))
+                self.rows = [polys[k] for k in range(lo, hi)]
+                self.range = held = (lo, hi)
+                self.outline = Outline.of(self.rows, self.tol, fr.origin, fr.scale)
+            return self.outline, self.rows, held[0]
+
+    def tabulated(
+        self, outline: Outline, level: float, deadrise: str, k0: int, k1: int
+    ) -> dict[str, np.ndarray] | None:
+        """The properties of stations ``k0 .. k1 - 1`` of the kept ``outline`` from its
+        waterline table (made, or made higher, when needed); None where a table does not
+        serve."""
+        with self._lock:
+            self.evaluations = count = self.evaluations + 1
+            if deadrise not in TABULATED or count < TABLE_AFTER:
+                return None
+            table = self.tables.get(deadrise)
+            if table is None or table.outline is not outline or level > table.top:
+                # none where one was too costly for this outline at a lower water
+                too_high = self.too_high.get(deadrise)
+                if too_high is not None and too_high[0] is outline and level >= too_high[1]:
+                    return None
+                table = WaterlineTable.of(outline, level, self.tol, deadrise)
+                if table is None:
+                    self.too_high[deadrise] = (outline, level)
+                    self.tables.pop(deadrise, None)
+                    return None
+                self.tables[deadrise] = table
+        return table.at(level, k0, k1)
+
+
+#: A frame's fixed cuts by slice count and tolerance.
+FIXED_CUTS: Entry[dict[tuple[int, float], FixedCut]] = Entry("fixed cuts", dict)
+
+
+def fixed_cut(fr: Frame, n: int, tol: float) -> FixedCut:
+    """The :class:`FixedCut` of ``n`` fixed slices kept on a frame (made empty if new)."""
+    cuts = fr.cache[FIXED_CUTS]
+    key = (int(n), float(tol))
+    kept = cuts.get(key)
+    if kept is None:
+        kept = cuts.setdefault(key, FixedCut(key[0], key[1]))
+    return kept
+
+
+def fixed_sections(
+    hull: Hull,
+    fr: Frame,
+    *,
+    pose: Pose,
+    n: int,
+    deadrise: str,
+    level: float,
+    extent: tuple[float, float] | None,
+    tol: float,
+    cache: bool = True,
+) -> Sections:
+    """Fixed slices over the body's length; the wetted ones at this waterline.
+
+    ``level`` is the water's height above the centre of gravity in the pitched frame (m),
+    ``extent`` the keel line's wetted ``x`` range (m, relative), ``tol`` the coordinate
+    tolerance (m); ``cache=False`` cuts the stations afresh.
+
+    Interior slices use their mid-station's section. A slice only partly wetted counts its
+    wetted length and stands at that part's middle, with the section of its own
+    mid-station (or, when that is dry, of its wetted neighbour's) made similar to the
+    section there: penetration and half-beams scaled by the keel line's depth ratio, the
+    deadrise kept. Its force then grows from zero as the water reaches it.
+    """
+    xa = float(fr.keel.x[0])
+    d, mids = fr.fixed_stations(n)
+    if extent is None:
+        return assemble(
+            hull,
+            fr,
+            pose=pose,
+            level=level,
+            length=0.0,
+            rel=np.empty(0),
+            dx=np.empty(0),
+            props=wetted_properties(Outline.of([], tol), level, tol, deadrise),
+            polys=[],
+            deadrise=deadrise,
+        )
+    x0, x1 = extent
+    k = np.arange(
+        min(max(int((x0 - xa) // d), 0), n - 1), min(max(int((x1 - xa) // d), 0), n - 1) + 1
+    )
+    lo = np.maximum(xa + k * d, x0)
+    hi = np.minimum(xa + (k + 1) * d, x1)
+    keep = hi > lo
+    k, lo, hi = k[keep], lo[keep], hi[keep]
+    # only the stations of the wetted slices and their neighbours matter
+    w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
+    props = None
+    if cache:
+        kept = fixed_cut(fr, n, tol)
+        outline, polys, c0 = kept.window(fr, w0, w1)
+        props = kept.tabulated(outline, level, deadrise, w0 - c0, w1 - c0)
+    else:
+        (outline, polys), c0 = outline_of(fr, mids, tol), 0
+    if props is None:
+        props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
+    props["station"] = props["station"] + w0
+    wet_mid = np.zeros(n, dtype=bool)
+    wet_mid[props["station"][props["penetration"] > 0]] = True
+    full = np.abs(hi - lo - d) <= 1e-12 * d
+    x = np.where(full, mids[k], 0.5 * (lo + hi))
+    source = k.copy()
+    # a partial slice whose own mid-station is dry borrows its wetted neighbour's section;
+    # so does one whose mid-station is wetted less than half as deep as the slice's own
+    # middle: scaling a barely wetted section up by the depth ratio would stretch the few
+    # facets at its keel into a flat bottom
+    keel = fr.keel.at(x)
+    pen_mid = np.zeros(n)
+    np.maximum.at(pen_mid, props["station"], props["penetration"])
+    inward = np.where(k == k.min(), 1, -1)
+    neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
+    weak = wet_mid[k] & (2.0 * pen_mid[k] < level - keel[0]) & (pen_mid[neighbour] > pen_mid[k])
+    borrow = ~full & (~wet_mid[k] | weak)
+    source[borrow] = neighbour[borrow]
+    fresh = ~full & ~wet_mid[source]
+    ratio = np.ones(len(x))
+    part = ~full & ~fresh
+    if part.any():
+        kz_src = np.interp(mids[source[part]], fr.keel.x, fr.keel.z)
+        ratio[part] = (level - keel[0][part]) / (level - kz_src)
+    # entries of the chosen sources, one slice after another (entries sorted by station)
+    first = np.searchsorted(props["station"], source, side="left")
+    count = np.searchsorted(props["station"], source, side="right") - first
+    take = prefix_index(first, count)
+    slot = np.repeat(np.arange(len(source)), count)
+    sel = {key: val[take] for key, val in props.items() if key != "area"}
+    sel["station"] = slot
+    sel["area"] = props["area"][source - w0]
+    slice_polys = [polys[src - c0] for src in source]
+    if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
+        sel, slice_polys = _with_fresh(
+            fr, sel, slice_polys, fresh=fresh, x=x, level=level, tol=tol, deadrise=deadrise
+        )
+    return assemble(
+        hull,
+        fr,
+        pose=pose,
+        level=level,
+        length=x1 - x0,
+        rel=x,
+        dx=hi - lo,
+        props=sel,
+        polys=slice_polys,
+        deadrise=deadrise,
+        scale=ratio,
+        keel=keel,
+    )
+
+
+#: A kept outline gets a waterline table from its this many-th evaluation on (a table
+def outline_of(fr: Frame, rel: np.ndarray, tol: float) -> tuple[Outline, list[Polygons]]:
+    """The outline and contours of the sections at relative stations ``rel`` (m), cut
+    afresh."""
+    polys = fr.cut(rel)
+    return Outline.of(polys, tol, fr.origin, fr.scale), polys
+
+
+def _with_fresh(
+    fr: Frame,
+    sel: dict[str, np.ndarray],
+    slice_polys: list[Polygons],
+    *,
+    fresh: np.ndarray,
+    x: np.ndarray,
+    level: float,
+    tol: float,
+    deadrise: str,
+) -> tuple[dict[str, np.ndarray], list[Polygons]]:
+    """Replace the entries of the slices marked ``fresh`` (at relative stations ``x``, m)
+    by a cut at their position."""
+    idx = np.flatnonzero(fresh)
+    outline, polys = outline_of(fr, x[idx], tol)
+    new = wetted_properties(outline, level, tol, deadrise)
+    keep = ~np.isin(sel["station"], idx)
+    out = {}
+    for key in sel:
+        if key == "area":
+            area = sel["area"].copy()
+            area[idx] = new["area"]
+            out["area"] = area
+        elif key == "station":
+            out["station"] = np.concatenate([sel["station"][keep], idx[new["station"]]])
+        else:
+            out[key] = np.concatenate([sel[key][keep], new[key]])
+    order = np.argsort(out["station"], kind="stable")
+    out = {key: (val if key == "area" else val[order]) for key, val in out.items()}
+    for j, i in enumerate(idx):
+        slice_polys[i] = polys[j]
+    return out, slice_polys
