@@ -264,7 +264,7 @@ def second_moment(v: np.ndarray, f: np.ndarray, origin: np.ndarray) -> np.ndarra
     return outer / 20.0
 
 
-def merge_exact_copies(v: np.ndarray, faces) -> tuple[np.ndarray, object]:
+def merge_exact_copies(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Exactly equal vertices merged when the faces are valid indices (of an integer type,
     in range); otherwise the arrays unchanged, for the checks to report what is wrong."""
     f = np.asarray(faces)

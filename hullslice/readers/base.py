@@ -9,7 +9,7 @@ reason into a :class:`~hullslice.errors.MeshError`.
 
 from __future__ import annotations
 
-from typing import BinaryIO, Protocol
+from typing import IO, Protocol
 
 import numpy as np
 
@@ -43,4 +43,4 @@ class Reader(Protocol):
         checks report it).
     """
 
-    def __call__(self, fh: BinaryIO, size: int) -> tuple[np.ndarray, np.ndarray]: ...
+    def __call__(self, fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]: ...

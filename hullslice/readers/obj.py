@@ -7,7 +7,7 @@ Only the ``v`` and ``f`` statements are read: nothing else in the file is opened
 from __future__ import annotations
 
 from array import array
-from typing import BinaryIO
+from typing import IO
 
 import numpy as np
 
@@ -24,7 +24,7 @@ _MAX_OBJ_LINE = 1024**2
 _MAX_INDEX = 2**40
 
 
-def read_obj(fh: BinaryIO, size: int) -> tuple[np.ndarray, np.ndarray]:
+def read_obj(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
     """Wavefront OBJ: the ``v`` and ``f`` statements; everything else is ignored.
 
     Polygons are split into fans of triangles; indices count from 1, negative ones back

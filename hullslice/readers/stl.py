@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import re
 from array import array
-from typing import BinaryIO
+from typing import IO
 
 import numpy as np
 
@@ -27,7 +27,7 @@ _STL_RECORD = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("a
 _STL_VERTEX = re.compile(rb"\bvertex\s+(\S+)\s+(\S+)\s+(\S+)")
 
 
-def read_stl(fh: BinaryIO, size: int) -> tuple[np.ndarray, np.ndarray]:
+def read_stl(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
     """Binary or ASCII STL: a binary file's size must be exactly 84 + 50 n bytes."""
     head = fh.read(_STL_HEAD)
     claimed = int.from_bytes(head[80:84], "little") if len(head) == _STL_HEAD else None
@@ -53,7 +53,7 @@ def read_stl(fh: BinaryIO, size: int) -> tuple[np.ndarray, np.ndarray]:
 _STL_CHUNK = 16 * 1024**2
 
 
-def _parse_ascii_stl(fh: BinaryIO, head: bytes, binary: str) -> tuple[np.ndarray, np.ndarray]:
+def _parse_ascii_stl(fh: IO[bytes], head: bytes, binary: str) -> tuple[np.ndarray, np.ndarray]:
     coords = array("d")
     loops = 0
     rest = head
