@@ -1,12 +1,9 @@
 """Loading a hull mesh: STL/OBJ to an immutable :class:`Hull` in SI units and the body frame.
 
-The body frame is the mesh's own coordinates after the axis mapping and unit scale:
-``x`` forward along the body, ``y`` to port, ``z`` up (right-handed). Every hull is checked
-and converted to a manifold3d ``Manifold`` on loading (:mod:`hullslice.repair.passes`); what
-manifold3d refuses becomes a :class:`~hullslice.errors.MeshError` that says what is wrong,
-and what can be repaired without guessing is repaired with a
-:class:`~hullslice.errors.MeshRepairWarning` (``fix=False`` refuses it instead). Files are
-read by :mod:`hullslice.readers`, their arrays prepared by :mod:`hullslice.prepare`.
+The body frame (:mod:`hullslice.axes`): ``x`` forward, ``y`` to port, ``z`` up, metres.
+Files are read by :mod:`hullslice.readers` and prepared by :mod:`hullslice.prepare`; every
+hull is checked, safely repaired (``fix=False`` refuses instead) and converted to a
+manifold3d ``Manifold`` by :mod:`hullslice.repair.passes`.
 """
 
 from __future__ import annotations
@@ -120,8 +117,7 @@ class Hull:
 
     @functools.cached_property
     def mass_properties(self) -> MassProperties:
-        """The mass properties as given (the total filled in from the distribution)."""
-        # set by the constructor; rebuilt here for a hull read back from a pickle
+        """The mass properties as given (set on construction; rebuilt after a pickle)."""
         return MassProperties(
             self.mass, self.mass_distribution, self._cg_given, self._inertia_given
         )
@@ -426,12 +422,10 @@ def load_hull(
     format : str, optional
         ``"stl"`` or ``"obj"``: needed for a file object without a name.
     mass_properties : MassProperties, optional
-        The mass properties in one, instead of ``mass``, ``mass_distribution``, ``cg`` and
-        ``inertia`` (giving both is an ``InputError``).
+        All four mass properties in one (not with their keywords).
     fix : bool
-        False (``--no-fix``): make none of the safe repairs (merging vertices, dropping
-        degenerate or repeated faces, re-orienting faces, ...); a mesh that needs one is
-        refused with a ``MeshError`` naming the repair. Default True.
+        False (``--no-fix``): make no safe repair, refuse a mesh that needs one (see
+        :class:`Hull`).
 
     Returns
     -------
