@@ -145,9 +145,9 @@ def main() -> None:
             ref = in_process_of_its_own(clean_path, {})
             rep = in_process_of_its_own(dirty_path, {"repair": "close", "keep": "largest"})
             hull_v, hull_f = hs.mesh.read_mesh(dirty_path)
-            from hullslice.mesh import _unique_rows
+            from hullslice.topology import unique_rows
 
-            uv, inv = _unique_rows(hull_v)
+            uv, inv = unique_rows(hull_v)
             close_mesh(*dirty(20, 16)[0])  # the imports, once
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")

@@ -32,7 +32,7 @@ from .errors import (
     UnknownSolverError,
 )
 from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
-from .mass import MassDistribution, read_mass_distribution
+from .mass import MassDistribution, MassProperties, read_mass_distribution
 from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
 from .sections import DEADRISE_ESTIMATORS, Sections, cut
@@ -74,6 +74,7 @@ __all__ = [
     "HullsliceWarning",
     "InputError",
     "MassDistribution",
+    "MassProperties",
     "MeshError",
     "MeshRepairWarning",
     "MissingDependencyError",

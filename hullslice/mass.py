@@ -1,4 +1,8 @@
-"""How the body's mass is spread: uniformly over its volume (default) or along its length.
+"""The body's mass properties, and how its mass is spread: uniformly over its volume
+(default) or along its length.
+
+:class:`MassProperties` holds what is given of the mass (total, distribution, centre of
+gravity, pitch inertia), checked once; the hull fills in the rest from its volume.
 
 A :class:`MassDistribution` describes the mass as line densities along the body's ``x`` axis
 and point masses. It gives the total mass, the centre of gravity, the pitch moment of inertia,
@@ -12,15 +16,18 @@ are applied.
 from __future__ import annotations
 
 import os
+import warnings
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .errors import CaseError, InputError
+from .constants import LENGTH_UNITS
+from .errors import CaseError, InputError, UnitsWarning
 from .paths import printable
 from .tables import column_values, header_text, read_csv
 
-__all__ = ["MassDistribution", "read_mass_distribution"]
+__all__ = ["MassDistribution", "MassProperties", "check_density", "read_mass_distribution"]
 
 
 def _ro(a) -> np.ndarray:
@@ -212,4 +219,162 @@ def read_mass_distribution(path: str | os.PathLike) -> MassDistribution:
     raise CaseError(
         f"{where} has no columns it can use ({header_text(header)}); it needs "
         "x,mass_per_metre (a line density) or x,z,mass[,length] (point masses)"
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class MassProperties:
+    """What is given of a body's mass, each part optional (SI units, body frame).
+
+    Parameters
+    ----------
+    mass : float, optional
+        Total mass in kg (``> 0``). Default: the distribution's total, if one is given.
+    distribution : MassDistribution, optional
+        Mass along the body. Default: the mass spread uniformly over the volume. Its total
+        must agree with ``mass`` within 0.5 %.
+    cg : sequence of 2 or 3 float, optional
+        Centre of gravity in m, body frame. Held as the point ``(x, y, z)``; two numbers
+        are taken as ``(x, z)`` in the plane of symmetry (``y = 0``), as the ``cg=``
+        keyword of :func:`~hullslice.load_hull` and ``--cg X,Z`` take it. Default: from the
+        distribution, or the centre of volume.
+    inertia : float, optional
+        Pitch moment of inertia about the centre of gravity, kg m^2 (``> 0``). Default:
+        from the distribution, or the mesh with uniform density.
+
+    Raises
+    ------
+    InputError
+        A value that is not a number, not positive or not finite, a ``cg`` of another
+        length, or a mass that disagrees with the distribution.
+    """
+
+    mass: float | None = None
+    distribution: MassDistribution | None = None
+    cg: np.ndarray | None = None
+    inertia: float | None = None
+
+    def __post_init__(self) -> None:
+        mass = _checked_mass(self.mass)
+        distribution = self.distribution
+        if distribution is not None:
+            if not isinstance(distribution, MassDistribution):
+                raise InputError("mass_distribution must be a hullslice.MassDistribution")
+            total = distribution.total
+            if mass is None:
+                mass = total
+            elif abs(total - mass) > 0.005 * mass:
+                raise InputError(
+                    f"the mass distribution adds up to {total:.6g} kg but the mass is given as "
+                    f"{mass:.6g} kg: give one of them, or make them agree within 0.5 %"
+                )
+        cg = self.cg
+        if cg is not None:
+            c = np.asarray(cg, dtype=np.float64).ravel()
+            if c.shape not in ((2,), (3,)) or not np.all(np.isfinite(c)):
+                raise InputError(
+                    f"cg {cg!r} is not two numbers x, z or three x, y, z (m, body frame)"
+                )
+            cg = _ro(c if len(c) == 3 else [c[0], 0.0, c[1]])
+        inertia = self.inertia
+        if inertia is not None:
+            i = float(inertia)
+            if not (np.isfinite(i) and i > 0):
+                raise InputError(f"pitch inertia {inertia!r} kg m^2 is not positive")
+            inertia = i
+        object.__setattr__(self, "mass", mass)
+        object.__setattr__(self, "cg", cg)
+        object.__setattr__(self, "inertia", inertia)
+
+    @classmethod
+    def from_keywords(
+        cls,
+        mass_properties: MassProperties | None = None,
+        *,
+        mass: float | None = None,
+        mass_distribution: MassDistribution | None = None,
+        cg: Sequence[float] | None = None,
+        inertia: float | None = None,
+    ) -> MassProperties:
+        """The mass properties given either as one ``mass_properties`` or as the keywords
+        ``mass``, ``mass_distribution``, ``cg`` and ``inertia`` (not both)."""
+        given = [k for k, v in (("mass", mass), ("mass_distribution", mass_distribution),
+                                ("cg", cg), ("inertia", inertia)) if v is not None]  # fmt: skip
+        if mass_properties is None:
+            return cls(mass, mass_distribution, cg, inertia)  # type: ignore[arg-type]
+        if given:
+            raise InputError(
+                f"mass_properties and {', '.join(given)} both give the mass properties: give "
+                "mass_properties=MassProperties(...) alone, or the keywords alone"
+            )
+        if not isinstance(mass_properties, MassProperties):
+            raise InputError(
+                f"mass_properties {mass_properties!r} is not a hullslice.MassProperties"
+            )
+        return mass_properties
+
+
+def _checked_mass(mass: float | None) -> float | None:
+    if mass is None:
+        return None
+    try:
+        m = float(mass)
+    except (TypeError, ValueError):
+        raise InputError(f"mass {mass!r} is not a number: give the body's mass in kg") from None
+    if not np.isfinite(m) or m <= 0.0:
+        raise InputError(f"mass {mass!r} kg is not positive: give the body's mass in kg")
+    return m
+
+
+# Densities outside this range (kg/m^3) are not a plausible body for a water-impact study:
+# lighter than air means a mesh in mm read as metres, denser than osmium the reverse.
+_PLAUSIBLE_DENSITY = (1.0, 25000.0)
+
+# the length units by name, the most common in hull and CAD files first
+_UNIT_NAMES = {
+    "m": "metres",
+    "mm": "millimetres",
+    "cm": "centimetres",
+    "in": "inches",
+    "ft": "feet",
+}
+
+
+def check_density(mass: float, volume: float, units: str, name: str) -> None:
+    """Warn (:class:`~hullslice.errors.UnitsWarning`) when ``mass`` (kg) in ``volume``
+    (m^3) is not a plausible density for a body, naming the file units that would make it
+    one (``units`` is the unit the mesh was read in)."""
+    rho = mass / volume
+    lo, hi = _PLAUSIBLE_DENSITY
+    if lo <= rho <= hi:
+        return
+    units = str(units).strip().lower()
+    scale = LENGTH_UNITS.get(units, 1.0)
+    # the density the same mass would have if the file were in each of the other units;
+    # the plausible ones are named, the most common unit first
+    plausible = {
+        u: rho * (scale / LENGTH_UNITS[u]) ** 3
+        for u in _UNIT_NAMES
+        if u != units and lo <= rho * (scale / LENGTH_UNITS[u]) ** 3 <= hi
+    }
+    if plausible:
+        u, *others = plausible
+        hint = (
+            f"if the mesh is in {_UNIT_NAMES[u]}, give its units (units={u!r}, --units {u}): "
+            f"the density is then {plausible[u]:.4g} kg/m^3"
+        )
+        if others:
+            hint += (
+                " (in "
+                + ", ".join(f"{_UNIT_NAMES[o]} {plausible[o]:.4g} kg/m^3" for o in others)
+                + ")"
+            )
+    else:
+        hint = "check the mass and the mesh's units"
+    warnings.warn(
+        f"hull {name!r}: mass {mass:g} kg in a volume of {volume:.6g} m^3 "
+        f"(units {units!r}) is a density of {rho:.4g} kg/m^3, implausible for a body; "
+        f"{hint}",
+        UnitsWarning,
+        stacklevel=3,
     )

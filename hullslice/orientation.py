@@ -123,7 +123,7 @@ def orientation(hull, forward: str = "+x", up: str = "+z", stations: int = 40) -
     stations : int
         Sections along the body for the guess (default 40).
     """
-    from .mesh import axis_matrix
+    from .axes import axis_matrix
 
     rot = axis_matrix(forward, up)
     # body = rot @ mesh, and rot is a signed permutation: each file axis is one body axis

@@ -22,7 +22,7 @@ import numpy as np
 
 from .errors import InputError, MeshError
 
-__all__ = ["Body", "cut_to_box", "find_bodies", "keep_faces", "parse_box", "parse_keep"]
+__all__ = ["Body", "box_note", "cut_to_box", "find_bodies", "keep_faces", "parse_box", "parse_keep"]
 
 
 @dataclass(frozen=True)
@@ -276,3 +276,13 @@ def cut_to_box(vertices: np.ndarray, faces: np.ndarray, manifold, box, name: str
     if len(f) == 0:
         raise MeshError(f"mesh {name!r}: the box cut left no faces")
     return v, f, float(part.volume()), float(manifold.volume())
+
+
+def box_note(box, inside: float, whole: float) -> str:
+    """The repair note of a box cut: the box (m, body frame) and the volume kept of the
+    whole body's (m^3)."""
+    lo, hi = box
+    return (
+        f"kept the part inside the box x {lo[0]:g} to {hi[0]:g}, y {lo[1]:g} to {hi[1]:g}, "
+        f"z {lo[2]:g} to {hi[2]:g} m: {inside:.6g} of {whole:.6g} m^3"
+    )

@@ -22,9 +22,11 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .axes import axis_matrix
 from .constants import LENGTH_UNITS
 from .errors import InputError, MeshRepairWarning
 from .parts import Body, find_bodies, keep_faces, parse_keep
+from .topology import unique_rows
 
 __all__ = ["REPAIRS", "Prepared", "check_scale", "prepare_arrays"]
 
@@ -128,8 +130,6 @@ def prepare_arrays(
         Vertices in the file's unit and axes, scaled; the notes for the hull's ``repairs``;
         the bodies (as dicts, body frame, m) and the numbers kept.
     """
-    from .mesh import _unique_rows, axis_matrix
-
     unit, scale, length = check_scale(units, scale, length)
     mode = "none" if repair is None else str(repair).strip().lower()
     if mode not in REPAIRS:
@@ -147,11 +147,11 @@ def prepare_arrays(
             and len(f) and f.min() >= 0 and f.max() < len(v)):  # fmt: skip
         # the hull's checks report what is wrong
         return Prepared(v * (scale or 1.0), f, unit * (scale or 1.0))
-    v, inverse = _unique_rows(v)
+    v, inverse = unique_rows(v)
     f = inverse[f]
     report = None
     if mode == "close":
-        from .repair import close_mesh
+        from .repair.close import close_mesh
 
         v, f, report = close_mesh(v, f, name)
     bodies, numbers = find_bodies(v, f)

@@ -37,6 +37,8 @@ LAYERS: dict[str, int] = {
     "hullslice.kernel": 1,
     # 2 mesh: the body, its files, repair and mass
     "hullslice.mesh": 2,
+    "hullslice.axes": 2,
+    "hullslice.topology": 2,
     "hullslice.readers": 2,
     "hullslice.repair": 2,
     "hullslice.integrity": 2,

@@ -160,3 +160,47 @@ def test_sections_without_mass_get_no_force_and_are_flagged(wedge_hull):
     assert np.all(r.force[empty] == 0) and not r.valid[empty].any()
     assert "no mass per metre" in r.loads.reason[np.flatnonzero(empty)[0]]
     assert np.all(np.isfinite(r.force)) and r.total > 0
+
+
+# -- the mass properties in one ---------------------------------------------------------------
+
+
+def test_mass_properties_are_checked_once_and_hold_the_cg_as_a_point():
+    props = hs.MassProperties(mass=2.0, cg=(0.1, -0.02), inertia=0.5)
+    assert props.cg.tolist() == [0.1, 0.0, -0.02]  # (x, z): in the plane of symmetry
+    assert hs.MassProperties(cg=(0.1, 0.01, -0.02)).cg.tolist() == [0.1, 0.01, -0.02]
+    with pytest.raises(hs.InputError, match="not two numbers x, z or three"):
+        hs.MassProperties(cg=(1.0,))
+    with pytest.raises(hs.InputError, match="is not positive"):
+        hs.MassProperties(mass=-1.0)
+    with pytest.raises(hs.InputError, match="pitch inertia"):
+        hs.MassProperties(inertia=0.0)
+    dist = MassDistribution(x=[0.0, 1.0], mass_per_metre=[2.0, 2.0])
+    assert hs.MassProperties(distribution=dist).mass == pytest.approx(2.0)
+
+
+def test_a_hull_takes_the_mass_properties_or_the_keywords_not_both(wedge_hull):
+    props = hs.MassProperties(mass=10.0, cg=(0.0, 0.05), inertia=0.3)
+    a = wedge_hull.with_mass(mass_properties=props)
+    b = wedge_hull.with_mass(10.0, cg=(0.0, 0.05), inertia=0.3)
+    assert a.mass_properties is props
+    assert a.mass == b.mass == 10.0
+    assert a.cg.tolist() == b.cg.tolist() == [0.0, 0.0, 0.05]
+    assert a.pitch_inertia == b.pitch_inertia == 0.3
+    assert b.mass_properties.inertia == 0.3
+    with pytest.raises(hs.InputError, match="mass_properties and mass both"):
+        wedge_hull.with_mass(10.0, mass_properties=props)
+    with pytest.raises(hs.InputError, match="mass_properties and cg, inertia both"):
+        hs.load_hull(MESHES / "paper_prism.stl", mass_properties=props, cg=(0, 0), inertia=1)
+    loaded = hs.load_hull(MESHES / "paper_prism.stl", mass_properties=hs.MassProperties(1.0))
+    assert loaded.mass == 1.0 and loaded.mass_properties.mass == 1.0
+
+
+def test_the_mass_properties_survive_a_pickle(wedge_hull):
+    import pickle
+
+    hull = wedge_hull.with_mass(10.0, cg=(0.0, 0.01, 0.05))
+    back = pickle.loads(pickle.dumps(hull))
+    assert back.mass_properties.mass == 10.0
+    assert back.mass_properties.cg.tolist() == [0.0, 0.01, 0.05]
+    assert back.cg.tolist() == hull.cg.tolist()

@@ -226,7 +226,7 @@ def test_obj_that_is_not_utf8_loads(tmp_path):
 
 
 def test_an_unreadable_file_is_an_error_not_a_crash(tmp_path, monkeypatch):
-    import hullslice.mesh as mesh_module
+    import hullslice.readers as readers_module
 
     path = tmp_path / "locked.obj"
     path.write_text(TETRA_OBJ)
@@ -234,19 +234,19 @@ def test_an_unreadable_file_is_an_error_not_a_crash(tmp_path, monkeypatch):
     def denied(*args, **kw):
         raise PermissionError(13, "Permission denied", str(args[0]))
 
-    monkeypatch.setattr(mesh_module, "open", denied, raising=False)
+    monkeypatch.setattr(readers_module, "open", denied, raising=False)
     with pytest.raises(hs.MeshError, match=r"locked.obj' cannot be read: Permission denied"):
         hs.load_hull(path)
 
 
 def test_an_ascii_stl_read_in_small_chunks_is_the_same(tmp_path, monkeypatch):
-    import hullslice.mesh as mesh_module
+    import hullslice.readers.stl as stl_module
 
     v, f = shapes.wedge_prism()
     path = tmp_path / "wedge.stl"
     path.write_text(ascii_stl({"hull": (v, f)}))
     whole = read_mesh(path)
-    monkeypatch.setattr(mesh_module, "_STL_CHUNK", 7)  # cuts inside every line
+    monkeypatch.setattr(stl_module, "_STL_CHUNK", 7)  # cuts inside every line
     chunked = read_mesh(path)
     assert np.array_equal(whole[0], chunked[0]) and np.array_equal(whole[1], chunked[1])
     assert np.array_equal(whole[0], v[f].reshape(-1, 3))

@@ -221,6 +221,13 @@ def add_shape_options(g) -> None:
         "warning (default: none, an open mesh is refused)",
     )
     g.add_argument(
+        "--no-fix",
+        action="store_true",
+        help="make none of the safe repairs (merging vertices that differ by rounding, "
+        "dropping degenerate or repeated faces, re-orienting faces, ...): refuse a mesh "
+        "that needs one, naming the repair",
+    )
+    g.add_argument(
         "--keep",
         metavar="largest|N,M",
         help="keep only these bodies (shells) of the mesh: largest, or numbers from 1, "
@@ -453,6 +460,7 @@ def shape_options(args: argparse.Namespace) -> dict:
         "repair": None if args.repair in (None, "none") else args.repair,
         "keep": args.keep,
         "keep_box": args.keep_box,
+        "fix": not getattr(args, "no_fix", False),
     }
 
 

@@ -28,9 +28,10 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .constants import TOL
-from .errors import MeshError
-from .parts import face_labels, open_faces
+from ..constants import TOL
+from ..errors import MeshError
+from ..parts import face_labels, open_faces
+from ..topology import drop_repeated_faces, edge_use, unique_rows
 
 __all__ = ["CloseReport", "close_mesh"]
 
@@ -106,9 +107,7 @@ def _area(v: np.ndarray, f: np.ndarray) -> float:
 
 
 def _open_count(f: np.ndarray) -> tuple[int, int]:
-    from .mesh import _edge_use
-
-    counts, _ = _edge_use(f)
+    counts, _ = edge_use(f)
     return int((counts == 1).sum()), int((counts > 2).sum())
 
 
@@ -118,8 +117,6 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
     from scipy.spatial import cKDTree
-
-    from .mesh import _drop_repeated_faces, _edge_use
 
     n_open, n_many = _open_count(f)
     if n_open == 0:
@@ -145,9 +142,9 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
             target[rim] = rim[first[labels]]
             f2 = target[f]
             deg = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
-            f2, _ = _drop_repeated_faces(f2[~deg])
+            f2, _ = drop_repeated_faces(f2[~deg])
             if len(f2):
-                c2, _ = _edge_use(f2)
+                c2, _ = edge_use(f2)
                 o2, m2 = int((c2 == 1).sum()), int((c2 > 2).sum())
                 if o2 < best[0] and m2 <= n_many:
                     best = (o2, f2, k - ncomp)
@@ -161,7 +158,7 @@ def _meshfix():
     try:
         import pymeshfix
     except ImportError:
-        from .errors import MissingDependencyError
+        from ..errors import MissingDependencyError
 
         raise MissingDependencyError(
             "repair close needs pymeshfix: pip install 'hullslice[repair]' (or pip install "
@@ -193,8 +190,6 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     """
     import scipy.sparse.csgraph
     import scipy.spatial  # noqa: F401  (imported before the clock starts: once per process)
-
-    from .mesh import _unique_rows
 
     start = time.perf_counter()
     v = np.asarray(vertices, dtype=np.float64)
@@ -234,7 +229,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
         ff = np.asarray(ff, dtype=np.int64)
         # the fill may put a new vertex exactly on an old one, leaving triangles with a
         # repeated corner: no area, part of the fill
-        fv, inverse = _unique_rows(fv)
+        fv, inverse = unique_rows(fv)
         ff = inverse[ff]
         ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 2] != ff[:, 0])]
         vol = _volume(fv, ff)

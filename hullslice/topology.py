@@ -1,0 +1,275 @@
+"""Array operations on triangle meshes: shared edges, exact duplicates, orientation, volume.
+
+The checks and repairs of :mod:`hullslice.repair` and the preparation of a file's arrays
+(:mod:`hullslice.prepare`) are built from these. Vertices are ``(n, 3)`` float arrays (any
+length unit), faces ``(m, 3)`` integer arrays of vertex indices.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .errors import MeshError
+
+__all__ = [
+    "MAX_MERGE_PAIRS",
+    "check_finite",
+    "drop_repeated_faces",
+    "edge_use",
+    "flipped",
+    "group",
+    "merge_close",
+    "merge_exact_copies",
+    "orient_consistently",
+    "second_moment",
+    "signed_volume",
+    "to_manifold",
+    "unique_edges",
+    "unique_rows",
+    "volume_centroid",
+]
+
+
+def group(keys: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Group equal keys: one index of each group, the group of every key, the group sizes.
+
+    Like ``np.unique(..., return_index, return_inverse, return_counts)`` but with an
+    unstable sort, several times faster on millions of keys.
+    """
+    order = np.argsort(keys)
+    sk = keys[order]
+    start = np.empty(len(sk), dtype=bool)
+    start[:1] = True
+    np.not_equal(sk[1:], sk[:-1], out=start[1:])
+    group = np.cumsum(start) - 1
+    inverse = np.empty(len(keys), dtype=np.int64)
+    inverse[order] = group
+    bounds = np.append(np.flatnonzero(start), len(sk))
+    return order[start], inverse, np.diff(bounds)
+
+
+def edge_use(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """How many faces use each undirected edge, and how many of them run from low to high index.
+
+    In a closed, consistently oriented surface every edge is used twice, once each way.
+    """
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    lo = directed.min(axis=1)
+    hi = directed.max(axis=1)
+    _, inverse, counts = group(lo * (int(faces.max()) + 1) + hi)
+    n_forward = np.bincount(inverse, weights=directed[:, 0] < directed[:, 1])
+    return counts, n_forward
+
+
+def unique_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exactly equal rows of an (n, 3) float array merged: unique rows and the inverse index.
+
+    Rows are hashed to one 64-bit integer each (a 1D sort is much faster than a sort of
+    rows); a hash collision, checked for, falls back to sorting the rows themselves.
+    """
+    v = np.ascontiguousarray(v + 0.0)  # -0.0 and 0.0 are the same point
+    bits = v.view(np.uint64)
+    h = np.zeros(len(v), dtype=np.uint64)
+    with np.errstate(over="ignore"):
+        for k in range(v.shape[1]):  # splitmix64 finaliser over the three coordinates
+            h ^= bits[:, k]
+            h ^= h >> np.uint64(30)
+            h *= np.uint64(0xBF58476D1CE4E5B9)
+            h ^= h >> np.uint64(27)
+            h *= np.uint64(0x94D049BB133111EB)
+            h ^= h >> np.uint64(31)
+    first, inverse, _ = group(h)
+    if not np.array_equal(v[first][inverse], v):
+        raw = v.view(np.dtype((np.void, v.dtype.itemsize * v.shape[1]))).ravel()
+        _, first, inverse = np.unique(raw, return_index=True, return_inverse=True)
+    return v[first], inverse.reshape(-1)
+
+
+#: Most pairs of vertices closer than the merge distance, per vertex, for the merge to be of
+#: copies of vertices (a cone's tip written once per face makes many): more, and the
+#: distance is not rounding but the mesh's own spacing (and the pairs would fill memory).
+MAX_MERGE_PAIRS = 8
+
+
+def merge_close(
+    v: np.ndarray, f: np.ndarray, tol: float
+) -> tuple[np.ndarray, np.ndarray, int] | None:
+    """Merge vertices closer than ``tol``; returns new arrays and the number merged, or
+    None when the vertices within ``tol`` of one another are not copies of a vertex: more
+    pairs than :data:`MAX_MERGE_PAIRS` per vertex (counted before any is listed, so that
+    memory stays in proportion to the mesh), or a face with two corners among them."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    tree = cKDTree(v)
+    n_pairs = (int(tree.count_neighbors(tree, tol)) - len(v)) // 2
+    if n_pairs > MAX_MERGE_PAIRS * len(v):
+        return None
+    pairs = tree.query_pairs(tol, output_type="ndarray")
+    if len(pairs) == 0:
+        return v, f, 0
+    n = len(v)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    ncomp, labels = connected_components(graph, directed=False)
+    # representative: the first vertex of each group
+    first = np.full(ncomp, n, dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(n))
+    g = labels[f]
+    if np.any((g[:, 0] == g[:, 1]) | (g[:, 1] == g[:, 2]) | (g[:, 2] == g[:, 0])):
+        return None  # a face would collapse: the distance is larger than some edge
+    return v[first], g, n - ncomp
+
+
+def drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:
+    """Faces without repeats of the same triangle with the same winding, and how many went."""
+    # rotate each triangle so that its smallest index comes first: the winding is kept
+    r = np.argmin(f, axis=1)
+    rolled = f[np.arange(len(f))[:, None], (r[:, None] + np.arange(3)) % 3]
+    unique, inverse = unique_rows(rolled.astype(np.float64))  # exact below 2^53 vertices
+    if len(unique) == len(f):
+        return f, 0
+    first = np.full(len(unique), len(f))
+    np.minimum.at(first, inverse, np.arange(len(f)))
+    return f[np.sort(first)], len(f) - len(unique)
+
+
+def signed_volume(v: np.ndarray, f: np.ndarray) -> float:
+    """Volume enclosed by an oriented closed surface (divergence theorem), m^3."""
+    o = v.mean(axis=0)
+    a, b, c = v[f[:, 0]] - o, v[f[:, 1]] - o, v[f[:, 2]] - o
+    return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
+
+
+def check_finite(v: np.ndarray, name: str) -> None:
+    bad = ~np.isfinite(v)
+    if bad.any():
+        rows = np.flatnonzero(bad.any(axis=1))
+        raise MeshError(
+            f"mesh {name!r}: {len(rows)} vertices have NaN or infinite coordinates "
+            f"(first: vertex {rows[0]} = {v[rows[0]].tolist()}); fix the export"
+        )
+
+
+def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
+    import manifold3d
+
+    mesh = manifold3d.Mesh64(
+        vert_properties=np.ascontiguousarray(v, dtype=np.float64),
+        tri_verts=np.ascontiguousarray(f, dtype=np.uint64),
+    )
+    man = manifold3d.Manifold(mesh)
+    status = man.status()
+    if status != manifold3d.Error.NoError:
+        raise MeshError(
+            f"mesh {name!r} was refused by manifold3d ({status.name}): it is not a closed, "
+            "consistently oriented 2-manifold; repair it in your CAD tool"
+        )
+    return man
+
+
+def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
+    """Flip the fewest faces so that neighbours traverse every shared edge in opposite ways.
+
+    Faces are the nodes of a graph whose edges are the mesh's edges (each shared by two
+    faces, checked before); an edge says whether its two faces agree. A breadth-first tree
+    of each connected part gives every face its parity to the root, found for all faces at
+    once by pointer jumping. In each part, the parity seen by fewer faces is flipped.
+    """
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import breadth_first_order, connected_components
+
+    m = len(faces)
+    directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    owner = np.repeat(np.arange(m), 3)
+    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    order = np.argsort(lo * (int(faces.max()) + 1) + hi, kind="stable")
+    a, b = order[0::2], order[1::2]  # the two uses of each edge, side by side
+    fa, fb = owner[a], owner[b]
+    disagree = (directed[a, 0] == directed[b, 0]).astype(np.int8)  # same direction
+    # weights 1 (agree) and 3 (disagree) stay apart when two faces share two edges
+    graph = coo_matrix((1 + 2 * disagree, (fa, fb)), shape=(m, m)).tocsr()
+    graph = (graph + graph.T).tocsr()
+    ncomp, labels = connected_components(graph, directed=False)
+    pred = np.arange(m)
+    for c in range(ncomp):
+        root = int(np.flatnonzero(labels == c)[0])
+        _, p = breadth_first_order(graph, root, directed=False, return_predecessors=True)
+        members = p >= 0
+        pred[members] = p[members]
+    # parity of each face relative to its tree parent
+    parity = (np.asarray(graph[np.arange(m), pred]).ravel() % 3 == 0).astype(np.int8)
+    parity[pred == np.arange(m)] = 0
+    jump = pred.copy()
+    while np.any(jump != jump[jump]):  # pointer jumping: XOR of parities up to the root
+        parity ^= parity[jump]
+        jump = jump[jump]
+    parity ^= parity[jump]
+    flip = parity.astype(bool)
+    if np.any(disagree.astype(bool) ^ flip[fa] ^ flip[fb]):
+        raise MeshError(
+            f"mesh {name!r}: the faces cannot be oriented consistently "
+            "(a non-orientable surface); remesh the hull"
+        )
+    counts = np.bincount(labels, minlength=ncomp)
+    flipped_per = np.bincount(labels, weights=flip, minlength=ncomp)
+    swap = flipped_per > counts / 2  # flip the other set in this part: fewer faces
+    flip ^= swap[labels]
+    out = faces.copy()
+    out[flip] = out[flip][:, ::-1]
+    return out, int(flip.sum())
+
+
+def flipped(manifold):
+    """The same surface with every face reversed (a cavity turned into a solid)."""
+    mesh = manifold.to_mesh64()
+    v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
+    f = np.asarray(mesh.tri_verts, dtype=np.int64)[:, ::-1]
+    return to_manifold(v, f, "cavity")
+
+
+def unique_edges(faces: np.ndarray, n: int) -> np.ndarray:
+    """(e, 2) int: the unique undirected edges of ``faces`` (over ``n`` vertices) as vertex
+    index pairs (low, high)."""
+    e = np.sort(faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+    key = np.unique(e[:, 0] * n + e[:, 1])
+    return np.stack([key // n, key % n], axis=1)
+
+
+def volume_centroid(v: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """(3,) float: centre of the volume enclosed by a closed oriented surface."""
+    tri = v[f]
+    # signed volumes of the tetrahedra (origin, triangle), shifted for accuracy
+    o = v.mean(axis=0)
+    a, b, c = tri[:, 0] - o, tri[:, 1] - o, tri[:, 2] - o
+    vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    cen = (a + b + c) / 4.0
+    return o + (vol[:, None] * cen).sum(axis=0) / vol.sum()
+
+
+def second_moment(v: np.ndarray, f: np.ndarray, origin: np.ndarray) -> np.ndarray:
+    """(3, 3) float: the volume integrals of ``r_i r_j`` with ``r = v - origin`` over the
+    volume a closed oriented surface encloses (units of ``v`` to the fifth)."""
+    tri = v[f] - origin
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    vol = np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0
+    # tetrahedron (0, a, b, c): integral of r r^T = V/20 (sum v v^T + s s^T), s = a + b + c
+    s = a + b + c
+    outer = (
+        np.einsum("i,ij,ik->jk", vol, a, a)
+        + np.einsum("i,ij,ik->jk", vol, b, b)
+        + np.einsum("i,ij,ik->jk", vol, c, c)
+        + np.einsum("i,ij,ik->jk", vol, s, s)
+    )
+    return outer / 20.0
+
+
+def merge_exact_copies(v: np.ndarray, faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Exactly equal vertices merged when the faces are valid indices (of an integer type,
+    in range); otherwise the arrays unchanged, for the checks to report what is wrong."""
+    f = np.asarray(faces)
+    if len(v) and np.isfinite(v).all() and f.ndim == 2 and np.issubdtype(f.dtype, np.integer):
+        uniq, inverse = unique_rows(v)
+        if f.size and f.min() >= 0 and f.max() < len(inverse):
+            return uniq, inverse[f]
+    return v, faces

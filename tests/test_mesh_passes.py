@@ -1,0 +1,101 @@
+"""The checks and safe fixes every hull goes through, and ``fix=False`` to refuse a fix."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice.cli import main
+from hullslice.repair import PASSES, check_and_repair
+
+from .conftest import MESHES
+from .test_mesh import box, write
+
+
+def test_every_pass_has_a_name_and_says_what_it_does():
+    names = [p.name for p in PASSES]
+    assert len(set(names)) == len(names)
+    assert all(p.doc for p in PASSES)
+    fixes = [p.name for p in PASSES if p.fixes]
+    assert fixes == [
+        "drop degenerate faces",
+        "drop repeated faces",
+        "merge close vertices",
+        "orient faces",
+        "turn outward",
+        "union overlapping shells",
+    ]
+
+
+def _needing(kind: str):
+    v, f = box()
+    if kind == "drop degenerate faces":
+        return v, np.vstack([f, [[0, 0, 1]]])
+    if kind == "drop repeated faces":
+        return v, np.vstack([f, f[:1]])
+    if kind == "merge close vertices":
+        soup = v[f].reshape(-1, 3) + 1e-12 * np.arange(3 * len(f))[:, None]
+        return soup, np.arange(len(soup)).reshape(-1, 3)
+    if kind == "orient faces":
+        g = f.copy()
+        g[0] = g[0, ::-1]
+        return v, g
+    if kind == "turn outward":
+        return v, f[:, ::-1]
+    raise AssertionError(kind)
+
+
+@pytest.mark.parametrize(
+    "kind",
+    ["drop degenerate faces", "drop repeated faces", "merge close vertices", "orient faces",
+     "turn outward"],
+)  # fmt: skip
+def test_a_mesh_needing_a_fix_is_fixed_or_refused(kind):
+    v, f = _needing(kind)
+    with pytest.warns(hs.MeshRepairWarning):
+        fixed = hs.Hull.from_arrays(v, f)
+    assert fixed.volume == pytest.approx(1.0)
+    assert fixed.source["repairs"]
+    with pytest.raises(hs.MeshError, match=f"the pass '{kind}' would fix it"):
+        hs.Hull.from_arrays(v, f, fix=False)
+
+
+def test_a_clean_mesh_loads_the_same_without_fixes():
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", hs.MeshRepairWarning)
+        a = hs.load_hull(MESHES / "paper_prism.stl", mass=1.0, fix=False)
+    b = hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+    assert np.array_equal(a.vertices, b.vertices) and np.array_equal(a.faces, b.faces)
+    assert a.source == b.source
+
+
+def test_checks_run_without_fixes():
+    v, f = box()
+    with pytest.raises(hs.MeshError, match="is open"):
+        hs.Hull.from_arrays(v, f[1:], fix=False)
+    bad = v.copy()
+    bad[0, 0] = np.nan
+    with pytest.raises(hs.MeshError, match="NaN or infinite"):
+        check_and_repair(bad, f, "box", fix=False)
+
+
+def test_the_notes_are_the_warnings_in_order():
+    v, f = box()
+    f = np.vstack([f, [[0, 0, 1]], f[:1]])[:, ::-1]
+    with pytest.warns(hs.MeshRepairWarning) as record:
+        _, _, _, notes = check_and_repair(v, f, "box")
+    assert [str(w.message) for w in record] == [f"mesh 'box': {n}" for n in notes]
+    assert [n.split()[0] for n in notes] == ["removed", "removed", "the"]
+
+
+def test_no_fix_on_the_command_line(tmp_path, capsys):
+    v, f = box()
+    path = write(tmp_path, "flipped.stl", v, f[:, ::-1])
+    argv = ["sections", str(path), "--mass", "500", "--draft", "0.1", "--slices", "4"]
+    assert main(argv) == 0
+    assert "inside out" in capsys.readouterr().err
+    assert main([*argv, "--no-fix"]) != 0
+    assert "'turn outward' would fix it" in capsys.readouterr().err
