@@ -60,7 +60,7 @@ def plot_history(history, title: str | None = None):
         (history.force / 1e3 if history.force.max() > 1e4 else history.force, "force"),
         (history.acceleration, "acceleration [m/s$^2$]"),
         (history.velocity, "velocity [m/s]"),
-        (history.penetration, "draft [m]"),
+        (history.draft, "draft [m]"),
     ]
     force_unit = "kN" if history.force.max() > 1e4 else "N"
     series[0] = (series[0][0], f"force [{force_unit}]")

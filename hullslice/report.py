@@ -234,7 +234,7 @@ HISTORY_PITCH_COLUMNS = (
 def history_records(history, every: int = 1) -> list[dict[str, Any]]:
     """One dict per instant of a :class:`~hullslice.motion.History` (every ``every``-th,
     always with the last)."""
-    cols = history.columns()
+    cols = history.output_columns()
     n = len(history)
     idx = list(range(0, n, max(1, every)))
     if n and idx[-1] != n - 1:

@@ -459,7 +459,7 @@ def summarise(history) -> dict[str, Any]:
     """A case's results from its history (see :data:`RESULTS`), read from its columns
     generically: every column's final value; the flagged share is the history's own
     ``flagged_share`` when it has one, else ``1 - valid_share``."""
-    cols = history.columns()
+    cols = history.output_columns()
     out: dict[str, Any] = {"steps": len(history), "stop_reason": str(history.stop_reason)}
     flagged = getattr(history, "flagged_share", None)  # an attribute, a column, or derived
     if flagged is None:
@@ -491,7 +491,7 @@ def summarise(history) -> dict[str, Any]:
 def _history_record(history) -> dict[str, list]:
     return {
         name: [str(v) if isinstance(v, str) else float(v) for v in values]
-        for name, values in history.columns().items()
+        for name, values in history.output_columns().items()
     }
 
 

@@ -186,3 +186,59 @@ def test_a_run_ends_when_the_pitch_reaches_80_degrees(paper_hull):
     assert h.stop_reason == "pitch"
     assert np.degrees(h.pitch[-1]) < 80.0 <= np.degrees(h.pitch[-1]) + 300.0 * 1e-3 + 1e-9
     assert h.first_crossed["pitch"] == pytest.approx(h.t[-1])
+
+
+def _pitched_kinematics(rows: int = 9) -> dict[str, np.ndarray]:
+    t = np.linspace(0.0, 0.004, rows)
+    return {
+        "t": t,
+        "draft": 0.005 + 2.0 * t,
+        "velocity": np.full_like(t, -2.0),
+        "pitch": np.radians(4.0 + 100.0 * t),
+        "pitch_rate": np.full_like(t, np.radians(100.0)),
+        "forward_speed": np.full_like(t, 5.0),
+    }
+
+
+@pytest.mark.parametrize("solver", ["extended-von-karman", "wagner"])
+def test_prescribed_former_keys_in_degrees_give_the_same_history(solver):
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    hull = hs.Hull.from_arrays(v, f, mass=5.0)
+    kin = _pitched_kinematics()
+    now = prescribed(hull, kin, solver=solver, slices=8)
+    old = {
+        "t": kin["t"],
+        "penetration": kin["draft"],
+        "velocity": kin["velocity"],
+        "pitch_deg": 4.0 + 100.0 * kin["t"],
+        "pitch_rate_deg_s": np.full_like(kin["t"], 100.0),
+        "forward_speed": kin["forward_speed"],
+    }
+    with pytest.warns(DeprecationWarning, match="'pitch_deg' is deprecated: give 'pitch'"):
+        before = prescribed(hull, old, solver=solver, slices=8)
+    np.testing.assert_allclose(before.force, now.force, rtol=1e-12)
+    np.testing.assert_allclose(before.moment, now.moment, rtol=1e-12, atol=1e-12)
+    with pytest.raises(hs.CaseError, match="give 'draft' only"):
+        prescribed(hull, {**kin, "penetration": kin["draft"]}, solver=solver, slices=8)
+
+
+def test_history_draft_and_its_former_name(paper_fall):
+    assert np.array_equal(paper_fall.columns()["draft"], paper_fall.draft)
+    assert "penetration" not in paper_fall.columns()
+    # the command line's files keep their header
+    out = paper_fall.output_columns()
+    assert list(out) == list(paper_fall.OUTPUT_COLUMNS)
+    assert np.array_equal(out["penetration"], paper_fall.draft)
+    with pytest.warns(DeprecationWarning, match="use History.draft"):
+        assert np.array_equal(paper_fall.penetration, paper_fall.draft)
+
+
+def test_kinematics_file_in_degrees_is_read_in_rad(tmp_path):
+    path = tmp_path / "k.csv"
+    path.write_text(
+        "t,draft,velocity,pitch_deg,pitch_rate_deg_s\n0,0.01,-2,4,90\n0.001,0.012,-2,4.09,90\n"
+    )
+    kin = read_kinematics(path)
+    assert list(kin) == ["t", "draft", "velocity", "pitch", "pitch_rate"]
+    np.testing.assert_array_equal(kin["pitch"], np.radians([4.0, 4.09]))
+    np.testing.assert_array_equal(kin["pitch_rate"], np.radians([90.0, 90.0]))

@@ -238,8 +238,8 @@ def compute(args: argparse.Namespace) -> Outcome:
         )
     return Outcome(
         table=_table(hull, history, summary, solver_label(args)),
-        data={"mesh": str(args.mesh), **summary, "history": history.columns()},
-        csv_columns=list(history.COLUMNS),
+        data={"mesh": str(args.mesh), **summary, "history": history.output_columns()},
+        csv_columns=list(history.OUTPUT_COLUMNS),
         csv_rows=history_records(history),
         figures=figures,
     )

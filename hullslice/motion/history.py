@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 
@@ -34,6 +35,10 @@ STOP_RULES: dict[str, str] = {
 #: The stop rules a run applies by default (``slender`` is recorded, not applied).
 DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "chine", "validity", "pitch")
 
+#: The names the command line's files and tables, and the sweeps' datasets, give some
+#: columns of :meth:`History.columns`.
+OUTPUT_NAMES: dict[str, str] = {"draft": "penetration"}
+
 #: Default largest share of the force (sum of the slices' absolute forces) that slices
 #: outside the solver's range may carry before the ``validity`` rule ends a run.
 MAX_FLAGGED_SHARE = 0.1
@@ -47,8 +52,9 @@ class History:
     ----------
     t : (k,) float
         Time in s (0 at the start of the run).
-    penetration : (k,) float
-        Draft of the body's lowest point below the water, m (positive).
+    draft : (k,) float
+        Draft of the body's lowest point below the water, m (positive). Formerly
+        ``penetration``, still readable under that name (deprecated).
     velocity : (k,) float
         Vertical velocity of the centre of gravity, m/s, negative down.
     acceleration : (k,) float
@@ -98,7 +104,7 @@ class History:
     """
 
     t: np.ndarray
-    penetration: np.ndarray
+    draft: np.ndarray
     velocity: np.ndarray
     acceleration: np.ndarray
     force: np.ndarray
@@ -123,7 +129,7 @@ class History:
 
     ARRAYS = (
         "t",
-        "penetration",
+        "draft",
         "velocity",
         "acceleration",
         "force",
@@ -146,7 +152,7 @@ class History:
     #: The columns of :meth:`columns`, in order (SI; angles in degrees as named).
     COLUMNS = (
         "t",
-        "penetration",
+        "draft",
         "velocity",
         "acceleration",
         "force",
@@ -189,17 +195,37 @@ class History:
     @property
     def peak(self) -> dict[str, float]:
         """The instant of the largest force: ``t``, ``force``, ``acceleration``, ``velocity``,
-        ``penetration``, ``pitch_deg``, ``moment``."""
+        ``penetration`` (the draft, m), ``pitch_deg``, ``moment``: the names of the
+        command line's outputs (:data:`OUTPUT_NAMES`)."""
         i = int(np.argmax(self.force))
         return {
             "t": float(self.t[i]),
             "force": float(self.force[i]),
             "acceleration": float(self.acceleration[i]),
             "velocity": float(self.velocity[i]),
-            "penetration": float(self.penetration[i]),
+            "penetration": float(self.draft[i]),
             "pitch_deg": float(np.degrees(self.pitch[i])),
             "moment": float(self.moment[i]),
         }
+
+    #: The columns of :meth:`output_columns`, in order: the header of the files and tables
+    #: the command line and the sweeps write.
+    OUTPUT_COLUMNS = tuple(OUTPUT_NAMES.get(name, name) for name in COLUMNS)
+
+    @property
+    def penetration(self) -> np.ndarray:
+        """(k,) float: the draft, m. Deprecated: use :attr:`draft`."""
+        warnings.warn(
+            "History.penetration is deprecated: use History.draft (the body's draft, m)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.draft
+
+    def output_columns(self) -> dict[str, np.ndarray]:
+        """The per-instant arrays by the names of :attr:`OUTPUT_COLUMNS` (the draft as
+        ``penetration``): what the command line and the sweeps write."""
+        return {OUTPUT_NAMES.get(k, k): v for k, v in self.columns().items()}
 
     def columns(self) -> dict[str, np.ndarray]:
         """The per-instant arrays by the names of :attr:`COLUMNS`."""
@@ -272,7 +298,7 @@ class _Recorder:
         self.rows.append(
             {
                 "t": t,
-                "penetration": r.pose.draft if draft is None else draft,
+                "draft": r.pose.draft if draft is None else draft,
                 "velocity": w,
                 "acceleration": acceleration,
                 "force": r.total,

@@ -20,7 +20,7 @@ solver (the paper's) has no added mass: ``A = 0`` and ``F_z`` already holds each
 free fall (Eq. 12). A level vertical fall is the special case of the paper.
 
 A prescribed motion (the paper's way: kinematics from CFD or a test) evaluates the force
-along a table of ``t, penetration, velocity`` (and optionally the accelerations, pitch and
+along a table of ``t, draft, velocity`` (and optionally the accelerations, pitch and
 forward speed, :mod:`hullslice.motion.kinematics`); a momentum-form solver's force then uses
 the table's accelerations and does not depend on the body's mass.
 
@@ -367,11 +367,13 @@ def prescribed(
     hull : Hull
         The body; its mass is needed by free-fall solvers only.
     kinematics : mapping
-        Arrays ``t`` (s, increasing), ``penetration`` (m, draft of the lowest point, >= 0)
-        and ``velocity`` (m/s, vertical velocity of the centre of gravity, negative down),
-        optionally ``acceleration`` (m/s^2, up), ``pitch_deg`` (nose up),
-        ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, ``forward_speed`` (m/s) and
-        ``forward_acceleration`` (m/s^2); e.g. from :func:`read_kinematics`. A momentum-form
+        Arrays ``t`` (s, increasing), ``draft`` (m, draft of the lowest point, >= 0) and
+        ``velocity`` (m/s, vertical velocity of the centre of gravity, negative down),
+        optionally ``acceleration`` (m/s^2, up), ``pitch`` (rad, nose up), ``pitch_rate``
+        (rad/s), ``pitch_acceleration`` (rad/s^2), ``forward_speed`` (m/s) and
+        ``forward_acceleration`` (m/s^2); e.g. from :func:`read_kinematics`. The former
+        keys ``penetration``, ``pitch_deg``, ``pitch_rate_deg_s`` and
+        ``pitch_acceleration_deg_s2`` (degrees) are deprecated. A momentum-form
         solver takes the body's accelerations from the table, or from the derivatives of
         its velocities (:mod:`hullslice.motion.kinematics`).
     stop_on : iterable of str
@@ -396,10 +398,8 @@ def prescribed(
     t_all = kin["t"]
     g = model.fluid.g
     for i, t in enumerate(t_all):
-        pose = Pose(kin["penetration"][i], math.radians(kin["pitch_deg"][i]))
-        motion = Motion(
-            kin["velocity"][i], kin["forward_speed"][i], math.radians(kin["pitch_rate_deg_s"][i])
-        )
+        pose = Pose(kin["draft"][i], kin["pitch"][i])
+        motion = Motion(kin["velocity"][i], kin["forward_speed"][i], kin["pitch_rate"][i])
         if accelerations is not None:
             r = model(pose, motion, accelerations[i])
             acc = accelerations[i].vertical

@@ -1,34 +1,42 @@
 """Prescribed kinematics: the table a motion is read from, checked, and its derivatives.
 
-A kinematics table has the columns ``t`` (s, increasing), ``penetration`` (m, the draft of
-the lowest point, >= 0) and ``velocity`` (m/s, vertical velocity of the centre of gravity,
-negative down); optionally ``acceleration`` (m/s^2, positive up), ``pitch_deg`` (nose up),
-``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, ``forward_speed`` (m/s) and
-``forward_acceleration`` (m/s^2). A pitch that changes without a ``pitch_rate_deg_s``
-column has its derivative as its rate.
+A kinematics table maps the names ``t`` (s, increasing), ``draft`` (m, the draft of the
+lowest point, >= 0) and ``velocity`` (m/s, vertical velocity of the centre of gravity,
+negative down) to arrays; optionally ``acceleration`` (m/s^2, positive up), ``pitch``
+(rad, nose up), ``pitch_rate`` (rad/s), ``pitch_acceleration`` (rad/s^2),
+``forward_speed`` (m/s) and ``forward_acceleration`` (m/s^2). A pitch that changes without
+a ``pitch_rate`` has its derivative as its rate. The former names ``penetration``,
+``pitch_deg``, ``pitch_rate_deg_s`` and ``pitch_acceleration_deg_s2`` (degrees) are still
+taken, with a :class:`DeprecationWarning` (:data:`DEPRECATED_KEYS`).
+
+A CSV file of kinematics (:func:`read_kinematics`) names its columns as the command line's
+own history files do: ``t``, ``penetration`` (or ``draft``), ``velocity``, and the optional
+``acceleration``, ``pitch_deg``, ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``,
+``forward_speed``, ``forward_acceleration`` (:data:`FILE_COLUMNS`): its angles are in
+degrees, converted to rad once, as it is read.
 
 A momentum-form solver needs the body's accelerations. Where the table gives no
 ``acceleration`` it is the derivative of ``velocity`` in time, and likewise the pitch and
 forward accelerations of the pitch rate and forward speed: second-order central
 differences inside the table and second-order one-sided ones at its ends
 (``numpy.gradient(..., edge_order=2)``), so three rows at least. A given rate must agree
-with its value (``acceleration`` with ``velocity``, ``pitch_rate_deg_s`` with
-``pitch_deg``, ``pitch_acceleration_deg_s2`` with ``pitch_rate_deg_s``,
-``forward_acceleration`` with ``forward_speed``): its trapezoidal integral from the first
-row may differ from the value's change by at most :data:`ACCELERATION_TOLERANCE` of the
-value's largest size.
+with its value (``acceleration`` with ``velocity``, ``pitch_rate`` with ``pitch``,
+``pitch_acceleration`` with ``pitch_rate``, ``forward_acceleration`` with
+``forward_speed``): its trapezoidal integral from the first row may differ from the
+value's change by at most :data:`ACCELERATION_TOLERANCE` of the value's largest size.
 """
 
 from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from ..errors import CaseError
-from ..limits import MAX_PITCH_DEG
+from ..limits import MAX_PITCH, MAX_PITCH_DEG
 from ..mesh import Hull
 from ..paths import printable
 from ..sections import _height_at
@@ -37,6 +45,8 @@ from ..tables import column_values, header_text, read_csv
 
 __all__ = [
     "ACCELERATION_TOLERANCE",
+    "DEPRECATED_KEYS",
+    "FILE_COLUMNS",
     "KINEMATICS_COLUMNS",
     "KINEMATICS_OPTIONAL",
     "check_kinematics",
@@ -44,29 +54,99 @@ __all__ = [
     "read_kinematics",
 ]
 
-KINEMATICS_COLUMNS = ("t", "penetration", "velocity")
+KINEMATICS_COLUMNS = ("t", "draft", "velocity")
 #: Optional kinematics columns and their value when absent (NaN: derived when needed).
 KINEMATICS_OPTIONAL = {
     "acceleration": math.nan,
-    "pitch_deg": 0.0,
-    "pitch_rate_deg_s": 0.0,
-    "pitch_acceleration_deg_s2": math.nan,
+    "pitch": 0.0,
+    "pitch_rate": 0.0,
+    "pitch_acceleration": math.nan,
     "forward_speed": 0.0,
     "forward_acceleration": math.nan,
 }
+
+#: Former names of kinematics keys: ``old -> (new, degrees)``; ``degrees``: the old key's
+#: values are in degrees (converted to rad).
+DEPRECATED_KEYS: dict[str, tuple[str, bool]] = {
+    "penetration": ("draft", False),
+    "pitch_deg": ("pitch", True),
+    "pitch_rate_deg_s": ("pitch_rate", True),
+    "pitch_acceleration_deg_s2": ("pitch_acceleration", True),
+}
+
+#: The columns of a kinematics file -> the keys they are read into (angles converted from
+#: degrees). ``draft`` is also read (the key's own name).
+FILE_COLUMNS: dict[str, str] = {
+    "t": "t",
+    "penetration": "draft",
+    "velocity": "velocity",
+    "acceleration": "acceleration",
+    "pitch_deg": "pitch",
+    "pitch_rate_deg_s": "pitch_rate",
+    "pitch_acceleration_deg_s2": "pitch_acceleration",
+    "forward_speed": "forward_speed",
+    "forward_acceleration": "forward_acceleration",
+}
+
+#: The columns of a kinematics file in degrees (or degrees per second, per second squared).
+FILE_DEGREES = frozenset({"pitch_deg", "pitch_rate_deg_s", "pitch_acceleration_deg_s2"})
 
 #: Largest disagreement between a given ``acceleration`` column, integrated in time, and
 #: the ``velocity`` column, as a share of the largest speed in the table.
 ACCELERATION_TOLERANCE = 0.02
 
 
+def _current(
+    kin: Mapping[str, Sequence[float] | np.ndarray],
+) -> dict[str, Sequence[float] | np.ndarray]:
+    """``kin`` with its deprecated keys renamed (and degrees in rad), each warned about."""
+    old = [k for k in DEPRECATED_KEYS if k in kin]
+    if not old:
+        return dict(kin)
+    out = dict(kin)
+    for key in old:
+        new, degrees = DEPRECATED_KEYS[key]
+        if new in kin:
+            raise CaseError(
+                f"kinematics give both {key!r} and {new!r}: give {new!r} only"
+                + (" (in rad)" if degrees else "")
+            )
+        warnings.warn(
+            f"the kinematics key {key!r} is deprecated: give {new!r}"
+            + (" in rad" if degrees else " (the same values)"),
+            DeprecationWarning,
+            stacklevel=4,
+        )
+        values = out.pop(key)
+        out[new] = np.radians(np.asarray(values, dtype=np.float64)) if degrees else values
+    return out
+
+
 def check_kinematics(
     kin: Mapping[str, Sequence[float] | np.ndarray], hull: Hull
 ) -> dict[str, np.ndarray]:
+    """Kinematics as float arrays of equal length, every optional key filled, checked.
+
+    Parameters
+    ----------
+    kin : mapping
+        The keys of the module notes (SI, angles in rad); the deprecated ones of
+        :data:`DEPRECATED_KEYS` are renamed with a :class:`DeprecationWarning`.
+    hull : Hull
+        The body (its height limits the draft).
+
+    Raises
+    ------
+    CaseError
+        A key is missing, a value is not finite, the time does not increase, a rate
+        disagrees with its value, the pitch is too steep or the draft negative or deeper
+        than the body.
+    """
+    kin = _current(kin)
     missing = [c for c in KINEMATICS_COLUMNS if c not in kin]
     if missing:
         raise CaseError(
-            f"kinematics lack the column(s) {', '.join(missing)}: give t (s), penetration (m, "
+            f"kinematics lack the column(s) {', '.join(missing)}: give t (s), draft (m, "
             "positive down) and velocity (m/s, negative down)"
         )
     out = {c: np.asarray(kin[c], dtype=np.float64).ravel() for c in KINEMATICS_COLUMNS}
@@ -91,32 +171,33 @@ def check_kinematics(
         )
     if n >= 2:
         t = out["t"]
-        if "pitch_rate_deg_s" not in given and np.any(out["pitch_deg"] != out["pitch_deg"][0]):
+        if "pitch_rate" not in given and np.any(out["pitch"] != out["pitch"][0]):
             # a pitch that changes without its rate: the rate is its derivative
-            out["pitch_rate_deg_s"] = _derivative(out["pitch_deg"], t)
+            out["pitch_rate"] = _derivative(out["pitch"], t)
         for rate, value in RATES:
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
-    p = out["penetration"]
-    steep = np.flatnonzero(np.abs(out["pitch_deg"]) >= MAX_PITCH_DEG)
+    p = out["draft"]
+    steep = np.flatnonzero(np.abs(out["pitch"]) >= MAX_PITCH)
     if len(steep):
         i = int(steep[0])
         raise CaseError(
-            f"kinematics pitch at row {i + 1} ({out['pitch_deg'][i]:g} deg) is too steep for a "
-            f"2D+t model: keep it between -{MAX_PITCH_DEG:g} and {MAX_PITCH_DEG:g} deg"
+            f"kinematics pitch at row {i + 1} ({math.degrees(out['pitch'][i]):g} deg) is too "
+            f"steep for a 2D+t model: keep it between -{MAX_PITCH_DEG:g} and "
+            f"{MAX_PITCH_DEG:g} deg"
         )
     if np.any(p < 0):
         i = int(np.flatnonzero(p < 0)[0])
         raise CaseError(
-            f"kinematics penetration at row {i + 1} is negative ({p[i]:g} m): the penetration "
-            "is the depth of the lowest point below the water, >= 0"
+            f"kinematics draft (penetration) at row {i + 1} is negative ({p[i]:g} m): the "
+            "draft is the depth of the lowest point below the water, >= 0"
         )
-    heights = np.array([_height_at(hull, math.radians(th)) for th in out["pitch_deg"]])
+    heights = np.array([_height_at(hull, float(th)) for th in out["pitch"]])
     if np.any(p > heights):
         i = int(np.flatnonzero(p > heights)[0])
         raise CaseError(
-            f"kinematics penetration at row {i + 1} ({p[i]:g} m) is deeper than the body's "
-            f"height {heights[i]:.6g} m"
+            f"kinematics draft (penetration) at row {i + 1} ({p[i]:g} m) is deeper than the "
+            f"body's height {heights[i]:.6g} m"
         )
     return out
 
@@ -124,27 +205,38 @@ def check_kinematics(
 def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Read a kinematics table from CSV.
 
-    The header names the columns; ``t`` (s), ``penetration`` (m, the draft of the lowest
-    point, positive) and ``velocity`` (m/s, negative down) are required; the optional
-    columns of :data:`KINEMATICS_OPTIONAL` (module notes) are read when present; other
-    columns are ignored. Lines starting with ``#`` are comments.
+    The header names the columns (:data:`FILE_COLUMNS`); ``t`` (s), ``penetration`` or
+    ``draft`` (m, the draft of the lowest point, positive) and ``velocity`` (m/s,
+    negative down) are required; the optional columns are read when present, their angles
+    in degrees; other columns are ignored. Lines starting with ``#`` are comments.
 
     Returns
     -------
     dict of (k,) float arrays
-        ``t``, ``penetration``, ``velocity`` and the optional columns present.
+        ``t``, ``draft``, ``velocity`` and the optional columns present under the keys of
+        the module notes, angles in rad (``pitch``, ``pitch_rate``,
+        ``pitch_acceleration``).
     """
     header, rows = read_csv(path, "kinematics")  # hullslice/tables.py
-    missing = [c for c in KINEMATICS_COLUMNS if c not in header]
+    columns = {c: key for c, key in FILE_COLUMNS.items() if c in header}
+    if "draft" in header and "penetration" not in header:
+        columns["draft"] = "draft"
+    missing = [
+        c for c in ("t", "penetration", "velocity") if FILE_COLUMNS[c] not in columns.values()
+    ]
     if missing:
         raise CaseError(
             f"kinematics file {printable(path)!r} lacks the column(s) {', '.join(missing)} "
-            f"({header_text(header)}); it needs t, penetration, velocity"
+            f"({header_text(header)}); it needs t, penetration (or draft), velocity"
         )
-    names = [*KINEMATICS_COLUMNS, *(c for c in KINEMATICS_OPTIONAL if c in header)]
+    names = list(columns)
     idx = [header.index(c) for c in names]
     arr = column_values(rows, idx, names, f"kinematics file {printable(path)!r}")
-    return {c: arr[:, i] for i, c in enumerate(names)}
+    out = {
+        columns[c]: np.radians(arr[:, i]) if c in FILE_DEGREES else arr[:, i]
+        for i, c in enumerate(names)
+    }
+    return {k: out[k] for k in (*KINEMATICS_COLUMNS, *KINEMATICS_OPTIONAL) if k in out}
 
 
 def _derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -158,8 +250,8 @@ def _derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
 #: Columns that are the time derivatives of others, with their units: ``(rate, value)``.
 RATES = (
     ("acceleration", "velocity"),
-    ("pitch_rate_deg_s", "pitch_deg"),
-    ("pitch_acceleration_deg_s2", "pitch_rate_deg_s"),
+    ("pitch_rate", "pitch"),
+    ("pitch_acceleration", "pitch_rate"),
     ("forward_acceleration", "forward_speed"),
 )
 
@@ -172,7 +264,7 @@ def _check_rate(t: np.ndarray, x: np.ndarray, rate: np.ndarray, value: str, name
     miss = np.abs(integral - (x - x[0]))
     scale = float(np.abs(x).max())
     worst = int(np.argmax(miss))
-    unit = {"velocity": "m/s", "pitch_deg": "deg", "pitch_rate_deg_s": "deg/s"}.get(value, "m/s")
+    unit = {"velocity": "m/s", "pitch": "rad", "pitch_rate": "rad/s"}.get(value, "m/s")
     if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
         raise CaseError(
             f"kinematics {name} disagrees with {value}: integrated from t = {t[0]:g} s to "
@@ -198,7 +290,7 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
     cols = {}
     for acc, vel in (
         ("acceleration", "velocity"),
-        ("pitch_acceleration_deg_s2", "pitch_rate_deg_s"),
+        ("pitch_acceleration", "pitch_rate"),
         ("forward_acceleration", "forward_speed"),
     ):
         a = np.asarray(kin[acc], dtype=np.float64)
@@ -215,7 +307,7 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
                 f"time (three at least): give more rows or an {acc} column"
             )
         cols[acc] = _derivative(v, t)
-    pitch = np.radians(cols["pitch_acceleration_deg_s2"])
+    pitch = cols["pitch_acceleration"]
     return [
         Acceleration(float(a), float(q), float(u))
         for a, q, u in zip(cols["acceleration"], pitch, cols["forward_acceleration"], strict=True)

@@ -1,5 +1,14 @@
 """2D solvers: the interface, the registry and the default solver.
 
+- :mod:`~hullslice.solvers.base`: what a solver is given and returns.
+- :mod:`~hullslice.solvers.registry`: solvers by name, from entry points.
+- :mod:`~hullslice.solvers.curves`: characteristic curves and their CSV tables.
+- :mod:`~hullslice.solvers.peaks`: the peak values of a free-falling wedge (Eq. 2).
+- :mod:`~hullslice.solvers.pileup`: the pile-up laws.
+- :mod:`~hullslice.solvers.karman`: the curve solvers, the default among them.
+- :mod:`~hullslice.solvers.momentum`: von Karman's momentum theory in closed form.
+- :mod:`~hullslice.solvers.contour`: a section's wetted width from its own contour.
+
 Solvers are found through the entry-point group ``hullslice.solvers``; see
 :mod:`hullslice.solvers.registry`.
 """
@@ -15,22 +24,13 @@ from .base import (
     SolverBase,
     join_reasons,
 )
-from .karman import (
-    CURVE_COLUMNS,
-    PAPER_CURVES,
-    CharacteristicCurves,
-    CurveSolver,
-    ExtendedVonKarman,
-    dobrovolskaya_pile_up,
-    peak_froude,
-    peak_values,
-)
-from .momentum import (
+from .curves import CURVE_COLUMNS, PAPER_CURVES, CharacteristicCurves
+from .karman import CurveSolver, ExtendedVonKarman
+from .momentum import FreeFallMomentumSolver, MomentumSolver, chine_half_width, momentum_curves
+from .peaks import peak_froude, peak_values
+from .pileup import (
     PILE_UP_LAWS,
-    FreeFallMomentumSolver,
-    MomentumSolver,
-    chine_half_width,
-    momentum_curves,
+    dobrovolskaya_pile_up,
     pile_up_law,
     von_karman_pile_up,
     wagner_pile_up,

@@ -42,7 +42,7 @@ and the force per metre on the slice is ``M (a + g)`` (paper, Eq. 12). Along the
     z* = tan(beta) sqrt(2 M / (5 pi rho gamma^2)),    v_z* = 5/6 v_z0,
     a_max = v_z0^2 (5/6)^3 gamma / tan(beta) sqrt(2 pi rho / (5 M)),
 
-the paper's Eq. 2 (:func:`~hullslice.solvers.karman.peak_values`). In the scaled variables of
+the paper's Eq. 2 (:func:`~hullslice.solvers.peaks.peak_values`). In the scaled variables of
 Eq. 3 the theory's characteristic curves are ``v~ = 1 / (1 + pi rho z~^2 / 2)`` and
 ``a~ = -pi rho z~ v~^3`` (:func:`momentum_curves`).
 
@@ -52,7 +52,7 @@ The closed form holds at any penetration, so unlike fitted curves it has no ``z~
 Its limits are those of the model: the section moves down into the water (``v < 0``; a
 section rising out of the water is left behind by the separated flow and gets no force);
 gravity is negligible during the impact, ``Fr* = |v_z*| / sqrt(g z*) > 6.5`` (paper, after
-Eq. 2; :func:`~hullslice.solvers.karman.peak_froude`); and the wetted half-width with the
+Eq. 2; :func:`~hullslice.solvers.peaks.peak_froude`); and the wetted half-width with the
 pile-up, ``gamma p / tan(beta)``, stays inside the section (the spray root has not reached
 the chine, after which the flow separates and the added mass stops growing as assumed).
 The calm-water line reaching the chine is flagged by hullslice itself for every solver;
@@ -65,7 +65,7 @@ Dobrovol'skaya's ``gamma_D``, 1.054 at 45 deg).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from numbers import Real
 from typing import Any, ClassVar
 
@@ -74,82 +74,32 @@ import numpy as np
 from ..errors import InputError
 from ..sections import Sections
 from ..state import Fluid
-from .base import AddedMass, MomentumFormSolver, SectionLoads, Solver, join_reasons
+from .base import AddedMass, MomentumFormSolver, SectionLoads, Solver, SolverBase, join_reasons
 from .contour import SECTION_METHODS, contour_half_widths
-from .karman import CharacteristicCurves, dobrovolskaya_pile_up, peak_froude
+from .curves import CharacteristicCurves
+from .peaks import peak_froude
+from .pileup import (
+    PILE_UP_LAWS,
+    PileUp,
+    dobrovolskaya_pile_up,
+    pile_up_law,
+    von_karman_pile_up,
+    wagner_pile_up,
+)
 
 __all__ = [
     "PILE_UP_LAWS",
     "FreeFallMomentumSolver",
     "MomentumSolver",
+    "PileUp",
+    "PileUpOptions",
     "chine_half_width",
+    "dobrovolskaya_pile_up",
     "momentum_curves",
     "pile_up_law",
     "von_karman_pile_up",
     "wagner_pile_up",
 ]
-
-PileUp = Callable[[np.ndarray], np.ndarray]
-
-
-def von_karman_pile_up(deadrise: np.ndarray) -> np.ndarray:
-    """Von Karman's pile-up coefficient: ``gamma = 1`` (no pile-up); ``deadrise`` in rad."""
-    return np.ones_like(np.asarray(deadrise, dtype=np.float64))
-
-
-def wagner_pile_up(deadrise: np.ndarray) -> np.ndarray:
-    """Wagner's pile-up coefficient: ``gamma = pi / 2`` (small deadrise); ``deadrise`` in rad."""
-    return np.full_like(np.asarray(deadrise, dtype=np.float64), np.pi / 2)
-
-
-#: Pile-up laws by name: ``gamma(deadrise in rad)``.
-PILE_UP_LAWS: Mapping[str, PileUp] = {
-    "dobrovolskaya": dobrovolskaya_pile_up,
-    "wagner": wagner_pile_up,
-    "von-karman": von_karman_pile_up,
-}
-
-
-def pile_up_law(spec: str | float) -> PileUp:
-    """A pile-up law from its name (a key of :data:`PILE_UP_LAWS`) or a constant ``gamma``.
-
-    Parameters
-    ----------
-    spec : str or float
-        ``"dobrovolskaya"`` (``-0.0114 beta_deg + 1.5669``), ``"wagner"`` (``pi / 2``),
-        ``"von-karman"`` (1), or a positive number used for every deadrise.
-
-    Returns
-    -------
-    callable
-        ``gamma(deadrise)`` with ``deadrise`` in rad.
-
-    Raises
-    ------
-    InputError
-        An unknown name, or a number that is not positive and finite.
-    """
-    if isinstance(spec, str):
-        law = PILE_UP_LAWS.get(spec.strip().lower())
-        if law is None:
-            raise InputError(
-                f"pile-up law {spec!r} is unknown: give one of {', '.join(PILE_UP_LAWS)} or a "
-                "positive number (the constant gamma)"
-            )
-        return law
-    if isinstance(spec, bool) or not isinstance(spec, Real):
-        raise InputError(
-            f"pile-up {spec!r} is neither a law's name ({', '.join(PILE_UP_LAWS)}) nor a number"
-        )
-    gamma = float(spec)
-    if not (math.isfinite(gamma) and gamma > 0.0):
-        raise InputError(f"pile-up coefficient {spec!r} is not a positive number (e.g. 1.5708)")
-
-    def constant(deadrise: np.ndarray) -> np.ndarray:
-        return np.full_like(np.asarray(deadrise, dtype=np.float64), gamma)
-
-    constant.__doc__ = f"Constant pile-up coefficient gamma = {gamma:g}."
-    return constant
 
 
 def chine_half_width(sections: Sections) -> np.ndarray:
@@ -190,7 +140,25 @@ def momentum_curves(
     )
 
 
-class FreeFallMomentumSolver(Solver):
+class PileUpOptions(SolverBase):
+    """The options the solvers of momentum theory share, read once when one is made.
+
+    ``pile_up`` is the pile-up law (:func:`pile_up_law`, used by :meth:`pile_up`) and
+    ``froude_min``, when the solver has that option, a positive finite number.
+    """
+
+    def __init__(self, **options: Any) -> None:
+        super().__init__(**options)
+        self._law = pile_up_law(self.settings["pile_up"])
+        if "froude_min" in self.options:
+            self.settings["froude_min"] = _positive_option(self, "froude_min")
+
+    def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
+        """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
+        return self._law(deadrise)
+
+
+class FreeFallMomentumSolver(PileUpOptions, Solver):
     """Von Karman's momentum theory in closed form, in the paper's free-fall form.
 
     Subclasses set :attr:`~hullslice.Solver.name` and :attr:`~hullslice.Solver.description`;
@@ -213,15 +181,6 @@ class FreeFallMomentumSolver(Solver):
     """
 
     options: ClassVar[Mapping[str, Any]] = {"pile_up": "von-karman", "froude_min": 6.5}
-
-    def __init__(self, **options: Any) -> None:
-        super().__init__(**options)
-        self._law = pile_up_law(self.settings["pile_up"])
-        self.settings["froude_min"] = _positive_option(self, "froude_min")
-
-    def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
-        """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
-        return self._law(deadrise)
 
     def section_loads(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> SectionLoads:
         n = len(sections)
@@ -287,7 +246,7 @@ def _positive_option(solver: Any, key: str, *, allow_zero: bool = False) -> floa
 SECTION_FROUDE_MIN = 2.0
 
 
-class MomentumSolver(MomentumFormSolver):
+class MomentumSolver(PileUpOptions, MomentumFormSolver):
     """Von Karman's momentum theory in closed form, momentum form, with a pile-up law.
 
     The wetted half-width of each side of a section is ``c = gamma p / tan(beta)`` (its
@@ -340,10 +299,7 @@ class MomentumSolver(MomentumFormSolver):
     }
 
     def __init__(self, **options: Any) -> None:
-        super().__init__(**options)
-        self._law = pile_up_law(self.settings["pile_up"])
-        if "froude_min" in self.options:
-            self.settings["froude_min"] = _positive_option(self, "froude_min")
+        super().__init__(**options)  # pile_up and froude_min (PileUpOptions)
         method = self.settings["section_method"]
         if method not in SECTION_METHODS:
             raise InputError(
@@ -378,10 +334,6 @@ class MomentumSolver(MomentumFormSolver):
                 c_sides[k] = np.where(used, c_ct[k], c_sides[k])
                 dc_sides[k] = np.where(used, dc_ct[k], dc_sides[k])
         return c_sides, dc_sides, used
-
-    def pile_up(self, deadrise: np.ndarray) -> np.ndarray:
-        """Pile-up coefficient ``gamma`` for deadrise angles in rad (the option ``pile_up``)."""
-        return self._law(deadrise)
 
     def momentum_terms(self, sections: Sections, fluid: Fluid) -> dict[str, np.ndarray]:
         """The closed form's arrays for wetted sections: ``added_mass`` (kg/m), ``rate``
