@@ -111,7 +111,7 @@ def outcome(result: StudyResult) -> Outcome:
         "draft": spec.draft,
         "velocity": spec.velocity,
         "pitch_deg": math.degrees(spec.pitch),
-        "forward_speed": spec.forward_speed,
+        "forward_speed": spec.horizontal_speed,
         "pitch_rate_deg_s": math.degrees(spec.pitch_rate),
         "cg": [float(hull.cg[0]), float(hull.cg[2])],
         "force_x": finest.total_x,

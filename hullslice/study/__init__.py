@@ -15,7 +15,7 @@ which the tables, CSV, JSON and figures are made::
     ... )
     >>> result = hs.execute(study)                        # doctest: +SKIP
     >>> result.convergence.richardson.extrapolated        # doctest: +SKIP
-    147.5...
+    147.9...
     >>> study.command_line()[:2]
     ['force', 'meshes/paper_prism.stl']
 

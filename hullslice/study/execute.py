@@ -187,6 +187,7 @@ def _info(study: Study) -> InfoResult:
 
 
 def _sections(study: Study) -> SectionsResult:
+    assert study.draft is not None  # checked by Study
     hull = load(study)
     sections = cut(
         hull,
@@ -207,11 +208,12 @@ def _force(study: Study) -> ForceStudyResult:
             "form, whose force follows from each slice's own free fall (leave --acceleration "
             "out, or choose e.g. --solver wagner)",
         )
+    assert study.draft is not None and study.velocity is not None  # checked by Study
     hull = load(study)
     result = convergence(
         hull,
         Pose(study.draft, study.pitch),
-        Motion(study.velocity, study.forward_speed, study.pitch_rate),
+        Motion(study.velocity, study.horizontal_speed, study.pitch_rate),
         slices=list(study.slice_counts),
         solver=slv,
         fluid=fluid(study),
@@ -242,7 +244,7 @@ def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> 
             dt=study.dt,
             draft=0.0 if study.draft is None else study.draft,
             pitch=study.pitch,
-            forward_speed=study.forward_speed,
+            forward_speed=study.horizontal_speed,
             pitch_rate=study.pitch_rate,
             free_pitch=study.free_pitch,
             free_surge=study.free_surge,

@@ -97,12 +97,12 @@ class Study:
     draft : float, optional
         Depth of the lowest point below the water in m (``simulate``: the initial draft,
         default 0).
-    pitch_deg, pitch_rate_deg_s : float
-        Pitch in deg (nose up) and pitch rate in deg/s.
+    pitch_deg, pitch_rate_deg_s : float, optional
+        Pitch in deg (nose up) and pitch rate in deg/s (default 0).
     velocity : float, optional
         Vertical velocity in m/s, negative down (``simulate``: the initial one).
-    forward_speed : float
-        Horizontal speed along the body in m/s.
+    forward_speed : float, optional
+        Horizontal speed along the body in m/s (default 0).
     acceleration : float, optional
         Vertical acceleration in m/s^2, up, for a momentum-form solver's force.
     t_end, dt : float, optional
@@ -146,10 +146,10 @@ class Study:
     slicing: str = "wetted"
     slices: tuple[int, ...] | None = None
     draft: float | None = None
-    pitch_deg: float = 0.0
+    pitch_deg: float | None = None
     velocity: float | None = None
-    forward_speed: float = 0.0
-    pitch_rate_deg_s: float = 0.0
+    forward_speed: float | None = None
+    pitch_rate_deg_s: float | None = None
     acceleration: float | None = None
     t_end: float | None = None
     dt: float | None = None
@@ -180,10 +180,13 @@ class Study:
             for n in self.slices:
                 check_slice_count(n)
             if self.command != "force" and len(self.slices) != 1:
-                self._refuse(f"--slices takes one count for {self.command}, not {self.slices}")
+                self._refuse(
+                    f"--slices takes one count for {self.command}, not "
+                    f"{','.join(str(n) for n in self.slices)} (give e.g. 32)"
+                )
         if self.stations is not None and self.stations < 1:
             self._refuse(f"--stations {self.stations!r} is not positive (give 1 or more)")
-        check_pitch(math.radians(self.pitch_deg))
+        check_pitch(self.pitch)
         needs = {"sections": ("draft",), "force": ("draft", "velocity")}
         missing = [n for n in needs.get(self.command, ()) if getattr(self, n) is None]
         if missing:
@@ -233,13 +236,18 @@ class Study:
 
     @property
     def pitch(self) -> float:
-        """The pitch in rad."""
-        return math.radians(self.pitch_deg)
+        """The pitch in rad (0 when not given)."""
+        return 0.0 if self.pitch_deg is None else math.radians(self.pitch_deg)
 
     @property
     def pitch_rate(self) -> float:
-        """The pitch rate in rad/s."""
-        return math.radians(self.pitch_rate_deg_s)
+        """The pitch rate in rad/s (0 when not given)."""
+        return 0.0 if self.pitch_rate_deg_s is None else math.radians(self.pitch_rate_deg_s)
+
+    @property
+    def horizontal_speed(self) -> float:
+        """The forward speed in m/s (0 when not given)."""
+        return 0.0 if self.forward_speed is None else self.forward_speed
 
     @property
     def slice_counts(self) -> tuple[int, ...]:
