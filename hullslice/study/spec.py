@@ -23,6 +23,7 @@ from ..errors import CaseError, InputError
 from ..limits import check_pitch, check_slice_count
 from ..motion import MAX_FLAGGED_SHARE
 from ..solvers.registry import DEFAULT_SOLVER
+from ..state import Acceleration, Fluid, Motion, Pose
 
 __all__ = ["COMMANDS", "Study", "StudyError"]
 
@@ -186,7 +187,7 @@ class Study:
                 )
         if self.stations is not None and self.stations < 1:
             self._refuse(f"--stations {self.stations!r} is not positive (give 1 or more)")
-        check_pitch(self.pitch)
+        self._check_values()
         needs = {"sections": ("draft",), "force": ("draft", "velocity")}
         missing = [n for n in needs.get(self.command, ()) if getattr(self, n) is None]
         if missing:
@@ -195,6 +196,19 @@ class Study:
             )
         if self.command == "simulate":
             self._check_motion()
+
+    def _check_values(self) -> None:
+        """The state and the water, checked by the objects the library computes with (so
+        that a value is refused with one message, whichever way it was given)."""
+        check_pitch(self.pitch)
+        if self.command in ("sections", "force") and self.draft is not None:
+            Pose(self.draft, self.pitch)
+        if self.command == "force" and self.velocity is not None:
+            Motion(self.velocity, self.horizontal_speed, self.pitch_rate)
+        if self.command == "force" and self.acceleration is not None:
+            Acceleration(self.acceleration)
+        if self.command in ("force", "simulate"):
+            Fluid(rho=self.rho, g=self.g)
 
     def _refuse(self, message: str) -> None:
         raise StudyError(self.command, message)
