@@ -50,6 +50,7 @@ from .solvers import (
     list_solvers,
 )
 from .state import Acceleration, Fluid, Motion, Pose
+from .study import Study, execute
 from .sweeps import sweep
 
 __all__ = [
@@ -91,12 +92,14 @@ __all__ = [
     "Solver",
     "SolverBase",
     "SolverError",
+    "Study",
     "UnitsWarning",
     "UnknownSolverError",
     "__version__",
     "compute_force",
     "convergence",
     "cut",
+    "execute",
     "get_solver",
     "list_solvers",
     "load_case",

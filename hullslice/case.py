@@ -23,7 +23,6 @@ degrees (``pitch``, ``pitch_rate``).
 from __future__ import annotations
 
 import difflib
-import json
 import math
 import os
 import tomllib
@@ -34,23 +33,21 @@ from typing import Any
 
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
+from .limits import MAX_CASE_BYTES
 from .paths import WRITTEN_KEYS, confined, printable, toml_string
 from .safety import non_finite
 from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
 __all__ = [
     "COMMAND_KEYS",
+    "MAX_CASE_BYTES",
     "SCHEMA",
     "Key",
-    "case_argv",
-    "case_from_args",
+    "case_command",
     "load_case",
     "validate_case",
     "write_case",
 ]
-
-#: Largest case file read, in bytes: a case is a few lines; anything larger is not one.
-MAX_CASE_BYTES = 1024**2
 
 
 @dataclass(frozen=True)
@@ -139,6 +136,7 @@ SCHEMA: dict[str, Key] = {
             _one_of(("none", "close"))),
         Key("keep", "text", "", "bodies to keep: 'largest' or numbers from 1 as '1,3'"),
         Key("keep_box", "box", "m", "keep the part inside xmin, xmax, ymin, ymax, zmin, zmax"),
+        Key("no_fix", "flag", "", "make none of the safe repairs: refuse a mesh that needs one"),
         Key("mass", "number", "kg", "mass of the body", check=_positive),
         Key("mass_distribution", "path", "", "CSV of the mass along the body, relative to "
             "the case"),
@@ -405,7 +403,7 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
 
 
 _COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output",
-           "scale", "length", "repair", "keep", "keep_box"}  # fmt: skip
+           "scale", "length", "repair", "keep", "keep_box", "no_fix"}  # fmt: skip
 _MASS = {"mass", "mass_distribution", "cg", "inertia"}
 _METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
 _MOTION = {"pitch", "forward_speed", "pitch_rate"}
@@ -433,89 +431,6 @@ def case_command(case: Mapping[str, Any]) -> str:
     if "draft" in case:
         return "sections"
     return "info"
-
-
-# option name on the command line, and how a value is written there
-_FLAGS = {"free_pitch", "free_surge", "continue_invalid"}
-
-
-def case_argv(case: Mapping[str, Any]) -> list[str]:
-    """The command line a checked case amounts to (see :func:`validate_case`).
-
-    Raises
-    ------
-    CaseError
-        A key that the case's command does not take.
-    """
-    command = case_command(case)
-    allowed = COMMAND_KEYS[command]
-    extra = [k for k in case if k not in allowed and SCHEMA[k].default is None]
-    if extra:
-        raise CaseError(
-            f"case: key {extra[0]!r} does not apply to the command {command!r}; its keys are "
-            f"{', '.join(sorted(allowed))}"
-        )
-    argv = [command, str(case["mesh"])]
-    for name, value in case.items():
-        if name in ("title", "command", "mesh") or name not in allowed:
-            continue
-        option = "--" + name.replace("_", "-")
-        if name in _FLAGS:
-            if value:
-                argv.append(option)
-        elif name == "solver_options":
-            for k, v in value.items():
-                argv.append(f"--solver-option={k}={json.dumps(v)}")
-        elif name == "cg":
-            argv.append(f"--cg={value[0]!r},{value[1]!r}")
-        elif name == "slices":
-            argv.append(f"--slices={','.join(str(n) for n in value)}")
-        elif name == "keep_box":
-            argv.append(f"--keep-box={','.join(repr(float(x)) for x in value)}")
-        elif isinstance(value, float):
-            argv.append(f"{option}={value!r}")
-        else:
-            argv.append(f"{option}={value}")
-    return argv
-
-
-def case_from_args(args) -> dict[str, Any]:
-    """The case a parsed command line amounts to (angles back in degrees), for
-    :func:`write_case`: the keys its command takes, without those left unset."""
-    command = args.command
-    out: dict[str, Any] = {"command": command}
-    for name in SCHEMA:
-        if name in ("title", "command") or name not in COMMAND_KEYS[command] | {"mesh"}:
-            continue
-        if name == "solver_options":
-            options = dict(getattr(args, "solver_option", []) or [])
-            if options:
-                out[name] = options
-            continue
-        value: Any = getattr(args, name, None)
-        if value is None or (name in _FLAGS and not value):
-            continue
-        if name in ("pitch", "pitch_rate"):
-            value = math.degrees(value)
-            if value == 0.0:
-                continue
-        if name == "slices":
-            value = list(value) if isinstance(value, list | tuple) else [int(value)]
-        if name == "cg":
-            value = [float(value[0]), float(value[1])]
-        if name == "keep_box":
-            from .parts import parse_box
-
-            box = parse_box(value)
-            if box is None:
-                continue
-            value = [float(x) for x in box.T.ravel()]
-        if name == "repair" and value == "none":
-            continue
-        if name in ("mesh", "kinematics", "mass_distribution", "output", "plot"):
-            value = Path(value).resolve()
-        out[name] = value
-    return out
 
 
 def _toml_value(value: Any) -> str:

@@ -16,6 +16,7 @@ from .constants import MAX_SLICES, MAX_STEPS
 from .errors import InputError
 
 __all__ = [
+    "MAX_CASE_BYTES",
     "MAX_PITCH",
     "MAX_PITCH_DEG",
     "MAX_SLICES",
@@ -25,6 +26,9 @@ __all__ = [
     "check_slice_count",
     "no_mass",
 ]
+
+#: Largest case file read, in bytes: a case is a few lines of TOML; anything larger is not one.
+MAX_CASE_BYTES = 1024**2
 
 #: Largest pitch magnitude, in degrees, a 2D+t model describes (the cross-sections of a
 #: body pitched further are no longer thin slices across the flow).

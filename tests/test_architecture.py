@@ -66,7 +66,6 @@ LAYERS: dict[str, int] = {
     "hullslice.sweep": 7,
     # 8 output and the command line
     "hullslice.textout": 8,
-    "hullslice.report": 8,
     "hullslice.plots": 8,
     "hullslice.testing": 8,
     "hullslice.cli": 8,

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 
 from ..errors import HullsliceError, HullsliceWarning
 from ..safety import Terminated, terminated_cleanly
+from ..study import StudyError
 from . import (
     cmd_force,
     cmd_info,
@@ -106,6 +107,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             return EXIT["internal error"]
         except UsageError as exc:
             print(str(exc), file=sys.stderr)
+            return EXIT["usage"]
+        except StudyError as exc:  # incomplete or inconsistent: the usage's fault
+            print(f"hullslice {exc.command}: error: {exc}", file=sys.stderr)
             return EXIT["usage"]
         except HullsliceError as exc:
             if debug:

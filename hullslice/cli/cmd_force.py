@@ -6,30 +6,26 @@ import argparse
 import math
 
 from .. import plots
-from ..forces import convergence
-from ..report import (
+from ..study import ForceStudyResult, Study, StudyResult
+from ..textout import (
     SLICE_COLUMNS,
     Column,
     convergence_summary,
     force_records,
     table_text,
 )
-from ..state import Motion, Pose
 from .common import (
     Outcome,
-    UsageError,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
     add_pose_options,
     add_section_options,
     add_solver_options,
+    compute,
     finish,
-    fluid,
-    load,
     number,
     slice_list,
-    solver,
     solver_label,
 )
 
@@ -94,41 +90,29 @@ CONVERGENCE_COLUMNS = (
 
 
 def run(args: argparse.Namespace) -> int:
-    return finish(args, compute(args))
+    return run_study(Study.from_args(args), args.save_case)
 
 
-def compute(args: argparse.Namespace) -> Outcome:
-    """The force at the state of ``args``, for one or more slice counts."""
-    slv = solver(args)
-    if args.acceleration is not None and slv.kind != "momentum":
-        raise UsageError(
-            f"hullslice force: error: --acceleration is for momentum-form solvers; "
-            f"{slv.name!r} is of the free-fall form, whose force follows from each slice's "
-            "own free fall (leave --acceleration out, or choose e.g. --solver wagner)"
-        )
-    hull = load(args)
-    study = convergence(
-        hull,
-        Pose(args.draft, args.pitch),
-        Motion(args.velocity, args.forward_speed, args.pitch_rate),
-        slices=args.slices,
-        solver=slv,
-        fluid=fluid(args),
-        deadrise=args.deadrise,
-        slicing=args.slicing,
-        acceleration=args.acceleration,
-    )
+def run_study(study: Study, save_case: str | None = None) -> int:
+    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file."""
+    return finish(study, outcome(compute(study, save_case)), save_case)
+
+
+def outcome(result: StudyResult) -> Outcome:
+    """The tables, data and figures of a force study's result."""
+    assert isinstance(result, ForceStudyResult)
+    spec, hull, slv, study = result.study, result.hull, result.solver, result.convergence
     finest = study.finest
     summary = convergence_summary(study)
     records = force_records(finest)
     data = {
-        "mesh": str(args.mesh),
+        "mesh": str(spec.mesh),
         "mass": hull.mass,
-        "draft": args.draft,
-        "velocity": args.velocity,
-        "pitch_deg": math.degrees(args.pitch),
-        "forward_speed": args.forward_speed,
-        "pitch_rate_deg_s": math.degrees(args.pitch_rate),
+        "draft": spec.draft,
+        "velocity": spec.velocity,
+        "pitch_deg": math.degrees(spec.pitch),
+        "forward_speed": spec.horizontal_speed,
+        "pitch_rate_deg_s": math.degrees(spec.pitch_rate),
         "cg": [float(hull.cg[0]), float(hull.cg[2])],
         "force_x": finest.total_x,
         "moment": finest.moment,
@@ -138,7 +122,7 @@ def compute(args: argparse.Namespace) -> Outcome:
         "g": finest.fluid.g,
         "wetted_length": finest.sections.wetted_length,
         "deadrise_method": finest.sections.deadrise_method,
-        "slicing": args.slicing,
+        "slicing": spec.slicing,
         "solver_kind": slv.kind,
         "acceleration": finest.acceleration.vertical if finest.acceleration else None,
         "added_mass": finest.added_mass if slv.kind == "momentum" else None,
@@ -163,7 +147,7 @@ def compute(args: argparse.Namespace) -> Outcome:
         hull, finest.sections, f"{hull.name}: the cut at {study.counts[-1]} slices"
     )
     return Outcome(
-        table=_table(hull, args, study, summary, records),
+        table=_table(hull, spec, study, summary, records),
         data=data,
         csv_columns=["j", *finest.columns()],
         csv_rows=records,
@@ -171,14 +155,14 @@ def compute(args: argparse.Namespace) -> Outcome:
     )
 
 
-def _table(hull, args, study, summary, records) -> str:
+def _table(hull, spec: Study, study, summary, records) -> str:
     finest = study.finest
     lines = [
         f"{hull.name}: "
         + (f"mass {hull.mass:g} kg" if hull.mass is not None else "no mass (not needed)")
-        + f", draft {args.draft:g} m, velocity "
-        f"{args.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
-        f"solver {solver_label(args)}, water {finest.fluid.rho:g} kg/m^3, "
+        + f", draft {spec.draft:g} m, velocity "
+        f"{spec.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
+        f"solver {solver_label(spec)}, water {finest.fluid.rho:g} kg/m^3, "
         f"g {finest.fluid.g:g} m/s^2, deadrise by {finest.sections.deadrise_method}",
         "",
         table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
@@ -189,7 +173,7 @@ def _table(hull, args, study, summary, records) -> str:
         f"force {finest.total:.4f} N at {study.counts[-1]} slices",
     ]
     if finest.acceleration is not None:
-        how = "given" if args.acceleration is not None else "free in heave"
+        how = "given" if spec.acceleration is not None else "free in heave"
         lines.insert(
             -1,
             f"momentum form: heave added mass {finest.added_mass:.6g} kg, body acceleration "

@@ -3,18 +3,22 @@
 from __future__ import annotations
 
 import argparse
-import warnings
 from pathlib import Path
 
 import numpy as np
 
 from .. import plots
-from ..errors import OrientationWarning
-from ..orientation import orientation
 from ..paths import printable
-from ..report import Column, table_text
-from ..sections import area_curve
-from .common import Outcome, add_mesh_options, add_output_options, finish, load, positive_int
+from ..study import InfoResult, Study, StudyResult
+from ..textout import Column, table_text
+from .common import (
+    Outcome,
+    add_mesh_options,
+    add_output_options,
+    compute,
+    finish,
+    positive_int,
+)
 
 AREA_COLUMNS = (Column("x", "x", "m", ".5g"), Column("area", "area", "m^2", ".6g"))
 
@@ -40,35 +44,29 @@ def add_parser(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    return finish(args, compute(args))
+    return run_study(Study.from_args(args), args.save_case)
 
 
-def compute(args: argparse.Namespace) -> Outcome:
-    """The description of ``args``' mesh."""
-    # the bodies are listed whatever is kept ("all" keeps all and lists them)
-    hull = load(args, keep=args.keep or "all")
-    orient = orientation(hull, args.forward, args.up)
-    if not orient.forward_is_longest:
-        e = orient.mesh_extents
-        warnings.warn(
-            f"mesh {hull.name!r} is longest along its {orient.longest} axis "
-            f"({e[orient.longest]:.6g} m) but --forward is {args.forward} "
-            f"({e[args.forward.strip().lstrip('+-').lower()]:.6g} m): if the body's length is "
-            f"along {orient.longest}, give --forward {orient.longest} (or -{orient.longest})",
-            OrientationWarning,
-            stacklevel=2,
-        )
-    x, area = area_curve(hull, args.stations)
+def run_study(study: Study, save_case: str | None = None) -> int:
+    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file."""
+    return finish(study, outcome(compute(study, save_case)), save_case)
+
+
+def outcome(result: StudyResult) -> Outcome:
+    """The description, data and figures of an info study's result."""
+    assert isinstance(result, InfoResult)
+    study, hull, orient = result.study, result.hull, result.orientation
+    x, area = result.x, result.area
     lo, hi = hull.bounds
     ext = hull.extents
-    path = Path(args.mesh)
+    path = Path(study.mesh)
     data = {
-        "mesh": str(args.mesh),
+        "mesh": str(study.mesh),
         "name": hull.name,
         "file_bytes": path.stat().st_size,
-        "units": args.units,
-        "forward": args.forward,
-        "up": args.up,
+        "units": study.units,
+        "forward": study.forward,
+        "up": study.up,
         "faces": len(hull.faces),
         "vertices": len(hull.vertices),
         "closed": True,
@@ -85,7 +83,7 @@ def compute(args: argparse.Namespace) -> Outcome:
         "density": hull.density,
         "cg": hull.cg if hull.mass is not None else None,
         "pitch_inertia": hull.pitch_inertia if hull.mass is not None else None,
-        "mass_distribution": args.mass_distribution,
+        "mass_distribution": study.mass_distribution,
         "scale": hull.source.get("scale"),
         "orientation": orient.as_dict(),
         "bodies": hull.source.get("bodies", []),
@@ -101,7 +99,7 @@ def compute(args: argparse.Namespace) -> Outcome:
         csv_columns=["x", "area"],
         csv_rows=rows,
         figures={
-            "views": lambda: plots.plot_views(hull, args.forward, args.up, orient.nose),
+            "views": lambda: plots.plot_views(hull, study.forward, study.up, orient.nose),
             "area_curve": lambda: plots.plot_area_curve(
                 x, area, f"{hull.name}: sectional area curve"
             ),

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import html
 import shutil
 import sys
@@ -11,18 +12,13 @@ from pathlib import Path
 
 from .._version import __version__
 from ..atomic import _umask, remove_stale, temp_prefix, write_atomic
-from ..case import SCHEMA, case_argv, case_command, load_case, write_case
+from ..case import SCHEMA, load_case, write_case
 from ..errors import InputError
 from ..paths import markdown_fence, markdown_text, printable, run_inputs
-from ..report import csv_text, json_text
-from . import cmd_force, cmd_info, cmd_sections, cmd_simulate
-
-COMPUTE = {
-    "info": cmd_info.compute,
-    "sections": cmd_sections.compute,
-    "force": cmd_force.compute,
-    "simulate": cmd_simulate.compute,
-}
+from ..study import Study, execute
+from ..textout import csv_text, json_text
+from . import cmd_info
+from .studies import command_module
 
 
 def add_parser(sub) -> None:
@@ -45,12 +41,6 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
-def _parse(argv: list[str]) -> argparse.Namespace:
-    from . import build_parser
-
-    return build_parser().parse_args(argv)
-
-
 def run(args: argparse.Namespace) -> int:
     target = Path(args.output)
     if target.exists() and not target.is_dir():
@@ -65,17 +55,12 @@ def run(args: argparse.Namespace) -> int:
         raise InputError(f"the folder {str(parent)!r} does not exist; create it first")
     case = load_case(args.case)
     _refuse_inputs_inside(target, args.case, case)
-    command = case_command(case)
-    argv = [a for a in case_argv(case) if not a.startswith(("--output=", "--plot=", "--format="))]
-    cmd_args = _parse(argv)
-    outcome = COMPUTE[command](cmd_args)
-    info_args = _parse(
-        [
-            "info",
-            *[a for a in argv[1:] if a.split("=")[0] in _INFO_OPTIONS or not a.startswith("-")],
-        ]
-    )
-    info = outcome if command == "info" else cmd_info.compute(info_args)
+    study = Study.from_case(case, checked=True)
+    # the report gives every output itself; the case file is an input, like the mesh
+    study = dataclasses.replace(study, format=None, output=None, plot=None, case_file=args.case)
+    command = study.command
+    outcome = command_module(command).outcome(execute(study))
+    info = outcome if command == "info" else cmd_info.outcome(execute(study.for_command("info")))
 
     # built beside the target (same depth, so that the case's relative paths hold) and
     # renamed into place only when complete
@@ -122,11 +107,6 @@ class _OptionsOf:
 
     def __init__(self, options: dict) -> None:
         self.solver_option = list(options.items())
-
-
-_INFO_OPTIONS = {"--units", "--forward", "--up", "--mass", "--mass-distribution", "--cg",
-                 "--inertia", "--scale", "--length", "--repair", "--keep",
-                 "--keep-box"}  # fmt: skip
 
 
 def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:

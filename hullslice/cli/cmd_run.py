@@ -1,11 +1,16 @@
-"""``hullslice run CASE.toml``: run the command a case file describes."""
+"""``hullslice run CASE.toml``: run the study a case file describes."""
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
+import shlex
+from typing import Any
 
-from ..case import case_argv, load_case
+from ..case import load_case
+from ..study import Study
 from .common import FORMATS
+from .studies import command_module
 
 
 def add_parser(sub) -> None:
@@ -29,24 +34,15 @@ def add_parser(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from . import build_parser
-
-    case = load_case(args.case)
-    argv = case_argv(case)
-    for option in ("format", "output", "plot"):
-        value = getattr(args, option)
-        if value is not None:
-            argv = [a for a in argv if not a.startswith(f"--{option}=")]
-            argv.append(f"--{option}={value}")
+    study = Study.from_case(load_case(args.case), checked=True)
+    overrides: dict[str, Any] = {
+        option: getattr(args, option)
+        for option in ("format", "output", "plot")
+        if getattr(args, option) is not None
+    }
+    # the case file is an input of the run, protected from its outputs like the mesh
+    study = dataclasses.replace(study, case_file=args.case, **overrides)
     if args.print_command:
-        print("hullslice " + " ".join(_quote(a) for a in argv))
+        print("hullslice " + " ".join(shlex.quote(a) for a in study.command_line()))
         return 0
-    command = build_parser().parse_args(argv)
-    command.case = args.case  # an input of the run, protected from its outputs like the mesh
-    return command.func(command)
-
-
-def _quote(arg: str) -> str:
-    import shlex
-
-    return shlex.quote(arg)
+    return command_module(study.command).run_study(study)

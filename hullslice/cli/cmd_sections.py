@@ -6,17 +6,16 @@ import argparse
 import math
 
 from .. import plots
-from ..report import SECTION_COLUMNS, section_records, table_text
-from ..sections import cut
-from ..state import Pose
+from ..study import SectionsResult, Study, StudyResult
+from ..textout import SECTION_COLUMNS, section_records, table_text
 from .common import (
     Outcome,
     add_mesh_options,
     add_output_options,
     add_pose_options,
     add_section_options,
+    compute,
     finish,
-    load,
     number,
     positive_int,
 )
@@ -53,33 +52,32 @@ def add_parser(sub) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    return finish(args, compute(args))
+    return run_study(Study.from_args(args), args.save_case)
 
 
-def compute(args: argparse.Namespace) -> Outcome:
-    """The sections of ``args``' hull at its pose."""
-    hull = load(args)
-    sections = cut(
-        hull,
-        Pose(args.draft, args.pitch),
-        args.slices,
-        deadrise=args.deadrise,
-        slicing=args.slicing,
-    )
+def run_study(study: Study, save_case: str | None = None) -> int:
+    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file."""
+    return finish(study, outcome(compute(study, save_case)), save_case)
+
+
+def outcome(result: StudyResult) -> Outcome:
+    """The table, data and figure of a sections study's result."""
+    assert isinstance(result, SectionsResult)
+    study, hull, sections = result.study, result.hull, result.sections
     records = section_records(sections)
     data = {
-        "mesh": str(args.mesh),
+        "mesh": str(study.mesh),
         "draft": sections.draft,
         "pitch_deg": math.degrees(sections.pitch),
         "wetted_length": sections.wetted_length,
         "deadrise_method": sections.deadrise_method,
-        "slicing": args.slicing,
+        "slicing": study.slicing,
         "sections": records,
     }
     head = (
         f"{hull.name}: draft {sections.draft:g} m, pitch {math.degrees(sections.pitch):g} deg, "
         f"wetted length {sections.wetted_length:.5f} m, {sections.n_stations} slices "
-        f"({args.slicing}), deadrise by {sections.deadrise_method}"
+        f"({study.slicing}), deadrise by {sections.deadrise_method}"
     )
     return Outcome(
         table=head + "\n" + table_text(SECTION_COLUMNS, records),

@@ -8,15 +8,9 @@ import sys
 import numpy as np
 
 from .. import plots
-from ..motion import (
-    DEFAULT_STOP_ON,
-    MAX_FLAGGED_SHARE,
-    STOP_RULES,
-    prescribed,
-    read_kinematics,
-    simulate,
-)
-from ..report import (
+from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
+from ..study import SimulationResult, Study, StudyResult
+from ..textout import (
     HISTORY_COLUMNS,
     HISTORY_PITCH_COLUMNS,
     Column,
@@ -26,19 +20,16 @@ from ..report import (
 )
 from .common import (
     Outcome,
-    UsageError,
     add_fluid_options,
     add_mesh_options,
     add_output_options,
     add_pose_options,
     add_section_options,
     add_solver_options,
+    compute,
     finish,
-    fluid,
-    load,
     number,
     positive_int,
-    solver,
     solver_label,
 )
 
@@ -149,81 +140,24 @@ class Progress:
 
 
 def run(args: argparse.Namespace) -> int:
-    return finish(args, compute(args))
+    return run_study(Study.from_args(args), args.save_case)
 
 
-def compute(args: argparse.Namespace) -> Outcome:
-    """The history of ``args``' free motion or prescribed kinematics."""
-    if args.kinematics is None:
-        missing = [
-            o for o, v in (("--velocity", args.velocity), ("--t-end", args.t_end)) if v is None
-        ]
-        if missing:
-            raise UsageError(
-                f"hullslice simulate: error: a free fall needs {' and '.join(missing)} "
-                "(or give --kinematics CSV for a prescribed motion)"
-            )
-    else:
-        given = [
-            opt
-            for opt, value, default in (
-                ("--velocity", args.velocity, None),
-                ("--t-end", args.t_end, None),
-                ("--dt", args.dt, None),
-                ("--draft", args.draft, 0.0),
-                ("--pitch", args.pitch, 0.0),
-                ("--forward-speed", args.forward_speed, 0.0),
-                ("--pitch-rate", args.pitch_rate, 0.0),
-                ("--free-pitch", args.free_pitch, False),
-                ("--free-surge", args.free_surge, False),
-            )
-            if value != default
-        ]
-        if given:
-            raise UsageError(
-                f"hullslice simulate: error: --kinematics gives the motion; leave out "
-                f"{', '.join(given)} (the table's columns t, penetration, velocity and "
-                "optionally pitch_deg, pitch_rate_deg_s, forward_speed give it)"
-            )
-    hull = load(args)
+def run_study(study: Study, save_case: str | None = None) -> int:
+    """Execute ``study`` (with a progress line on a terminal) and give its outputs."""
     progress = Progress() if sys.stderr.isatty() else None
-    common = {
-        "slices": args.slices,
-        "solver": solver(args),
-        "fluid": fluid(args),
-        "deadrise": args.deadrise,
-        "slicing": args.slicing,
-        "progress": progress,
-    }
     try:
-        if args.kinematics is None:
-            stop_on = () if args.continue_invalid else DEFAULT_STOP_ON
-            history = simulate(
-                hull,
-                args.velocity,
-                args.t_end,
-                dt=args.dt,
-                draft=args.draft,
-                pitch=args.pitch,
-                forward_speed=args.forward_speed,
-                pitch_rate=args.pitch_rate,
-                free_pitch=args.free_pitch,
-                free_surge=args.free_surge,
-                stop_on=stop_on,
-                max_flagged_share=args.max_flagged_share,
-                **common,
-            )
-        else:
-            # a prescribed motion is evaluated over the whole table, limits flagged
-            history = prescribed(
-                hull,
-                read_kinematics(args.kinematics),
-                max_flagged_share=args.max_flagged_share,
-                **common,
-            )
+        result = compute(study, save_case, progress)
     finally:
         if progress is not None:
             progress.done()
+    return finish(study, outcome(result), save_case)
+
+
+def outcome(result: StudyResult) -> Outcome:
+    """The table, data and figures of a simulation study's result."""
+    assert isinstance(result, SimulationResult)
+    study, hull, history = result.study, result.hull, result.history
     summary = history_summary(history)
     title = (
         f"{hull.name}: {history.mode}, pitch {history.settings.get('initial_pitch_deg', 0):g} deg"
@@ -237,8 +171,8 @@ def compute(args: argparse.Namespace) -> Outcome:
             [history], [hull.name], (float(x[0]), float(x[1]))
         )
     return Outcome(
-        table=_table(hull, history, summary, solver_label(args)),
-        data={"mesh": str(args.mesh), **summary, "history": history.output_columns()},
+        table=_table(hull, history, summary, solver_label(study)),
+        data={"mesh": str(study.mesh), **summary, "history": history.output_columns()},
         csv_columns=list(history.OUTPUT_COLUMNS),
         csv_rows=history_records(history),
         figures=figures,

@@ -5,8 +5,8 @@ from __future__ import annotations
 import argparse
 from dataclasses import asdict
 
-from ..report import Column, csv_text, json_text, table_text
 from ..solvers.registry import DEFAULT_SOLVER, list_solvers
+from ..textout import Column, csv_text, json_text, table_text
 from .common import FORMATS, emit
 
 COLUMNS = (

@@ -192,7 +192,7 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _table(plan, ds) -> str:
-    from ..report import Column, table_text
+    from ..textout import Column, table_text
 
     keys = list(plan.table) + [d for d in plan.dims if d != "case"]
     columns = [Column(k, k, ds[k].attrs.get("units", ""), "g") for k in keys]

@@ -4,24 +4,21 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import sys
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from ..atomic import write_atomic
 from ..constants import LENGTH_UNITS, RHO_WATER, G
 from ..errors import InputError
-from ..mass import read_mass_distribution
-from ..mesh import Hull, load_hull
 from ..paths import check_not_an_input, printable, run_inputs
-from ..report import csv_text, json_text
 from ..safety import non_finite
-from ..solvers.base import SolverBase
-from ..solvers.registry import DEFAULT_SOLVER, get_solver
-from ..state import Fluid
+from ..solvers.registry import DEFAULT_SOLVER
+from ..study import Study, StudyResult, execute
+from ..textout import csv_text, json_text
 
 FORMATS = ("table", "json", "csv")
 
@@ -117,25 +114,12 @@ def add_solver_options(g: argparse._ArgumentGroup) -> None:
     )
 
 
-def solver(args: argparse.Namespace) -> SolverBase:
-    """The solver named by ``--solver``, built with the ``--solver-option`` values."""
-    options: dict[str, Any] = {}
-    for key, value in args.solver_option:
-        if key in options:
-            raise UsageError(
-                f"hullslice {args.command}: error: --solver-option {key} is given twice; "
-                "give each option once"
-            )
-        options[key] = value
-    return get_solver(args.solver, **options)
-
-
-def solver_label(args: argparse.Namespace) -> str:
-    """The solver's name with the options given on the command line, for table headers."""
-    if not args.solver_option:
-        return args.solver
-    opts = ", ".join(f"{k}={json.dumps(v)}" for k, v in args.solver_option)
-    return f"{args.solver} ({opts})"
+def solver_label(study: Study) -> str:
+    """The solver's name with the options given, for table headers."""
+    if not study.solver_options:
+        return study.solver
+    opts = ", ".join(f"{k}={json.dumps(v)}" for k, v in study.solver_options)
+    return f"{study.solver} ({opts})"
 
 
 def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) -> None:
@@ -257,17 +241,6 @@ def pair(unit: str):
     return parse
 
 
-def angle(unit: str):
-    """Parse a number in degrees (``unit`` names deg or deg/s) and return it in radians."""
-    parse_number = number(unit)
-
-    def parse(text: str) -> float:
-        return math.radians(parse_number(text))
-
-    parse.__name__ = f"number in {unit}"
-    return parse
-
-
 def add_section_options(g) -> None:
     """``--deadrise ESTIMATOR`` and ``--slicing wetted|fixed``."""
     from ..sections import DEADRISE_ESTIMATORS, SLICINGS
@@ -293,7 +266,7 @@ def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> 
     """Pitch (and optionally forward speed and pitch rate) options, in degrees and m/s."""
     g.add_argument(
         "--pitch",
-        type=angle("deg"),
+        type=number("deg"),
         default=0.0,
         metavar="DEG",
         help="pitch angle in degrees, positive nose up, about the centre of gravity (default: 0)",
@@ -309,7 +282,7 @@ def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> 
     if pitch_rate:
         g.add_argument(
             "--pitch-rate",
-            type=angle("deg/s"),
+            type=number("deg/s"),
             default=0.0,
             metavar="DEG/S",
             help="pitch rate in degrees per second, positive nose up (default: 0)",
@@ -394,87 +367,59 @@ class Outcome:
         return self.table
 
 
-def finish(args: argparse.Namespace, outcome: Outcome) -> int:
-    """Give a command's outcome: the text in its format, the figure and the case file."""
-    plot = getattr(args, "plot", None)
-    if plot:
-        check_path(plot, args, "--plot")
+def compute(study: Study, save_case: str | None = None, progress=None) -> StudyResult:
+    """Check the outputs can be written (before any work), then execute the study."""
+    check_output(study, save_case)
+    return execute(study, progress=progress)
+
+
+def finish(study: Study, outcome: Outcome, save_case: str | None = None) -> int:
+    """Give a study's outcome: the text in its format, the figure and the case file."""
+    if study.plot:
+        check_path(study.plot, study, "--plot")
         if not outcome.figures:
-            raise InputError(f"hullslice {args.command} draws no figure; leave out --plot")
+            raise InputError(f"hullslice {study.command} draws no figure; leave out --plot")
         from ..plots import save
 
         figure = next(iter(outcome.figures.values()))()
-        save(figure, plot)
-        print(f"wrote {plot}", file=sys.stderr)
-    if getattr(args, "save_case", None):
-        from ..case import case_from_args, write_case
+        save(figure, study.plot)
+        print(f"wrote {study.plot}", file=sys.stderr)
+    if save_case:
+        from ..case import write_case
 
-        check_path(args.save_case, args, "--save-case")
-        write_case(case_from_args(args), args.save_case)
-        print(f"wrote {args.save_case}", file=sys.stderr)
-    emit(args, outcome.text(args.format))
+        check_path(save_case, study, "--save-case")
+        write_case(study.to_case(), save_case)
+        print(f"wrote {save_case}", file=sys.stderr)
+    emit(study, outcome.text(study.format or "table"))
     return 0
 
 
-def _mass_free(args: argparse.Namespace) -> bool:
-    """A momentum-form solver's force along a prescribed motion, or at a state with the
-    body's acceleration given, needs no mass."""
-    prescribed = getattr(args, "kinematics", None) is not None
-    given = getattr(args, "acceleration", None) is not None
-    if not (prescribed or given):
-        return False
-    return solver(args).kind == "momentum"
-
-
-def load(args: argparse.Namespace, **overrides) -> Hull:
-    """The hull of the command's mesh and mass options (the output path is checked first);
-    ``overrides`` replace keyword arguments of :func:`~hullslice.load_hull`."""
-    check_output(args)
-    dist = None
-    if args.mass_distribution:
-        dist = read_mass_distribution(args.mass_distribution)
-    elif args.mass_required and args.mass is None and not _mass_free(args):
-        raise UsageError(
-            f"hullslice {args.command}: error: give the body's mass, --mass KG or "
-            "--mass-distribution CSV"
-        )
-    return load_hull(
-        args.mesh,
-        units=args.units,
-        forward=args.forward,
-        up=args.up,
-        mass=args.mass,
-        mass_distribution=dist,
-        cg=args.cg,
-        inertia=args.inertia,
-        **{**shape_options(args), **overrides},
-    )
-
-
-def shape_options(args: argparse.Namespace) -> dict:
-    """The keyword arguments of :func:`~hullslice.load_hull` for the mesh's scale, repair
-    and parts, from the command line."""
-    return {
-        "scale": args.scale,
-        "length": args.length,
-        "repair": None if args.repair in (None, "none") else args.repair,
-        "keep": args.keep,
-        "keep_box": args.keep_box,
-        "fix": not getattr(args, "no_fix", False),
-    }
-
-
-def check_output(args: argparse.Namespace) -> None:
+def check_output(study: Study, save_case: str | None = None) -> None:
     """Refuse an ``--output``, ``--plot`` or ``--save-case`` that cannot be written, before
     any work is done."""
-    for option in ("output", "plot", "save_case"):
-        path = getattr(args, option, None)
+    for option, path in (("--output", study.output), ("--plot", study.plot)):
         if path:
-            check_path(path, args, "--" + option.replace("_", "-"))
+            check_path(path, study, option)
+    if save_case:
+        check_path(save_case, study, "--save-case")
 
 
-def check_path(out: str, args: argparse.Namespace, option: str = "--output") -> None:
-    """Refuse an output path that is a folder, in a missing folder, or one of the inputs."""
+def _inputs(source: Any) -> list[tuple[str, Path]]:
+    """The input files of a study, or of a parsed command line."""
+    if isinstance(source, Study):
+        source = SimpleNamespace(
+            mesh=source.mesh,
+            case=source.case_file,
+            kinematics=source.kinematics,
+            mass_distribution=source.mass_distribution,
+            solver_option=source.solver_options,
+        )
+    return run_inputs(source)
+
+
+def check_path(out: str, source: Any, option: str = "--output") -> None:
+    """Refuse an output path that is a folder, in a missing folder, or one of the inputs
+    of ``source`` (a study, or a parsed command line)."""
     target = Path(out)
     if target.is_dir():
         raise InputError(f"cannot write {out!r} ({option}): it is a folder; give a file name in it")
@@ -489,21 +434,19 @@ def check_path(out: str, args: argparse.Namespace, option: str = "--output") -> 
             f"{', '.join(f[1:].upper() for f in FIGURE_FORMATS)} by the file's extension; "
             "name it .png"
         )
-    check_not_an_input(out, run_inputs(args), option)
+    check_not_an_input(out, _inputs(source), option)
 
 
-def fluid(args: argparse.Namespace) -> Fluid:
-    return Fluid(rho=args.rho, g=args.g)
-
-
-def emit(args: argparse.Namespace, text: str) -> None:
-    """Print the command's output, or write it to ``--output``."""
-    if getattr(args, "output", None):
-        check_output(args)
+def emit(target: Any, text: str) -> None:
+    """Print a command's output, or write it to the ``output`` of ``target`` (a study)."""
+    output = getattr(target, "output", None)
+    if output:
+        if isinstance(target, Study):
+            check_output(target)
         try:
-            write_atomic(args.output, text)
+            write_atomic(output, text)
         except OSError as exc:
-            raise InputError(f"cannot write {args.output!r}: {exc.strerror or exc}") from None
-        print(f"wrote {args.output}", file=sys.stderr)
+            raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
+        print(f"wrote {output}", file=sys.stderr)
     else:
         sys.stdout.write(text if text.endswith("\n") else text + "\n")

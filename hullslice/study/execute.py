@@ -1,0 +1,289 @@
+"""Running a :class:`~hullslice.study.Study`: the hull read, the computation made, the
+result returned as objects (no text), for the outputs to be made from."""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ..errors import OrientationWarning
+from ..forces import ConvergenceStudy, convergence
+from ..mass import read_mass_distribution
+from ..mesh import Hull, load_hull
+from ..motion import DEFAULT_STOP_ON, History, prescribed, read_kinematics, simulate
+from ..orientation import Orientation, orientation
+from ..sections import Sections, area_curve, cut
+from ..solvers.base import SolverBase
+from ..solvers.registry import get_solver
+from ..state import Fluid, Motion, Pose
+from .spec import Study, StudyError
+
+__all__ = [
+    "ForceStudyResult",
+    "InfoResult",
+    "SectionsResult",
+    "SimulationResult",
+    "StudyResult",
+    "execute",
+    "load",
+]
+
+#: Commands whose study needs the body's mass (unless a momentum-form solver does without).
+_MASS_REQUIRED = ("force", "simulate")
+
+
+@dataclass(frozen=True)
+class StudyResult:
+    """What a study computed.
+
+    Attributes
+    ----------
+    study : Study
+        The study that was run.
+    hull : Hull
+        The body as read (units, axes, scale, parts, mass).
+    """
+
+    study: Study
+    hull: Hull
+
+
+@dataclass(frozen=True)
+class InfoResult(StudyResult):
+    """The description of a mesh: its orientation and sectional area curve.
+
+    Attributes
+    ----------
+    orientation : Orientation
+        The file's axes, the longest one and the end that looks like the nose.
+    x : ndarray, shape (stations,)
+        Stations along the body, m.
+    area : ndarray, shape (stations,)
+        Immersed-or-not sectional area at each station, m^2.
+    """
+
+    orientation: Orientation
+    x: np.ndarray
+    area: np.ndarray
+
+
+@dataclass(frozen=True)
+class SectionsResult(StudyResult):
+    """The cut of the hull at one pose.
+
+    Attributes
+    ----------
+    sections : Sections
+        The slices of the wetted length.
+    """
+
+    sections: Sections
+
+
+@dataclass(frozen=True)
+class ForceStudyResult(StudyResult):
+    """The force at one state, for each slice count.
+
+    Attributes
+    ----------
+    solver : SolverBase
+        The 2D solver, with its settings.
+    convergence : ConvergenceStudy
+        The force at each count, with the extrapolation when there are three or more.
+    """
+
+    solver: SolverBase
+    convergence: ConvergenceStudy
+
+
+@dataclass(frozen=True)
+class SimulationResult(StudyResult):
+    """A time history, free fall or prescribed motion.
+
+    Attributes
+    ----------
+    solver : SolverBase
+        The 2D solver, with its settings.
+    history : History
+        The motion and the force at each instant.
+    """
+
+    solver: SolverBase
+    history: History
+
+
+def build_solver(study: Study) -> SolverBase:
+    """The study's 2D solver, built with its options."""
+    return get_solver(study.solver, **study.options)
+
+
+def fluid(study: Study) -> Fluid:
+    """The study's water."""
+    return Fluid(rho=study.rho, g=study.g)
+
+
+def _mass_free(study: Study) -> bool:
+    """A momentum-form solver's force along a prescribed motion, or at a state with the
+    body's acceleration given, needs no mass."""
+    if study.kinematics is None and study.acceleration is None:
+        return False
+    return build_solver(study).kind == "momentum"
+
+
+def load(study: Study, **overrides: Any) -> Hull:
+    """The hull of the study's mesh and mass; ``overrides`` replace keyword arguments of
+    :func:`~hullslice.load_hull`.
+
+    Raises
+    ------
+    StudyError
+        A force or a simulation without the body's mass where it is needed.
+    """
+    dist = None
+    if study.mass_distribution:
+        dist = read_mass_distribution(study.mass_distribution)
+    elif study.command in _MASS_REQUIRED and study.mass is None and not _mass_free(study):
+        raise StudyError(
+            study.command, "give the body's mass, --mass KG or --mass-distribution CSV"
+        )
+    options: dict[str, Any] = {
+        "units": study.units,
+        "forward": study.forward,
+        "up": study.up,
+        "mass": study.mass,
+        "mass_distribution": dist,
+        "cg": study.cg,
+        "inertia": study.inertia,
+        "scale": study.scale,
+        "length": study.length,
+        "repair": None if study.repair in (None, "none") else study.repair,
+        "keep": study.keep,
+        "keep_box": study.keep_box,
+        "fix": not study.no_fix,
+    }
+    return load_hull(study.mesh, **{**options, **overrides})
+
+
+def _info(study: Study) -> InfoResult:
+    # the bodies are listed whatever is kept ("all" keeps all and lists them)
+    hull = load(study, keep=study.keep or "all")
+    orient = orientation(hull, study.forward, study.up)
+    if not orient.forward_is_longest:
+        e = orient.mesh_extents
+        warnings.warn(
+            f"mesh {hull.name!r} is longest along its {orient.longest} axis "
+            f"({e[orient.longest]:.6g} m) but --forward is {study.forward} "
+            f"({e[study.forward.strip().lstrip('+-').lower()]:.6g} m): if the body's length "
+            f"is along {orient.longest}, give --forward {orient.longest} (or "
+            f"-{orient.longest})",
+            OrientationWarning,
+            stacklevel=3,
+        )
+    x, area = area_curve(hull, 40 if study.stations is None else study.stations)
+    return InfoResult(study, hull, orient, x, area)
+
+
+def _sections(study: Study) -> SectionsResult:
+    assert study.draft is not None  # checked by Study
+    hull = load(study)
+    sections = cut(
+        hull,
+        Pose(study.draft, study.pitch),
+        study.slice_counts[0],
+        deadrise=study.deadrise,
+        slicing=study.slicing,
+    )
+    return SectionsResult(study, hull, sections)
+
+
+def _force(study: Study) -> ForceStudyResult:
+    slv = build_solver(study)
+    if study.acceleration is not None and slv.kind != "momentum":
+        raise StudyError(
+            "force",
+            f"--acceleration is for momentum-form solvers; {slv.name!r} is of the free-fall "
+            "form, whose force follows from each slice's own free fall (leave --acceleration "
+            "out, or choose e.g. --solver wagner)",
+        )
+    assert study.draft is not None and study.velocity is not None  # checked by Study
+    hull = load(study)
+    result = convergence(
+        hull,
+        Pose(study.draft, study.pitch),
+        Motion(study.velocity, study.horizontal_speed, study.pitch_rate),
+        slices=list(study.slice_counts),
+        solver=slv,
+        fluid=fluid(study),
+        deadrise=study.deadrise,
+        slicing=study.slicing,
+        acceleration=study.acceleration,
+    )
+    return ForceStudyResult(study, hull, slv, result)
+
+
+def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> SimulationResult:
+    hull = load(study)
+    slv = build_solver(study)
+    common: dict[str, Any] = {
+        "slices": study.slice_counts[0],
+        "solver": slv,
+        "fluid": fluid(study),
+        "deadrise": study.deadrise,
+        "slicing": study.slicing,
+        "progress": progress,
+    }
+    if study.kinematics is None:
+        assert study.velocity is not None and study.t_end is not None  # checked by Study
+        history = simulate(
+            hull,
+            study.velocity,
+            study.t_end,
+            dt=study.dt,
+            draft=0.0 if study.draft is None else study.draft,
+            pitch=study.pitch,
+            forward_speed=study.horizontal_speed,
+            pitch_rate=study.pitch_rate,
+            free_pitch=study.free_pitch,
+            free_surge=study.free_surge,
+            stop_on=() if study.continue_invalid else DEFAULT_STOP_ON,
+            max_flagged_share=study.max_flagged_share,
+            **common,
+        )
+    else:
+        # a prescribed motion is evaluated over the whole table, limits flagged
+        history = prescribed(
+            hull,
+            read_kinematics(study.kinematics),
+            max_flagged_share=study.max_flagged_share,
+            **common,
+        )
+    return SimulationResult(study, hull, slv, history)
+
+
+def execute(study: Study, *, progress: Callable[[float, float], None] | None = None) -> StudyResult:
+    """Compute a study.
+
+    Parameters
+    ----------
+    study : Study
+        What to compute.
+    progress : callable, optional
+        ``progress(t, t_end)`` (s) called as a simulation advances.
+
+    Returns
+    -------
+    StudyResult
+        :class:`InfoResult`, :class:`SectionsResult`, :class:`ForceStudyResult` or
+        :class:`SimulationResult` by the study's command.
+    """
+    if study.command == "info":
+        return _info(study)
+    if study.command == "sections":
+        return _sections(study)
+    if study.command == "force":
+        return _force(study)
+    return _simulate(study, progress)
