@@ -71,4 +71,4 @@ def test_a_time_step_that_steps_through_the_impact_is_refused(paper_hull):
     assert "give a time step below 1e-08 s" in str(info.value)
     # the paper's run moves 0.4 mm a step
     h = simulate(paper_hull, -4.0, 2e-4, dt=1e-4, slices=4)
-    assert len(h) == 3 and np.all(np.isfinite(h.penetration))
+    assert len(h) == 3 and np.all(np.isfinite(h.draft))

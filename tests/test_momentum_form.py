@@ -43,7 +43,7 @@ def closed_form(name: str, V: float, t: np.ndarray, beta: float, length: float) 
 
 def constant_speed(V: float, p_max: float, rows: int = 21) -> dict[str, np.ndarray]:
     t = np.linspace(0.0, p_max / V, rows)
-    return {"t": t, "penetration": V * t, "velocity": np.full(rows, -V)}
+    return {"t": t, "draft": V * t, "velocity": np.full(rows, -V)}
 
 
 @pytest.mark.parametrize("name", ["wagner", "von-karman"])
@@ -65,7 +65,7 @@ def test_constant_speed_entry_of_a_wedge_prism_is_the_closed_form(name, deadrise
     np.testing.assert_allclose(h.force[1:], expected[1:], rtol=0.01)
     # the heave added mass is that of the flat plate of the wetted width, rho pi c^2 / 2 per
     # metre with c = gamma p / tan(beta)
-    c = GAMMA[name] * kin["penetration"] / math.tan(beta)
+    c = GAMMA[name] * kin["draft"] / math.tan(beta)
     np.testing.assert_allclose(h.added_mass[1:], RHO * math.pi * c[1:] ** 2 / 2, rtol=0.01)
 
 
@@ -75,7 +75,7 @@ def test_the_force_does_not_depend_on_the_mass_or_its_distribution(paper_hull):
     t = np.linspace(0.0, 0.008, 17)
     kin = {
         "t": t,
-        "penetration": 4.0 * t - 50.0 * t**2,
+        "draft": 4.0 * t - 50.0 * t**2,
         "velocity": -4.0 + 100.0 * t,
         "acceleration": np.full_like(t, 100.0),
     }
@@ -139,7 +139,7 @@ def test_replaying_a_free_fall_as_a_prescribed_motion_gives_its_forces(paper_hul
     h = hs.simulate(paper_hull, -4.0, 0.015, dt=1e-4, slices=32, solver="wagner", stop_on=())
     kin = {
         "t": h.t,
-        "penetration": h.penetration,
+        "draft": h.draft,
         "velocity": h.velocity,
         "acceleration": h.acceleration,
     }
@@ -285,14 +285,14 @@ def test_kinematics_rates_are_derived_or_checked():
     t = np.linspace(0.0, 0.004, 9)
     kin = {
         "t": t,
-        "penetration": 0.005 + 2.0 * t,
+        "draft": 0.005 + 2.0 * t,
         "velocity": np.full_like(t, -2.0),
-        "pitch_deg": 4.0 + 100.0 * t,
+        "pitch": np.radians(4.0 + 100.0 * t),
         "forward_speed": np.full_like(t, 5.0),
     }
     derived = hs.prescribed(hull, kin, solver="wagner", slices=8)
     given = hs.prescribed(
-        hull, {**kin, "pitch_rate_deg_s": np.full_like(t, 100.0)}, solver="wagner", slices=8
+        hull, {**kin, "pitch_rate": np.full_like(t, np.radians(100.0))}, solver="wagner", slices=8
     )
     np.testing.assert_allclose(derived.force, given.force, rtol=1e-9)
     bad = {**kin, "forward_acceleration": np.full_like(t, 100.0)}

@@ -23,7 +23,7 @@ def test_paper_free_fall_matches_table_1(paper_fall, paper):
     i = int(np.argmin(abs(paper_fall.t - ref["t_s"])))
     assert paper_fall.t[i] == pytest.approx(0.01, abs=1e-12)
     # the motion predicted by 2D+t against the CFD motion of Table 1: within 2 %
-    assert paper_fall.penetration[i] == pytest.approx(ref["delta_z_m"], rel=0.02)
+    assert paper_fall.draft[i] == pytest.approx(ref["delta_z_m"], rel=0.02)
     assert paper_fall.velocity[i] == pytest.approx(ref["velocity_m_s"], rel=0.02)
     # the force against the CFD force m (a + g): within the paper's 10 % band (Fig. 9)
     assert paper_fall.force[i] == pytest.approx(paper["force_cfd_N"], rel=0.10)
@@ -32,12 +32,12 @@ def test_paper_free_fall_matches_table_1(paper_fall, paper):
 
 def test_history_is_consistent(paper_fall, paper_hull):
     h = paper_fall
-    assert h.t[0] == 0.0 and h.penetration[0] == 0.0 and h.velocity[0] == -4.0
+    assert h.t[0] == 0.0 and h.draft[0] == 0.0 and h.velocity[0] == -4.0
     assert h.force[0] == 0.0  # nothing wetted at first contact
     # Newton: a = F / m - g at every instant
     np.testing.assert_allclose(h.acceleration, h.force / paper_hull.mass - 9.81, rtol=1e-12)
     # the draft grows by the integral of -v (trapezoid rule, second order in dt)
-    dz = np.diff(h.penetration)
+    dz = np.diff(h.draft)
     np.testing.assert_allclose(
         dz, -0.5 * (h.velocity[1:] + h.velocity[:-1]) * np.diff(h.t), rtol=1e-3
     )
@@ -64,7 +64,7 @@ def test_uniform_wedge_prism_reproduces_its_2d_free_fall():
 
 
 def test_prescribed_motion_reproduces_the_free_fall_force(paper_fall, paper_hull):
-    kin = {k: getattr(paper_fall, k) for k in ("t", "penetration", "velocity")}
+    kin = {k: getattr(paper_fall, k) for k in ("t", "draft", "velocity")}
     h = prescribed(paper_hull, kin, slices=32)
     assert h.mode == "prescribed" and h.stop_reason == "end of table"
     np.testing.assert_allclose(h.force, paper_fall.force, rtol=1e-12, atol=1e-12)
@@ -74,7 +74,7 @@ def test_prescribed_motion_reproduces_the_free_fall_force(paper_fall, paper_hull
 def test_kinematics_csv_round_trip(tmp_path, paper_fall):
     path = tmp_path / "kin.csv"
     rows = ["# CFD kinematics", "time_note,t,penetration,velocity"]
-    cols = (paper_fall.t, paper_fall.penetration, paper_fall.velocity)
+    cols = (paper_fall.t, paper_fall.draft, paper_fall.velocity)
     rows += [f"x,{float(t)!r},{float(p)!r},{float(v)!r}" for t, p, v in zip(*cols, strict=True)]
     path.write_text("\n".join(rows) + "\n")
     kin = read_kinematics(path)
@@ -123,7 +123,7 @@ def test_chine_stop(wedge_hull):
     heavy = wedge_hull.with_mass(100.0)
     h = simulate(heavy, -5.0, 0.05, dt=2e-4, slices=4, stop_on=("chine",))
     assert h.stop_reason == "chine"
-    assert h.penetration[-1] == pytest.approx(0.1 * np.tan(np.radians(30)), abs=2e-3)
+    assert h.draft[-1] == pytest.approx(0.1 * np.tan(np.radians(30)), abs=2e-3)
     assert h.chine_wetted[-1] and not h.chine_wetted[:-1].any()
 
 
@@ -170,12 +170,12 @@ def test_draft_past_the_body_height_is_recorded_as_it_is(wedge_hull):
     heavy = wedge_hull.with_mass(100.0)
     h = simulate(heavy, -5.0, 0.05, dt=2e-4, slices=4, stop_on=())
     height = heavy.extents[2]
-    assert h.penetration.max() > 1.5 * height
+    assert h.draft.max() > 1.5 * height
     travel = np.concatenate(
         [[0.0], np.cumsum(-0.5 * (h.velocity[1:] + h.velocity[:-1]) * np.diff(h.t))]
     )
-    np.testing.assert_allclose(h.penetration, travel, rtol=1e-3, atol=1e-6)
-    assert h.chine_wetted[h.penetration > height].all()
+    np.testing.assert_allclose(h.draft, travel, rtol=1e-3, atol=1e-6)
+    assert h.chine_wetted[h.draft > height].all()
 
 
 def test_a_run_ends_when_the_pitch_reaches_80_degrees(paper_hull):

@@ -121,10 +121,10 @@ def test_free_pitch_history_obeys_its_equations(paper_hull):
     # and a prescribed motion along it reproduces its forces and moments
     kin = {
         "t": h.t,
-        "penetration": h.penetration,
+        "draft": h.draft,
         "velocity": h.velocity,
-        "pitch_deg": np.degrees(h.pitch),
-        "pitch_rate_deg_s": np.degrees(h.pitch_rate),
+        "pitch": h.pitch,
+        "pitch_rate": h.pitch_rate,
         "forward_speed": h.forward_speed,
     }
     again = prescribed(paper_hull, kin, slices=24)

@@ -32,7 +32,7 @@ def wedge(deadrise_deg: float = 30.0) -> hs.Hull:
 
 
 def constant_speed(V: float, p: np.ndarray) -> dict[str, np.ndarray]:
-    return {"t": p / V, "penetration": p, "velocity": np.full(len(p), -V)}
+    return {"t": p / V, "draft": p, "velocity": np.full(len(p), -V)}
 
 
 def test_zarnick_is_installed_as_a_plugin_of_the_momentum_kind():
