@@ -129,6 +129,14 @@ def test_far_bodies_are_loaded_or_refused_in_bounded_memory(
     v = np.asarray(SPHERE.vertices) * radius
     f = np.asarray(SPHERE.faces)
     offset = 10.0**far * 2 * radius * np.asarray(direction) / np.linalg.norm(direction)
+    # a removed face whose corners coincide at the file's precision (an STL holds single
+    # precision) is no hole: the surface the file describes is closed without it
+    stored = (v + offset).astype(np.float32 if suffix == ".stl" else np.float64)
+    corners = stored[f[:missing]]
+    holes = sum(
+        not (np.array_equal(a, b) or np.array_equal(b, c) or np.array_equal(a, c))
+        for a, b, c in corners
+    )
     f = f[missing:]  # the first faces removed: a hole, or none
     path = write(tmp_path_factory.mktemp("far") / f"sphere{suffix}", v + offset, f)
     result, peak = traced_load(path)
@@ -141,6 +149,6 @@ def test_far_bodies_are_loaded_or_refused_in_bounded_memory(
         assert missing or suffix == ".stl" or "from the origin" in str(result), result
     else:
         # loaded: closed, and the sphere's volume (to its coordinates' precision)
-        assert missing == 0
+        assert holes == 0
         eps = (1e-15 if suffix == ".obj" else 6e-8) * 10.0**far * 2
         assert result.volume == pytest.approx(trimesh.Trimesh(v, f).volume, rel=max(1e-9, 30 * eps))

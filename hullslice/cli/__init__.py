@@ -95,6 +95,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     debug = os.environ.get("HULLSLICE_DEBUG", "") not in ("", "0")
     with warnings.catch_warnings(), terminated_cleanly():
         warnings.showwarning = _show_warning
+        # a dependency's deprecations are for programmers, not for the command's user (who
+        # can do nothing about them): shown only with HULLSLICE_DEBUG
+        if not debug:
+            warnings.filterwarnings("ignore", category=DeprecationWarning)
+            warnings.filterwarnings("ignore", category=PendingDeprecationWarning)
         # a repair or a doubtful unit is always shown, one line each, whatever the filters
         warnings.filterwarnings("always", category=HullsliceWarning)
         try:
