@@ -1,0 +1,199 @@
+"""Where a sweep's cases run: in this process, or on Dask, in groups that share a hull.
+
+The cases are grouped into tasks (:func:`groups`): the same mass properties and pitch
+together, since they share a hull with those properties and, with the fixed slicing, its
+cuts. The hull and the files' contents go to the workers once, as tasks of their own, and
+each task runs its cases with :func:`~hullslice.sweeps.run.run_batch`. A task whose worker
+dies is rerun by Dask; a case that kills its worker each time is recorded as failed.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from typing import Any
+
+from ..errors import InputError, MissingDependencyError
+from .plan import Plan
+from .run import _mass_key, run_batch
+
+#: Called with each finished case: ``finish(index, record)``.
+Finish = Callable[[int, dict], None]
+
+#: Seconds to wait for a scheduler given by its address.
+CONNECT_TIMEOUT = 10.0
+
+#: Tasks a sweep's cases are grouped into, per worker: more balance the workers' loads at
+#: the end, fewer share more cuts.
+TASKS_PER_WORKER = 8
+
+
+def require(*modules: str) -> None:
+    import importlib
+
+    for m in modules:
+        try:
+            importlib.import_module(m)
+        except ImportError:
+            raise MissingDependencyError(
+                f"sweeps need {m}, which is not installed: pip install 'hullslice[sweep]'"
+            ) from None
+
+
+def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
+    """The cases to run, grouped: same mass properties and pitch together (they share a
+    hull and its cuts), in tasks of a size that gives each worker a few."""
+    order = sorted(
+        todo,
+        key=lambda i: (
+            repr(_mass_key(plan.case(i))),
+            plan.case(i).get("pitch", 0.0),
+            i,
+        ),
+    )
+    size = max(1, min(16, math.ceil(len(order) / (TASKS_PER_WORKER * max(1, n_workers)))))
+    out: list[list[tuple[tuple[str, Any], int]]] = []
+    for i in order:
+        key = (repr(_mass_key(plan.case(i))), plan.case(i).get("pitch", 0.0))
+        if out and len(out[-1]) < size and out[-1][0][0] == key:
+            out[-1].append((key, i))
+        else:
+            out.append([(key, i)])
+    return [[i for _, i in g] for g in out]
+
+
+def _client(client, workers: int | None, timeout: float):
+    """``(client, owned)``: the Dask client to use, and whether this sweep made it."""
+    require("distributed")
+    from distributed import Client, LocalCluster
+
+    if client is not None and not isinstance(client, str | os.PathLike):
+        return client, False
+    if client is not None:
+        address = str(client)
+        try:
+            return Client(address, timeout=timeout), True
+        except Exception as exc:  # OSError, TimeoutError, ValueError for a bad address
+            why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise InputError(
+                f"no Dask scheduler answers at {address!r} within {timeout:g} s ({why}): "
+                "start one ('dask scheduler'), check the address, or leave out --scheduler "
+                "to run on this machine"
+            ) from None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        silence_logs=50,
+    )
+    return Client(cluster), True
+
+
+def _value(x):
+    return x
+
+
+def _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token) -> None:
+    from distributed import as_completed
+
+    futures: dict = {}
+    try:
+        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+        # the hull and the files' contents as tasks of their own, not scattered data: Dask
+        # computes them again if the workers holding them die
+        hull_f = client.submit(_value, hull, pure=False)
+        inputs_f = client.submit(_value, inputs, pure=False)
+
+        def submit(group: list[int]):
+            items = [(i, plan.case(i)) for i in group]
+            return client.submit(
+                run_batch, hull_f, items, inputs_f, keep, token, pure=False, retries=1
+            )
+
+        for group in groups(plan, todo, n_workers):
+            futures[submit(group)] = group
+        queue = as_completed(list(futures))
+        # Cases whose worker died under them (Dask gave up: KilledWorker): the case that
+        # kills it, or one that was on the worker when another did. Each runs once more,
+        # alone and one after the other, so that only the case that kills its worker
+        # again is recorded as failed.
+        suspects: list[int] = []
+        alone: list = []  # the one suspect running, if any
+        for fut in queue:
+            group = futures.pop(fut)
+            retried = bool(alone) and fut is alone[0]
+            if retried:
+                alone.clear()
+            try:
+                results = fut.result()
+            except Exception as exc:
+                results = []
+                if not retried:
+                    suspects.extend(group)
+                else:
+                    why = str(exc).splitlines()[0] if str(exc) else ""
+                    results = [
+                        (
+                            group[0],
+                            {
+                                "error": f"the worker running this case stopped "
+                                f"({type(exc).__name__}: {why})",
+                                "runtime": math.nan,
+                                "lost": True,  # resuming runs it again
+                            },
+                        )
+                    ]
+            if suspects and not alone:
+                i = suspects.pop(0)
+                f = submit([i])
+                futures[f] = [i]
+                alone.append(f)
+                queue.add(f)
+            for index, record in results:
+                finish(index, record)
+    except BaseException:
+        for fut in list(futures):
+            fut.cancel()
+        raise
+
+
+@contextmanager
+def session(client, workers: int | None, timeout: float, needed: bool) -> Iterator[Any]:
+    """The Dask client a sweep runs on, or None to run in this process (``workers=1``
+    without a client, or nothing to run); a cluster started here is stopped on leaving."""
+    if not needed or (client is None and workers == 1):
+        yield None
+        return
+    dask_client, owned = _client(client, workers, timeout)
+    try:
+        yield dask_client
+    finally:
+        if owned:
+            cluster = getattr(dask_client, "cluster", None)
+            dask_client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def run_cases(
+    plan: Plan,
+    hull,
+    inputs: Mapping[str, Any],
+    todo: list[int],
+    keep: bool,
+    finish: Finish,
+    client=None,
+    token: str = "",
+) -> None:
+    """Run the cases ``todo`` of ``plan`` on ``client`` (None: in this process, one case
+    at a time), calling ``finish(index, record)`` as each one ends."""
+    if client is None:
+        for i in todo:
+            for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep):
+                finish(index, record)
+    elif todo:
+        _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token)
