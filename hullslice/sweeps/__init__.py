@@ -40,114 +40,46 @@ How a case flows, module by module:
 
 from __future__ import annotations
 
-from .api import (
-    sweep as sweep,
+from .api import sweep
+from .dataset import RESULTS, build, iter_failures, provenance  # noqa: F401
+from .engine import (  # noqa: F401
+    CONNECT_TIMEOUT,
+    MAX_TASK_CASES,
+    MIN_TASKS_PER_WORKER,
+    TAIL_TASK_CASES,
+    TASKS_PER_WORKER,
+    groups,
+    local,
+    require,
+    run_cases,
+    session,
 )
-from .dataset import (
-    RESULTS as RESULTS,
+from .plan import (  # noqa: F401
+    COMPONENTS,
+    MESH_KEYS,
+    OUTPUT_KEYS,
+    SWEEP_KEYS,
+    Plan,
+    apply,
+    key_spec,
+    load_sweep,
+    make_plan,
 )
-from .dataset import (
-    build as build,
+from .run import (  # noqa: F401
+    _HULLS,
+    _SHARED,
+    SHAPE_KEYS,
+    HullState,
+    MeshFile,
+    hull_for,
+    load_inputs,
+    motion_call,
+    run_batch,
+    run_case,
+    shaping,
+    summarise,
 )
-from .dataset import (
-    iter_failures as iter_failures,
-)
-from .dataset import (
-    provenance as provenance,
-)
-from .engine import (
-    CONNECT_TIMEOUT as CONNECT_TIMEOUT,
-)
-from .engine import (
-    TASKS_PER_WORKER as TASKS_PER_WORKER,
-)
-from .engine import (
-    groups as groups,
-)
-from .engine import (
-    require as require,
-)
-from .engine import (
-    run_cases as run_cases,
-)
-from .engine import (
-    session as session,
-)
-from .plan import (
-    COMPONENTS as COMPONENTS,
-)
-from .plan import (
-    MESH_KEYS as MESH_KEYS,
-)
-from .plan import (
-    OUTPUT_KEYS as OUTPUT_KEYS,
-)
-from .plan import (
-    SWEEP_KEYS as SWEEP_KEYS,
-)
-from .plan import (
-    Plan as Plan,
-)
-from .plan import (
-    apply as apply,
-)
-from .plan import (
-    key_spec as key_spec,
-)
-from .plan import (
-    load_sweep as load_sweep,
-)
-from .plan import (
-    make_plan as make_plan,
-)
-from .run import (
-    _HULLS as _HULLS,
-)
-from .run import (
-    _SHARED as _SHARED,
-)
-from .run import (
-    SHAPE_KEYS as SHAPE_KEYS,
-)
-from .run import (
-    hull_for as hull_for,
-)
-from .run import (
-    load_inputs as load_inputs,
-)
-from .run import (
-    motion_call as motion_call,
-)
-from .run import (
-    run_batch as run_batch,
-)
-from .run import (
-    run_case as run_case,
-)
-from .run import (
-    shaping as shaping,
-)
-from .run import (
-    summarise as summarise,
-)
-from .store import (
-    PARTIAL_SPEC as PARTIAL_SPEC,
-)
-from .store import (
-    Partial as Partial,
-)
-from .store import (
-    jsonable as jsonable,
-)
-from .store import (
-    remove_partial as remove_partial,
-)
-from .store import (
-    sha256 as sha256,
-)
-from .store import (
-    spec as spec,
-)
+from .store import PARTIAL_SPEC, Partial, jsonable, remove_partial, sha256, spec  # noqa: F401
 
 # names of the single module this package was, kept for code that reached them
 _require = require

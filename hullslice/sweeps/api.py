@@ -9,9 +9,9 @@ from typing import Any
 
 from ..errors import InputError
 from .dataset import build, provenance
-from .engine import CONNECT_TIMEOUT, require, run_cases, session
+from .engine import CONNECT_TIMEOUT, local, require, run_cases, session
 from .plan import Plan, load_sweep, make_plan
-from .run import hull_for, load_inputs, shaping
+from .run import MeshFile, hull_for, load_inputs, shaping
 from .store import Partial, sha256, spec
 
 
@@ -108,7 +108,8 @@ def sweep(
             kept.create()
         if progress is not None:
             progress(len(records), total, failed)
-        run_cases(plan, hull, inputs, todo, keep_histories, finish, dask_client, token)
+        source = MeshFile(base, mesh_sha) if dask_client and local(dask_client) else None
+        run_cases(plan, hull, inputs, todo, keep_histories, finish, dask_client, token, source)
     ds = build(plan, records, keep_histories)
     ds.attrs.update(provenance(plan, mesh_path.name, mesh_sha, solver, records))
     if kept is not None:

@@ -17,7 +17,7 @@ from typing import Any
 
 from ..errors import InputError, MissingDependencyError
 from .plan import Plan
-from .run import _mass_key, run_batch
+from .run import HullState, _mass_key, run_batch
 
 #: Called with each finished case: ``finish(index, record)``.
 Finish = Callable[[int, dict], None]
@@ -25,9 +25,15 @@ Finish = Callable[[int, dict], None]
 #: Seconds to wait for a scheduler given by its address.
 CONNECT_TIMEOUT = 10.0
 
-#: Tasks a sweep's cases are grouped into, per worker: more balance the workers' loads at
-#: the end, fewer share more cuts.
-TASKS_PER_WORKER = 8
+#: Tasks a sweep's cases are grouped into, at least, per worker: more balance the
+#: workers' loads at the end, fewer share more cuts (see :func:`groups`).
+MIN_TASKS_PER_WORKER = 4
+#: The most cases in one task.
+MAX_TASK_CASES = 16
+#: Cases in each of the last, small tasks of a sweep (see :func:`groups`).
+TAIL_TASK_CASES = 2
+#: The former name of :data:`MIN_TASKS_PER_WORKER`.
+TASKS_PER_WORKER = MIN_TASKS_PER_WORKER
 
 
 def require(*modules: str) -> None:
@@ -43,25 +49,35 @@ def require(*modules: str) -> None:
 
 
 def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
-    """The cases to run, grouped: same mass properties and pitch together (they share a
-    hull and its cuts), in tasks of a size that gives each worker a few."""
-    order = sorted(
-        todo,
-        key=lambda i: (
-            repr(_mass_key(plan.case(i))),
-            plan.case(i).get("pitch", 0.0),
-            i,
-        ),
-    )
-    size = max(1, min(16, math.ceil(len(order) / (TASKS_PER_WORKER * max(1, n_workers)))))
-    out: list[list[tuple[tuple[str, Any], int]]] = []
-    for i in order:
-        key = (repr(_mass_key(plan.case(i))), plan.case(i).get("pitch", 0.0))
-        if out and len(out[-1]) < size and out[-1][0][0] == key:
-            out[-1].append((key, i))
-        else:
-            out.append([(key, i)])
-    return [[i for _, i in g] for g in out]
+    """The cases to run, grouped into tasks, largest first.
+
+    Cases with the same mass properties and pitch share a hull and, with the fixed slicing,
+    its cuts: they stay in one task, so that one worker makes those cuts, unless there are
+    too few such groups to give every worker :data:`MIN_TASKS_PER_WORKER` tasks; then each
+    group is split into tasks of equal size. No task holds more than :data:`MAX_TASK_CASES`
+    cases (a task's cases are kept for ``resume`` when it ends). The last tasks, one per
+    worker, are split into tasks of :data:`TAIL_TASK_CASES` cases, so that the workers end
+    at about the same time.
+    """
+    keyed: dict[tuple[str, Any], list[int]] = {}
+    for i in sorted(todo):
+        case = plan.case(i)
+        keyed.setdefault((repr(_mass_key(case)), case.get("pitch", 0.0)), []).append(i)
+    wanted = MIN_TASKS_PER_WORKER * max(1, n_workers)
+    parts = max(1, math.ceil(wanted / max(1, len(keyed))))
+    out = []
+    for _, cases in sorted(keyed.items(), key=lambda kv: (kv[0][0], kv[0][1])):
+        n = max(min(parts, len(cases)), math.ceil(len(cases) / MAX_TASK_CASES))
+        size = math.ceil(len(cases) / n)
+        out += [cases[j : j + size] for j in range(0, len(cases), size)]
+    out.sort(key=len, reverse=True)
+    # the finish: the last tasks, one per worker, in small ones, so that the workers end
+    # together (Dask hands out the tasks in the order they were given)
+    w = max(1, n_workers)
+    if len(out) > w:
+        n = TAIL_TASK_CASES
+        out = out[:-w] + [t[j : j + n] for t in out[-w:] for j in range(0, len(t), n)]
+    return out
 
 
 def _client(client, workers: int | None, timeout: float):
@@ -97,21 +113,24 @@ def _value(x):
     return x
 
 
-def _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token) -> None:
+def _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token, source) -> None:
     from distributed import as_completed
 
     futures: dict = {}
     try:
         n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        # the hull and the files' contents as tasks of their own, not scattered data: Dask
-        # computes them again if the workers holding them die
-        hull_f = client.submit(_value, hull, pure=False)
+        # a cluster on this machine reads the mesh file itself, each worker at the same
+        # time; another gets the hull's state, a task of its own (not scattered data: Dask
+        # computes it again if the workers holding it die). Either way a worker builds the
+        # hull once, at its first task, and keeps it under the token.
+        if source is None:
+            source = client.submit(_value, HullState(hull), pure=False)
         inputs_f = client.submit(_value, inputs, pure=False)
 
         def submit(group: list[int]):
             items = [(i, plan.case(i)) for i in group]
             return client.submit(
-                run_batch, hull_f, items, inputs_f, keep, token, pure=False, retries=1
+                run_batch, source, items, inputs_f, keep, token, pure=False, retries=1
             )
 
         for group in groups(plan, todo, n_workers):
@@ -188,12 +207,26 @@ def run_cases(
     finish: Finish,
     client=None,
     token: str = "",
+    source: Any = None,
 ) -> None:
     """Run the cases ``todo`` of ``plan`` on ``client`` (None: in this process, one case
-    at a time), calling ``finish(index, record)`` as each one ends."""
+    at a time), calling ``finish(index, record)`` as each one ends.
+
+    On Dask the workers build the hull from ``source`` (a
+    :class:`~hullslice.sweeps.run.MeshFile` for a cluster on this machine, see
+    :func:`local`), or else from ``hull``'s state; ``token`` names it (see
+    :func:`~hullslice.sweeps.run.run_batch`)."""
     if client is None:
         for i in todo:
             for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep):
                 finish(index, record)
     elif todo:
-        _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token)
+        _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token, source)
+
+
+def local(client) -> bool:
+    """Whether ``client``'s workers run on this machine, in a ``LocalCluster`` (they can
+    read the files of the sweep)."""
+    from distributed import LocalCluster
+
+    return isinstance(getattr(client, "cluster", None), LocalCluster)

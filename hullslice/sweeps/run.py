@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import HullsliceError, InputError
+from .store import sha256 as file_sha256
 
 #: The hull each worker process keeps, by token (see run_batch).
 _SHARED: dict[str, Any] = {}
@@ -70,6 +71,59 @@ def load_inputs(case: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
     if "kinematics" in case:
         inputs["kinematics"] = read_kinematics(case["kinematics"])
     return hull, inputs
+
+
+class HullState:
+    """A hull as it travels to a worker: its pickled state (the arrays, name and mass
+    properties), cheap to send and to receive; :meth:`build` makes the hull, and its
+    ``Manifold``, where it is used (once per process under :func:`run_batch`'s token), so
+    that the workers build theirs at the same time rather than one after the other."""
+
+    def __init__(self, hull) -> None:
+        self.kind = type(hull)
+        self.state = hull.__getstate__()
+
+    def build(self):
+        """The hull, as unpickling it gives it."""
+        hull = self.kind.__new__(self.kind)
+        hull.__setstate__(self.state)
+        return hull
+
+
+class MeshFile:
+    """A hull that a worker on this machine reads itself, from the base case's mesh file
+    (as :func:`load_inputs` reads it): nothing but the file's name travels.
+
+    Parameters
+    ----------
+    case : mapping
+        The checked base case (its ``mesh``, units, axes and :data:`SHAPE_KEYS`).
+    sha256 : str
+        The SHA-256 of the file that the sweep read; a file that has changed since is
+        refused.
+    """
+
+    def __init__(self, case: Mapping[str, Any], sha256: str) -> None:
+        keys = ("mesh", "units", "forward", "up", *SHAPE_KEYS)
+        self.case = {k: case[k] for k in keys if k in case}
+        self.case["mesh"] = Path(case["mesh"]).resolve()
+        self.sha256 = sha256
+
+    def build(self):
+        """The hull read from the file.
+
+        Raises
+        ------
+        InputError
+            The file is no longer the one the sweep read.
+        """
+        path = self.case["mesh"]
+        if file_sha256(path) != self.sha256:
+            raise InputError(
+                f"mesh {str(path)!r} changed while the sweep ran (its SHA-256 is no longer "
+                f"{self.sha256[:12]}...): run the sweep again"
+            )
+        return load_inputs(self.case)[0]
 
 
 def _mass_key(case: Mapping[str, Any]) -> tuple:
@@ -212,9 +266,18 @@ def run_batch(
 
     ``token`` names the hull (its mesh's SHA-256 and axes): a process keeps the first copy
     it gets under that name and uses it for every later task, with the cuts it has made,
-    whichever copy Dask hands it."""
+    whichever copy Dask hands it. With a token, ``hull`` may also be what a worker builds
+    the hull from, once (:class:`HullState`, :class:`MeshFile`); a hull that cannot be
+    built fails every case of the batch with its message."""
     if token:
-        hull = _SHARED.setdefault(token, hull)
+        found = _SHARED.get(token)
+        if found is None:
+            try:
+                found = hull.build() if isinstance(hull, HullState | MeshFile) else hull
+            except HullsliceError as exc:
+                return [(index, {"error": str(exc), "runtime": 0.0}) for index, _ in items]
+            _SHARED[token] = found
+        hull = found
         while len(_SHARED) > _SHARED_KEPT:
             _SHARED.pop(next(iter(_SHARED)))
     out = []
