@@ -373,3 +373,18 @@ def test_a_case_that_kills_its_worker_every_time_is_recorded(killer_solver):
     ref = hs.simulate(hull, -4.0, 0.01, dt=0.001, slices=8, solver="killer", stop_on=())
     assert ds["error"].sel(mass=8.0).item() == ""
     assert ds["peak_force"].sel(mass=8.0).item() == ref.peak["force"]
+
+
+def test_a_bad_mesh_on_a_given_cluster_is_refused_before_any_result(client, tmp_path):
+    """On a cluster of this machine the tasks go out before this process has read the mesh
+    (its workers read it themselves): a mesh that cannot be read is refused all the same,
+    the tasks are cancelled and no partial results are kept."""
+    bad = tmp_path / "bad.stl"
+    bad.write_text("solid nothing\nendsolid nothing\n")
+    partial = tmp_path / "out.nc.partial"
+    with pytest.raises(hs.HullsliceError, match=r"bad\.stl"):
+        hs.sweep({**BASE, "mesh": str(bad)}, GRID, client=client, partial=partial)
+    assert not partial.exists()
+    # the cluster is free for the next sweep
+    ds = hs.sweep(BASE, {"mass": [8.0]}, client=client)
+    assert ds["peak_force"].sel(mass=8.0).item() == single(-4.0, 8.0).peak["force"]

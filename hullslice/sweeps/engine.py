@@ -113,71 +113,94 @@ def _value(x):
     return x
 
 
-def _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token, source) -> None:
-    from distributed import as_completed
+class DaskRun:
+    """The cases ``todo`` of ``plan`` submitted to a Dask ``client`` as tasks
+    (:func:`groups`); :meth:`collect` gathers their records as they end.
 
-    futures: dict = {}
-    try:
-        n_workers = max(1, len(client.scheduler_info().get("workers", {})))
-        # a cluster on this machine reads the mesh file itself, each worker at the same
-        # time; another gets the hull's state, a task of its own (not scattered data: Dask
-        # computes it again if the workers holding it die). Either way a worker builds the
-        # hull once, at its first task, and keeps it under the token.
-        if source is None:
-            source = client.submit(_value, HullState(hull), pure=False)
-        inputs_f = client.submit(_value, inputs, pure=False)
+    The workers build the hull from ``source``: a :class:`~hullslice.sweeps.run.MeshFile`
+    (a cluster on this machine reads the mesh file itself, each worker at the same time,
+    so the tasks may be submitted before this process has read it), or a
+    :class:`~hullslice.sweeps.run.HullState`, sent as a task of its own (not scattered
+    data: Dask computes it again if the workers holding it die). Either way a worker builds
+    the hull once, at its first task, and keeps it under ``token``.
+    """
 
-        def submit(group: list[int]):
-            items = [(i, plan.case(i)) for i in group]
-            return client.submit(
-                run_batch, source, items, inputs_f, keep, token, pure=False, retries=1
-            )
+    def __init__(self, client, plan: Plan, todo, inputs, keep: bool, token: str, source):
+        self.client = client
+        self.plan = plan
+        self.keep = keep
+        self.token = token
+        self.futures: dict = {}
+        try:
+            n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+            self.source = client.submit(_value, source, pure=False)
+            self.inputs = client.submit(_value, inputs, pure=False)
+            for group in groups(plan, todo, n_workers):
+                self.futures[self.submit(group)] = group
+        except BaseException:
+            self.cancel()
+            raise
 
-        for group in groups(plan, todo, n_workers):
-            futures[submit(group)] = group
-        queue = as_completed(list(futures))
-        # Cases whose worker died under them (Dask gave up: KilledWorker): the case that
-        # kills it, or one that was on the worker when another did. Each runs once more,
-        # alone and one after the other, so that only the case that kills its worker
-        # again is recorded as failed.
-        suspects: list[int] = []
-        alone: list = []  # the one suspect running, if any
-        for fut in queue:
-            group = futures.pop(fut)
-            retried = bool(alone) and fut is alone[0]
-            if retried:
-                alone.clear()
-            try:
-                results = fut.result()
-            except Exception as exc:
-                results = []
-                if not retried:
-                    suspects.extend(group)
-                else:
-                    why = str(exc).splitlines()[0] if str(exc) else ""
-                    results = [
-                        (
-                            group[0],
-                            {
-                                "error": f"the worker running this case stopped "
-                                f"({type(exc).__name__}: {why})",
-                                "runtime": math.nan,
-                                "lost": True,  # resuming runs it again
-                            },
-                        )
-                    ]
-            if suspects and not alone:
-                i = suspects.pop(0)
-                f = submit([i])
-                futures[f] = [i]
-                alone.append(f)
-                queue.add(f)
-            for index, record in results:
-                finish(index, record)
-    except BaseException:
-        for fut in list(futures):
+    def submit(self, group: list[int]):
+        items = [(i, self.plan.case(i)) for i in group]
+        return self.client.submit(
+            run_batch, self.source, items, self.inputs, self.keep, self.token, pure=False,
+            retries=1,
+        )  # fmt: skip
+
+    def cancel(self) -> None:
+        """Cancel the tasks that have not ended."""
+        for fut in list(self.futures):
             fut.cancel()
-        raise
+
+    def collect(self, finish: Finish) -> None:
+        """Call ``finish(index, record)`` for each case as its task ends."""
+        from distributed import as_completed
+
+        futures = self.futures
+        try:
+            queue = as_completed(list(futures))
+            # Cases whose worker died under them (Dask gave up: KilledWorker): the case that
+            # kills it, or one that was on the worker when another did. Each runs once
+            # more, alone and one after the other, so that only the case that kills its
+            # worker again is recorded as failed.
+            suspects: list[int] = []
+            alone: list = []  # the one suspect running, if any
+            for fut in queue:
+                group = futures.pop(fut)
+                retried = bool(alone) and fut is alone[0]
+                if retried:
+                    alone.clear()
+                try:
+                    results = fut.result()
+                except Exception as exc:
+                    results = []
+                    if not retried:
+                        suspects.extend(group)
+                    else:
+                        why = str(exc).splitlines()[0] if str(exc) else ""
+                        results = [
+                            (
+                                group[0],
+                                {
+                                    "error": f"the worker running this case stopped "
+                                    f"({type(exc).__name__}: {why})",
+                                    "runtime": math.nan,
+                                    "lost": True,  # resuming runs it again
+                                },
+                            )
+                        ]
+                if suspects and not alone:
+                    i = suspects.pop(0)
+                    f = self.submit([i])
+                    futures[f] = [i]
+                    alone.append(f)
+                    queue.add(f)
+                for index, record in results:
+                    finish(index, record)
+        except BaseException:
+            self.cancel()
+            raise
 
 
 @contextmanager
@@ -221,7 +244,7 @@ def run_cases(
             for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep):
                 finish(index, record)
     elif todo:
-        _run_on_dask(plan, hull, inputs, todo, keep, client, finish, token, source)
+        DaskRun(client, plan, todo, inputs, keep, token, source or HullState(hull)).collect(finish)
 
 
 def local(client) -> bool:

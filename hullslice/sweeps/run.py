@@ -3,7 +3,8 @@ properties, the motion call, and the record of its results.
 
 A checked ``simulate`` case (:func:`~hullslice.case.validate_case`) becomes a history in
 three steps, each written once here and used by every path of a sweep (in this process or
-on a Dask worker): :func:`load_inputs` reads the mesh and the case's files, once per sweep;
+on a Dask worker): :func:`read_mesh` and :func:`read_files` read the mesh and the case's
+files, once per sweep (and per worker);
 :func:`hull_for` gives the hull the case's mass properties (kept for the next case with the
 same ones); :func:`motion_call` turns the case's keys into the call of
 :func:`hullslice.simulate` or :func:`hullslice.prescribed` with the arguments that
@@ -43,34 +44,39 @@ def shaping(case: Mapping[str, Any]) -> dict[str, Any]:
     return {k: case[k] for k in SHAPE_KEYS if k in case}
 
 
-def load_inputs(case: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
-    """The mesh of a checked case without mass, and its files' contents.
-
-    Returns
-    -------
-    hull : Hull
-        The mesh read with the case's units, axes, scale, repair and parts.
-    inputs : dict
-        ``mass_distribution`` (:class:`~hullslice.MassDistribution`) and ``kinematics``
-        (:class:`~hullslice.Kinematics`), for the cases that name those files.
-    """
-    from ..mass import read_mass_distribution
+def read_mesh(case: Mapping[str, Any]):
+    """The mesh of a checked case, without mass: read with the case's units, axes, scale,
+    repair and parts, as a single run reads it."""
     from ..mesh import load_hull
-    from ..motion import read_kinematics
 
-    hull = load_hull(
+    return load_hull(
         Path(case["mesh"]),
         units=case["units"],
         forward=case["forward"],
         up=case["up"],
         **shaping(case),
     )
+
+
+def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
+    """The contents of a checked case's files besides its mesh: ``mass_distribution``
+    (:class:`~hullslice.MassDistribution`) and ``kinematics``
+    (:class:`~hullslice.Kinematics`), for the cases that name them."""
+    from ..mass import read_mass_distribution
+    from ..motion import read_kinematics
+
     inputs: dict[str, Any] = {}
     if "mass_distribution" in case:
         inputs["mass_distribution"] = read_mass_distribution(case["mass_distribution"])
     if "kinematics" in case:
         inputs["kinematics"] = read_kinematics(case["kinematics"])
-    return hull, inputs
+    return inputs
+
+
+def load_inputs(case: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """The mesh of a checked case without mass (:func:`read_mesh`) and its files'
+    contents (:func:`read_files`)."""
+    return read_mesh(case), read_files(case)
 
 
 class HullState:
@@ -123,7 +129,7 @@ class MeshFile:
                 f"mesh {str(path)!r} changed while the sweep ran (its SHA-256 is no longer "
                 f"{self.sha256[:12]}...): run the sweep again"
             )
-        return load_inputs(self.case)[0]
+        return read_mesh(self.case)
 
 
 def _mass_key(case: Mapping[str, Any]) -> tuple:
