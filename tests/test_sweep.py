@@ -375,16 +375,43 @@ def test_a_case_that_kills_its_worker_every_time_is_recorded(killer_solver):
     assert ds["peak_force"].sel(mass=8.0).item() == ref.peak["force"]
 
 
-def test_a_bad_mesh_on_a_given_cluster_is_refused_before_any_result(client, tmp_path):
-    """On a cluster of this machine the tasks go out before this process has read the mesh
-    (its workers read it themselves): a mesh that cannot be read is refused all the same,
-    the tasks are cancelled and no partial results are kept."""
+@pytest.fixture(scope="module")
+def one_worker():
+    """A local cluster of one worker process: with a core to spare, its worker reads the
+    mesh file itself while the sweep's process reads it."""
+    with (
+        distributed.LocalCluster(
+            n_workers=1,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            env={"PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])},
+        ) as cluster,
+        distributed.Client(cluster) as c,
+    ):
+        yield c
+
+
+def test_a_worker_that_reads_the_mesh_itself_gives_the_single_runs(one_worker):
+    from hullslice.sweeps import local
+
+    assert local(one_worker) == ((os.cpu_count() or 1) > 1)
+    ds = hs.sweep(BASE, GRID, client=one_worker)
+    for v in GRID["velocity"]:
+        for m in GRID["mass"]:
+            assert ds["peak_force"].sel(velocity=v, mass=m).item() == single(v, m).peak["force"]
+
+
+def test_a_bad_mesh_on_a_given_cluster_is_refused_before_any_result(one_worker, tmp_path):
+    """On a cluster that reads the mesh itself the tasks go out before this process has
+    read the mesh: a mesh that cannot be read is refused all the same, the tasks are
+    cancelled and no partial results are kept."""
     bad = tmp_path / "bad.stl"
     bad.write_text("solid nothing\nendsolid nothing\n")
     partial = tmp_path / "out.nc.partial"
     with pytest.raises(hs.HullsliceError, match=r"bad\.stl"):
-        hs.sweep({**BASE, "mesh": str(bad)}, GRID, client=client, partial=partial)
+        hs.sweep({**BASE, "mesh": str(bad)}, GRID, client=one_worker, partial=partial)
     assert not partial.exists()
     # the cluster is free for the next sweep
-    ds = hs.sweep(BASE, {"mass": [8.0]}, client=client)
+    ds = hs.sweep(BASE, {"mass": [8.0]}, client=one_worker)
     assert ds["peak_force"].sel(mass=8.0).item() == single(-4.0, 8.0).peak["force"]

@@ -77,8 +77,9 @@ def sweep(
         raise InputError(f"workers {workers!r} is not a positive whole number: give 1 or more")
     mesh_path = Path(base["mesh"])
     hull = solver = None
-    # a given cluster on this machine reads the mesh file itself: its tasks go out first,
-    # and its workers read the mesh while this process reads and checks it
+    # a given cluster on this machine with a core to spare reads the mesh file itself: its
+    # tasks go out first, and its workers read the mesh while this process reads and checks
+    # it; other workers build the hull from its state, sent once this process has read it
     early = client is not None and not isinstance(client, str | os.PathLike) and local(client)
     try:
         mesh_sha = sha256(mesh_path) if early else ""
@@ -115,7 +116,7 @@ def sweep(
 
     token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}:{shaping(base)!r}"
     with session(client, workers, timeout, needed=bool(todo)) as dask_client:
-        source = MeshFile(base, mesh_sha) if dask_client and local(dask_client) else None
+        source = MeshFile(base, mesh_sha) if early else None
         started = (
             DaskRun(dask_client, plan, todo, inputs, keep_histories, token, source)
             if early and todo

@@ -248,8 +248,14 @@ def run_cases(
 
 
 def local(client) -> bool:
-    """Whether ``client``'s workers run on this machine, in a ``LocalCluster`` (they can
-    read the files of the sweep)."""
+    """Whether ``client``'s workers can read the sweep's mesh file themselves while this
+    process reads it: they run on this machine (a ``LocalCluster``) and leave a core free
+    for this process. Reading the file (parsing it) costs a few times what building the
+    hull from its state does, so this pays only when the reads run at the same time."""
     from distributed import LocalCluster
 
-    return isinstance(getattr(client, "cluster", None), LocalCluster)
+    if not isinstance(getattr(client, "cluster", None), LocalCluster):
+        return False
+    workers = client.scheduler_info().get("workers", {})
+    threads = sum(int(w.get("nthreads", 1)) for w in workers.values())
+    return 0 < threads < (os.cpu_count() or 1)
