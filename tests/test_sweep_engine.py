@@ -2,13 +2,12 @@
 
 from __future__ import annotations
 
-import shutil
 from pathlib import Path
 
 import pytest
 
 import hullslice as hs
-from hullslice.sweeps import HullState, MeshFile, groups, make_plan, run_batch, sha256
+from hullslice.sweeps import HullState, groups, make_plan, run_batch
 
 ROOT = Path(__file__).resolve().parents[1]
 WEDGE = ROOT / "meshes" / "wedge_prism.stl"
@@ -41,28 +40,30 @@ def test_too_few_pitches_are_split_to_give_every_worker_tasks():
     assert len(tasks) >= 8 and max(len(t) for t in tasks) <= 16
 
 
-def test_a_hull_built_from_its_state_or_its_file_computes_the_same():
+def test_a_hull_built_from_its_state_computes_the_same():
     hull = hs.load_hull(WEDGE)
     plan = make_plan(BASE, {"mass": [10.0]})
     items = [(0, plan.case(0))]
     ref = run_batch(hull, items, {}, False)[0][1]
-    sources = {"state": HullState(hull), "file": MeshFile(plan.base, sha256(WEDGE))}
-    for name, source in sources.items():
-        got = run_batch(source, items, {}, False, token=f"test-{name}")[0][1]
-        assert got["error"] == ""
-        assert got["peak_force"] == ref["peak_force"]
-        assert got["final_velocity"] == ref["final_velocity"]
+    got = run_batch(HullState(hull), items, {}, False, token="test-state")[0][1]
+    assert got["error"] == ""
+    assert got["peak_force"] == ref["peak_force"]
+    assert got["final_velocity"] == ref["final_velocity"]
 
 
-def test_a_mesh_file_that_changed_fails_the_cases_by_name(tmp_path):
-    mesh = tmp_path / "hull.stl"
-    shutil.copy(WEDGE, mesh)
-    plan = make_plan({**BASE, "mesh": str(mesh)}, {"mass": [8.0, 12.0]})
-    source = MeshFile(plan.base, "0" * 64)
-    out = run_batch(source, [(0, plan.case(0)), (1, plan.case(1))], {}, False, token="changed")
+class _Unbuildable:
+    def build(self):
+        raise hs.InputError("this hull cannot be built")
+
+
+def test_a_hull_that_cannot_be_built_fails_the_cases_by_name(monkeypatch):
+    from hullslice.sweeps import run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "HullState", _Unbuildable)
+    plan = make_plan(BASE, {"mass": [8.0, 12.0]})
+    out = run_batch(_Unbuildable(), [(0, plan.case(0)), (1, plan.case(1))], {}, False, "none")
     assert [i for i, _ in out] == [0, 1]
-    for _, record in out:
-        assert record["error"].startswith(f"mesh '{mesh}' changed while the sweep ran")
+    assert all(r["error"] == "this hull cannot be built" for _, r in out)
 
 
 @pytest.mark.parametrize("workers", [1])

@@ -18,11 +18,12 @@ How a case flows, module by module:
 3. **groups** (:mod:`.engine`): the cases are grouped into tasks, the same mass properties
    and pitch together (they share a hull with those properties and, with the fixed
    slicing, its cuts).
-4. **workers** (:mod:`.engine`, :mod:`.run`): the hull travels to the workers once,
-   pickled (its ``Manifold`` is rebuilt there), and stays in their memory under a token of
-   the mesh, so a worker keeps its cuts from one case to the next. Each case is computed
-   as a single run computes it: :func:`~hullslice.sweeps.run.hull_for` gives the hull the
-   case's mass properties, :func:`~hullslice.sweeps.run.motion_call` the call of
+4. **workers** (:mod:`.engine`, :mod:`.run`): the hull travels to the workers once, as its
+   state (the arrays and mass properties, cheap to send); each worker builds it (its
+   ``Manifold``) at its first task, all of them at the same time, and keeps it under a
+   token of the mesh, so a worker keeps its cuts from one case to the next. Each case is
+   computed as a single run computes it: :func:`~hullslice.sweeps.run.hull_for` gives the
+   hull the case's mass properties, :func:`~hullslice.sweeps.run.motion_call` the call of
    :func:`hullslice.simulate` (or :func:`hullslice.prescribed`) that ``hullslice simulate``
    makes for the same case. Dask runs the tasks: a local cluster of worker processes by
    default, any scheduler by its address, or in this process with ``workers=1``.
@@ -48,8 +49,8 @@ from .engine import (  # noqa: F401
     MIN_TASKS_PER_WORKER,
     TAIL_TASK_CASES,
     TASKS_PER_WORKER,
+    DaskRun,
     groups,
-    local,
     require,
     run_cases,
     session,
@@ -70,7 +71,6 @@ from .run import (  # noqa: F401
     _SHARED,
     SHAPE_KEYS,
     HullState,
-    MeshFile,
     hull_for,
     load_inputs,
     motion_call,

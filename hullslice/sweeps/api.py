@@ -9,9 +9,9 @@ from typing import Any
 
 from ..errors import InputError
 from .dataset import build, provenance
-from .engine import CONNECT_TIMEOUT, DaskRun, local, require, run_cases, session
+from .engine import CONNECT_TIMEOUT, require, run_cases, session
 from .plan import Plan, load_sweep, make_plan
-from .run import MeshFile, hull_for, load_inputs, read_files, read_mesh, shaping
+from .run import hull_for, load_inputs, shaping
 from .store import Partial, sha256, spec
 
 
@@ -76,23 +76,11 @@ def sweep(
     ):
         raise InputError(f"workers {workers!r} is not a positive whole number: give 1 or more")
     mesh_path = Path(base["mesh"])
-    hull = solver = None
-    # a given cluster on this machine with a core to spare reads the mesh file itself: its
-    # tasks go out first, and its workers read the mesh while this process reads and checks
-    # it; other workers build the hull from its state, sent once this process has read it
-    early = client is not None and not isinstance(client, str | os.PathLike) and local(client)
-    try:
-        mesh_sha = sha256(mesh_path) if early else ""
-    except OSError:
-        early = False  # the mesh is read first, for its message
-    if early:
-        inputs = read_files(base)
-    else:
-        hull, inputs = load_inputs(base)
-        # the base case's own mass properties are checked here, once (warnings shown once)
-        hull_for(hull, base, inputs)
-        solver = get_solver(base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {}))
-        mesh_sha = sha256(mesh_path)
+    hull, inputs = load_inputs(base)
+    # the base case's own mass properties are checked here, once (warnings shown once)
+    hull_for(hull, base, inputs)
+    solver = get_solver(base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {}))
+    mesh_sha = sha256(mesh_path)
     kept = (
         Partial(
             Path(partial), spec(base, plan.grid, len(plan.cases), mesh_sha, keep_histories), resume
@@ -116,33 +104,11 @@ def sweep(
 
     token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}:{shaping(base)!r}"
     with session(client, workers, timeout, needed=bool(todo)) as dask_client:
-        source = MeshFile(base, mesh_sha) if early else None
-        started = (
-            DaskRun(dask_client, plan, todo, inputs, keep_histories, token, source)
-            if early and todo
-            else None
-        )
-        try:
-            if hull is None:  # read here while the workers read it
-                hull = read_mesh(base)
-                hull_for(hull, base, inputs)
-                solver = get_solver(
-                    base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {})
-                )
-            if kept is not None:
-                kept.create()
-            if progress is not None:
-                progress(len(records), total, failed)
-            if started is not None:
-                started.collect(finish)
-            else:
-                run_cases(
-                    plan, hull, inputs, todo, keep_histories, finish, dask_client, token, source
-                )
-        except BaseException:
-            if started is not None:
-                started.cancel()
-            raise
+        if kept is not None:
+            kept.create()
+        if progress is not None:
+            progress(len(records), total, failed)
+        run_cases(plan, hull, inputs, todo, keep_histories, finish, dask_client, token)
     ds = build(plan, records, keep_histories)
     ds.attrs.update(provenance(plan, mesh_path.name, mesh_sha, solver, records))
     if kept is not None:

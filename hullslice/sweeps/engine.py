@@ -117,12 +117,11 @@ class DaskRun:
     """The cases ``todo`` of ``plan`` submitted to a Dask ``client`` as tasks
     (:func:`groups`); :meth:`collect` gathers their records as they end.
 
-    The workers build the hull from ``source``: a :class:`~hullslice.sweeps.run.MeshFile`
-    (a cluster on this machine reads the mesh file itself, each worker at the same time,
-    so the tasks may be submitted before this process has read it), or a
-    :class:`~hullslice.sweeps.run.HullState`, sent as a task of its own (not scattered
-    data: Dask computes it again if the workers holding it die). Either way a worker builds
-    the hull once, at its first task, and keeps it under ``token``.
+    The hull goes to the workers as its state (``source``, a
+    :class:`~hullslice.sweeps.run.HullState`), a task of its own (not scattered data: Dask
+    computes it again if the workers holding it die): cheap to send and to receive, each
+    worker builds the hull from it at its first task, all of them at the same time, and
+    keeps it under ``token``.
     """
 
     def __init__(self, client, plan: Plan, todo, inputs, keep: bool, token: str, source):
@@ -230,32 +229,14 @@ def run_cases(
     finish: Finish,
     client=None,
     token: str = "",
-    source: Any = None,
 ) -> None:
     """Run the cases ``todo`` of ``plan`` on ``client`` (None: in this process, one case
-    at a time), calling ``finish(index, record)`` as each one ends.
-
-    On Dask the workers build the hull from ``source`` (a
-    :class:`~hullslice.sweeps.run.MeshFile` for a cluster on this machine, see
-    :func:`local`), or else from ``hull``'s state; ``token`` names it (see
-    :func:`~hullslice.sweeps.run.run_batch`)."""
+    at a time), calling ``finish(index, record)`` as each one ends; on Dask the workers
+    build the hull from its state (:class:`~hullslice.sweeps.run.HullState`), kept under
+    ``token`` (see :func:`~hullslice.sweeps.run.run_batch`)."""
     if client is None:
         for i in todo:
             for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep):
                 finish(index, record)
     elif todo:
-        DaskRun(client, plan, todo, inputs, keep, token, source or HullState(hull)).collect(finish)
-
-
-def local(client) -> bool:
-    """Whether ``client``'s workers can read the sweep's mesh file themselves while this
-    process reads it: they run on this machine (a ``LocalCluster``) and leave a core free
-    for this process. Reading the file (parsing it) costs a few times what building the
-    hull from its state does, so this pays only when the reads run at the same time."""
-    from distributed import LocalCluster
-
-    if not isinstance(getattr(client, "cluster", None), LocalCluster):
-        return False
-    workers = client.scheduler_info().get("workers", {})
-    threads = sum(int(w.get("nthreads", 1)) for w in workers.values())
-    return 0 < threads < (os.cpu_count() or 1)
+        DaskRun(client, plan, todo, inputs, keep, token, HullState(hull)).collect(finish)

@@ -4,7 +4,7 @@ properties, the motion call, and the record of its results.
 A checked ``simulate`` case (:func:`~hullslice.case.validate_case`) becomes a history in
 three steps, each written once here and used by every path of a sweep (in this process or
 on a Dask worker): :func:`read_mesh` and :func:`read_files` read the mesh and the case's
-files, once per sweep (and per worker);
+files, once per sweep;
 :func:`hull_for` gives the hull the case's mass properties (kept for the next case with the
 same ones); :func:`motion_call` turns the case's keys into the call of
 :func:`hullslice.simulate` or :func:`hullslice.prescribed` with the arguments that
@@ -25,7 +25,6 @@ from typing import Any
 import numpy as np
 
 from ..errors import HullsliceError, InputError
-from .store import sha256 as file_sha256
 
 #: The hull each worker process keeps, by token (see run_batch).
 _SHARED: dict[str, Any] = {}
@@ -94,42 +93,6 @@ class HullState:
         hull = self.kind.__new__(self.kind)
         hull.__setstate__(self.state)
         return hull
-
-
-class MeshFile:
-    """A hull that a worker on this machine reads itself, from the base case's mesh file
-    (as :func:`load_inputs` reads it): nothing but the file's name travels.
-
-    Parameters
-    ----------
-    case : mapping
-        The checked base case (its ``mesh``, units, axes and :data:`SHAPE_KEYS`).
-    sha256 : str
-        The SHA-256 of the file that the sweep read; a file that has changed since is
-        refused.
-    """
-
-    def __init__(self, case: Mapping[str, Any], sha256: str) -> None:
-        keys = ("mesh", "units", "forward", "up", *SHAPE_KEYS)
-        self.case = {k: case[k] for k in keys if k in case}
-        self.case["mesh"] = Path(case["mesh"]).resolve()
-        self.sha256 = sha256
-
-    def build(self):
-        """The hull read from the file.
-
-        Raises
-        ------
-        InputError
-            The file is no longer the one the sweep read.
-        """
-        path = self.case["mesh"]
-        if file_sha256(path) != self.sha256:
-            raise InputError(
-                f"mesh {str(path)!r} changed while the sweep ran (its SHA-256 is no longer "
-                f"{self.sha256[:12]}...): run the sweep again"
-            )
-        return read_mesh(self.case)
 
 
 def _mass_key(case: Mapping[str, Any]) -> tuple:
@@ -272,14 +235,14 @@ def run_batch(
 
     ``token`` names the hull (its mesh's SHA-256 and axes): a process keeps the first copy
     it gets under that name and uses it for every later task, with the cuts it has made,
-    whichever copy Dask hands it. With a token, ``hull`` may also be what a worker builds
-    the hull from, once (:class:`HullState`, :class:`MeshFile`); a hull that cannot be
-    built fails every case of the batch with its message."""
+    whichever copy Dask hands it. With a token, ``hull`` may also be a :class:`HullState`,
+    built into the hull once; a hull that cannot be built fails every case of the batch
+    with its message."""
     if token:
         found = _SHARED.get(token)
         if found is None:
             try:
-                found = hull.build() if isinstance(hull, HullState | MeshFile) else hull
+                found = hull.build() if isinstance(hull, HullState) else hull
             except HullsliceError as exc:
                 return [(index, {"error": str(exc), "runtime": 0.0}) for index, _ in items]
             _SHARED[token] = found
