@@ -9,9 +9,10 @@ pitch), 8 sink rates by 8 pitches = 64 cases of ``--t-end`` seconds at 1 ms step
 to its end (``continue_invalid``). It runs in this process (``workers=1``, no Dask), then on
 a local cluster of 1 and of 2 worker processes (1 thread each); the cluster's start is timed
 apart. For each: the wall time of ``hullslice.sweep`` (the mesh read and checked, the hull
-sent to the workers, the cases, the dataset), the cases per second, and the overhead per
-case, ``(wall time x workers - the cases' own computing time) / cases``: what the sweep adds
-to the simulations (the scheduler, moving the hull and the results, idle workers at the end).
+sent to the workers as its state and built by each, the cases, the dataset), the cases per
+second, and the overhead per case, ``(wall time x workers - the cases' own computing time) /
+cases``: what the sweep adds to the simulations (the scheduler, the workers' hulls, the
+results, idle workers at the end).
 Targets: 2 workers at least 1.7 times as fast as 1; overhead below 50 ms a case. The machine
 may be shared: its load average is printed with the figures.
 """

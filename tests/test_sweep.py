@@ -132,7 +132,7 @@ def test_a_failing_case_is_recorded_and_the_others_complete(client):
 
 def _kill_once(marker: str) -> None:
     """On a worker: the first case with mass 12 kg that meets ``marker`` kills the process."""
-    import hullslice.sweeps as sw
+    import hullslice.sweeps.run as sw
 
     original = getattr(sw.run_case, "original", sw.run_case)
 
@@ -147,7 +147,7 @@ def _kill_once(marker: str) -> None:
 
 
 def _restore() -> None:
-    import hullslice.sweeps as sw
+    import hullslice.sweeps.run as sw
 
     sw.run_case = getattr(sw.run_case, "original", sw.run_case)
 

@@ -30,7 +30,8 @@ def add_parser(sub) -> None:
         description="Run the time history of a case file (command 'simulate') for every "
         "combination of the values in its [sweep] table (key = [values], full factorial, in "
         'the case file\'s units: SI, angles in degrees; or cases = "design.csv", one case '
-        "per row) on Dask: a local cluster of worker processes by default, one per core. "
+        "per row; any number key of the case, slices, or cg_x and cg_z for a part of cg) on "
+        "Dask: a local cluster of worker processes by default, one per core. "
         "The results are an xarray dataset with one dimension per swept key: peak force (N), "
         "acceleration (m/s^2) and moment (N m) with their times (s), the final state, why "
         "each run ended, the share of the force on flagged slices and any error. Needs the "

@@ -1,0 +1,242 @@
+"""Where a sweep's cases run: in this process, or on Dask, in groups that share a hull.
+
+The cases are grouped into tasks (:func:`groups`): the same mass properties and pitch
+together, since they share a hull with those properties and, with the fixed slicing, its
+cuts. The hull and the files' contents go to the workers once, as tasks of their own, and
+each task runs its cases with :func:`~hullslice.sweeps.run.run_batch`. A task whose worker
+dies is rerun by Dask; a case that kills its worker each time is recorded as failed.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Iterator, Mapping
+from contextlib import contextmanager
+from typing import Any
+
+from ..errors import InputError, MissingDependencyError
+from .plan import Plan
+from .run import HullState, _mass_key, run_batch
+
+#: Called with each finished case: ``finish(index, record)``.
+Finish = Callable[[int, dict], None]
+
+#: Seconds to wait for a scheduler given by its address.
+CONNECT_TIMEOUT = 10.0
+
+#: Tasks a sweep's cases are grouped into, at least, per worker: more balance the
+#: workers' loads at the end, fewer share more cuts (see :func:`groups`).
+MIN_TASKS_PER_WORKER = 4
+#: The most cases in one task.
+MAX_TASK_CASES = 16
+#: Cases in each of the last, small tasks of a sweep (see :func:`groups`).
+TAIL_TASK_CASES = 2
+#: The former name of :data:`MIN_TASKS_PER_WORKER`.
+TASKS_PER_WORKER = MIN_TASKS_PER_WORKER
+
+
+def require(*modules: str) -> None:
+    import importlib
+
+    for m in modules:
+        try:
+            importlib.import_module(m)
+        except ImportError:
+            raise MissingDependencyError(
+                f"sweeps need {m}, which is not installed: pip install 'hullslice[sweep]'"
+            ) from None
+
+
+def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
+    """The cases to run, grouped into tasks, largest first.
+
+    Cases with the same mass properties and pitch share a hull and, with the fixed slicing,
+    its cuts: they stay in one task, so that one worker makes those cuts, unless there are
+    too few such groups to give every worker :data:`MIN_TASKS_PER_WORKER` tasks; then each
+    group is split into tasks of equal size. No task holds more than :data:`MAX_TASK_CASES`
+    cases (a task's cases are kept for ``resume`` when it ends). The last tasks, one per
+    worker, are split into tasks of :data:`TAIL_TASK_CASES` cases, so that the workers end
+    at about the same time.
+    """
+    keyed: dict[tuple[str, Any], list[int]] = {}
+    for i in sorted(todo):
+        case = plan.case(i)
+        keyed.setdefault((repr(_mass_key(case)), case.get("pitch", 0.0)), []).append(i)
+    wanted = MIN_TASKS_PER_WORKER * max(1, n_workers)
+    parts = max(1, math.ceil(wanted / max(1, len(keyed))))
+    out = []
+    for _, cases in sorted(keyed.items(), key=lambda kv: (kv[0][0], kv[0][1])):
+        n = max(min(parts, len(cases)), math.ceil(len(cases) / MAX_TASK_CASES))
+        size = math.ceil(len(cases) / n)
+        out += [cases[j : j + size] for j in range(0, len(cases), size)]
+    out.sort(key=len, reverse=True)
+    # the finish: the last tasks, one per worker, in small ones, so that the workers end
+    # together (Dask hands out the tasks in the order they were given)
+    w = max(1, n_workers)
+    if len(out) > w:
+        n = TAIL_TASK_CASES
+        out = out[:-w] + [t[j : j + n] for t in out[-w:] for j in range(0, len(t), n)]
+    return out
+
+
+def _client(client, workers: int | None, timeout: float):
+    """``(client, owned)``: the Dask client to use, and whether this sweep made it."""
+    require("distributed")
+    from distributed import Client, LocalCluster
+
+    if client is not None and not isinstance(client, str | os.PathLike):
+        return client, False
+    if client is not None:
+        address = str(client)
+        try:
+            return Client(address, timeout=timeout), True
+        except Exception as exc:  # OSError, TimeoutError, ValueError for a bad address
+            why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise InputError(
+                f"no Dask scheduler answers at {address!r} within {timeout:g} s ({why}): "
+                "start one ('dask scheduler'), check the address, or leave out --scheduler "
+                "to run on this machine"
+            ) from None
+    n = workers or os.cpu_count() or 1
+    cluster = LocalCluster(
+        n_workers=n,
+        threads_per_worker=1,
+        processes=True,
+        dashboard_address=None,
+        silence_logs=50,
+    )
+    return Client(cluster), True
+
+
+def _value(x):
+    return x
+
+
+class DaskRun:
+    """The cases ``todo`` of ``plan`` submitted to a Dask ``client`` as tasks
+    (:func:`groups`); :meth:`collect` gathers their records as they end.
+
+    The hull goes to the workers as its state (``source``, a
+    :class:`~hullslice.sweeps.run.HullState`), a task of its own (not scattered data: Dask
+    computes it again if the workers holding it die): cheap to send and to receive, each
+    worker builds the hull from it at its first task, all of them at the same time, and
+    keeps it under ``token``.
+    """
+
+    def __init__(self, client, plan: Plan, todo, inputs, keep: bool, token: str, source):
+        self.client = client
+        self.plan = plan
+        self.keep = keep
+        self.token = token
+        self.futures: dict = {}
+        try:
+            n_workers = max(1, len(client.scheduler_info().get("workers", {})))
+            self.source = client.submit(_value, source, pure=False)
+            self.inputs = client.submit(_value, inputs, pure=False)
+            for group in groups(plan, todo, n_workers):
+                self.futures[self.submit(group)] = group
+        except BaseException:
+            self.cancel()
+            raise
+
+    def submit(self, group: list[int]):
+        items = [(i, self.plan.case(i)) for i in group]
+        return self.client.submit(
+            run_batch, self.source, items, self.inputs, self.keep, self.token, pure=False,
+            retries=1,
+        )  # fmt: skip
+
+    def cancel(self) -> None:
+        """Cancel the tasks that have not ended."""
+        for fut in list(self.futures):
+            fut.cancel()
+
+    def collect(self, finish: Finish) -> None:
+        """Call ``finish(index, record)`` for each case as its task ends."""
+        from distributed import as_completed
+
+        futures = self.futures
+        try:
+            queue = as_completed(list(futures))
+            # Cases whose worker died under them (Dask gave up: KilledWorker): the case that
+            # kills it, or one that was on the worker when another did. Each runs once
+            # more, alone and one after the other, so that only the case that kills its
+            # worker again is recorded as failed.
+            suspects: list[int] = []
+            alone: list = []  # the one suspect running, if any
+            for fut in queue:
+                group = futures.pop(fut)
+                retried = bool(alone) and fut is alone[0]
+                if retried:
+                    alone.clear()
+                try:
+                    results = fut.result()
+                except Exception as exc:
+                    results = []
+                    if not retried:
+                        suspects.extend(group)
+                    else:
+                        why = str(exc).splitlines()[0] if str(exc) else ""
+                        results = [
+                            (
+                                group[0],
+                                {
+                                    "error": f"the worker running this case stopped "
+                                    f"({type(exc).__name__}: {why})",
+                                    "runtime": math.nan,
+                                    "lost": True,  # resuming runs it again
+                                },
+                            )
+                        ]
+                if suspects and not alone:
+                    i = suspects.pop(0)
+                    f = self.submit([i])
+                    futures[f] = [i]
+                    alone.append(f)
+                    queue.add(f)
+                for index, record in results:
+                    finish(index, record)
+        except BaseException:
+            self.cancel()
+            raise
+
+
+@contextmanager
+def session(client, workers: int | None, timeout: float, needed: bool) -> Iterator[Any]:
+    """The Dask client a sweep runs on, or None to run in this process (``workers=1``
+    without a client, or nothing to run); a cluster started here is stopped on leaving."""
+    if not needed or (client is None and workers == 1):
+        yield None
+        return
+    dask_client, owned = _client(client, workers, timeout)
+    try:
+        yield dask_client
+    finally:
+        if owned:
+            cluster = getattr(dask_client, "cluster", None)
+            dask_client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+def run_cases(
+    plan: Plan,
+    hull,
+    inputs: Mapping[str, Any],
+    todo: list[int],
+    keep: bool,
+    finish: Finish,
+    client=None,
+    token: str = "",
+) -> None:
+    """Run the cases ``todo`` of ``plan`` on ``client`` (None: in this process, one case
+    at a time), calling ``finish(index, record)`` as each one ends; on Dask the workers
+    build the hull from its state (:class:`~hullslice.sweeps.run.HullState`), kept under
+    ``token`` (see :func:`~hullslice.sweeps.run.run_batch`)."""
+    if client is None:
+        for i in todo:
+            for index, record in run_batch(hull, [(i, plan.case(i))], inputs, keep):
+                finish(index, record)
+    elif todo:
+        DaskRun(client, plan, todo, inputs, keep, token, HullState(hull)).collect(finish)

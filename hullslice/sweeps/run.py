@@ -1,0 +1,271 @@
+"""One case of a sweep, computed as a single run computes it: the case's hull, its mass
+properties, the motion call, and the record of its results.
+
+A checked ``simulate`` case (:func:`~hullslice.case.validate_case`) becomes a history in
+three steps, each written once here and used by every path of a sweep (in this process or
+on a Dask worker): :func:`read_mesh` and :func:`read_files` read the mesh and the case's
+files, once per sweep;
+:func:`hull_for` gives the hull the case's mass properties (kept for the next case with the
+same ones); :func:`motion_call` turns the case's keys into the call of
+:func:`hullslice.simulate` or :func:`hullslice.prescribed` with the arguments that
+``hullslice simulate`` passes for the same case (angles in radians, the stop rules unless
+``continue_invalid``). :func:`run_batch` runs cases one after the other and records each
+one's results (:func:`summarise`) or its one-line error.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+import traceback
+from collections.abc import Callable, Mapping, Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..errors import HullsliceError, InputError
+
+#: The hull each worker process keeps, by token (see run_batch).
+_SHARED: dict[str, Any] = {}
+_SHARED_KEPT = 2
+
+#: Hulls with their mass properties, kept by each worker process (key: mesh and mass).
+_HULLS: dict[tuple, Any] = {}
+_HULLS_KEPT = 8
+
+#: Keys of a case that shape its mesh (the keyword arguments of ``load_hull`` they give).
+SHAPE_KEYS = ("scale", "length", "repair", "keep", "keep_box")
+
+
+def shaping(case: Mapping[str, Any]) -> dict[str, Any]:
+    """The keys of ``case`` that shape its mesh (:data:`SHAPE_KEYS`), as given."""
+    return {k: case[k] for k in SHAPE_KEYS if k in case}
+
+
+def read_mesh(case: Mapping[str, Any]):
+    """The mesh of a checked case, without mass: read with the case's units, axes, scale,
+    repair and parts, as a single run reads it."""
+    from ..mesh import load_hull
+
+    return load_hull(
+        Path(case["mesh"]),
+        units=case["units"],
+        forward=case["forward"],
+        up=case["up"],
+        **shaping(case),
+    )
+
+
+def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
+    """The contents of a checked case's files besides its mesh: ``mass_distribution``
+    (:class:`~hullslice.MassDistribution`) and ``kinematics``
+    (:class:`~hullslice.Kinematics`), for the cases that name them."""
+    from ..mass import read_mass_distribution
+    from ..motion import read_kinematics
+
+    inputs: dict[str, Any] = {}
+    if "mass_distribution" in case:
+        inputs["mass_distribution"] = read_mass_distribution(case["mass_distribution"])
+    if "kinematics" in case:
+        inputs["kinematics"] = read_kinematics(case["kinematics"])
+    return inputs
+
+
+def load_inputs(case: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
+    """The mesh of a checked case without mass (:func:`read_mesh`) and its files'
+    contents (:func:`read_files`)."""
+    return read_mesh(case), read_files(case)
+
+
+class HullState:
+    """A hull as it travels to a worker: its pickled state (the arrays, name and mass
+    properties), cheap to send and to receive; :meth:`build` makes the hull, and its
+    ``Manifold``, where it is used (once per process under :func:`run_batch`'s token), so
+    that the workers build theirs at the same time rather than one after the other."""
+
+    def __init__(self, hull) -> None:
+        self.kind = type(hull)
+        self.state = hull.__getstate__()
+
+    def build(self):
+        """The hull, as unpickling it gives it."""
+        hull = self.kind.__new__(self.kind)
+        hull.__setstate__(self.state)
+        return hull
+
+
+def _mass_key(case: Mapping[str, Any]) -> tuple:
+    cg = case.get("cg")
+    return (
+        case.get("mass"),
+        str(case.get("mass_distribution")),
+        None if cg is None else tuple(cg),
+        case.get("inertia"),
+    )
+
+
+def hull_for(hull, case: Mapping[str, Any], inputs: Mapping[str, Any]):
+    """The hull with the case's mass properties (``mass``, ``mass_distribution``, ``cg``,
+    ``inertia``), kept for the next case that has them."""
+    key = (id(hull), _mass_key(case))
+    found = _HULLS.get(key)
+    if found is not None and found[0] is hull:
+        return found[1]
+    h = hull.with_mass(
+        case.get("mass"),
+        mass_distribution=inputs.get("mass_distribution"),
+        cg=case.get("cg"),
+        inertia=case.get("inertia"),
+    )
+    _HULLS[key] = (hull, h)
+    while len(_HULLS) > _HULLS_KEPT:
+        _HULLS.pop(next(iter(_HULLS)))
+    return h
+
+
+def motion_call(
+    case: Mapping[str, Any], inputs: Mapping[str, Any]
+) -> tuple[Callable[..., Any], tuple, dict[str, Any]]:
+    """The call a checked ``simulate`` case amounts to: ``(function, args, kwargs)``, to be
+    called as ``function(hull, *args, **kwargs)``.
+
+    ``function`` is :func:`hullslice.prescribed` for a case with ``kinematics`` (``args``:
+    the table, from ``inputs``), else :func:`hullslice.simulate` (``args``: velocity in m/s
+    and t_end in s). Angles go from the case's degrees to radians; the default stop rules
+    apply unless ``continue_invalid``.
+
+    Raises
+    ------
+    InputError
+        A free fall without ``velocity`` or ``t_end``.
+    """
+    from ..motion import DEFAULT_STOP_ON, prescribed, simulate
+    from ..solvers.registry import DEFAULT_SOLVER, get_solver
+    from ..state import Fluid
+
+    slices = case.get("slices", [32])
+    common = {
+        "slices": slices if isinstance(slices, int) else slices[0],
+        "solver": get_solver(case.get("solver", DEFAULT_SOLVER), **case.get("solver_options", {})),
+        "fluid": Fluid(rho=case["rho"], g=case["g"]),
+        "deadrise": case["deadrise"],
+        "slicing": case["slicing"],
+        "max_flagged_share": case["max_flagged_share"],
+    }
+    if "kinematics" in case:
+        return prescribed, (inputs["kinematics"],), common
+    missing = [k for k in ("velocity", "t_end") if k not in case]
+    if missing:
+        raise InputError(
+            f"a free fall needs {' and '.join(missing)} in the case (or kinematics for a "
+            "prescribed motion)"
+        )
+    kwargs = {
+        "dt": case.get("dt"),
+        "draft": case.get("draft", 0.0),
+        "pitch": math.radians(case.get("pitch", 0.0)),
+        "forward_speed": case.get("forward_speed", 0.0),
+        "pitch_rate": math.radians(case.get("pitch_rate", 0.0)),
+        "free_pitch": case.get("free_pitch", False),
+        "free_surge": case.get("free_surge", False),
+        "stop_on": () if case.get("continue_invalid", False) else DEFAULT_STOP_ON,
+        **common,
+    }
+    return simulate, (case["velocity"], case["t_end"]), kwargs
+
+
+def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = None):
+    """The :class:`~hullslice.motion.History` of one checked ``simulate`` case, computed as
+    ``hullslice simulate`` computes it from the case's command line.
+
+    ``hull`` is the mesh without mass (its mass properties come from the case); ``inputs``
+    holds the case's files already read (``mass_distribution``, ``kinematics``).
+    """
+    inputs = inputs or {}
+    function, args, kwargs = motion_call(case, inputs)
+    return function(hull_for(hull, case, inputs), *args, **kwargs)
+
+
+def summarise(history) -> dict[str, Any]:
+    """A case's results from its history (see :data:`~hullslice.sweeps.dataset.RESULTS`),
+    read from its columns generically: every column's final value; the flagged share is the
+    history's own ``flagged_share`` when it has one, else ``1 - valid_share``."""
+    cols = history.columns()
+    out: dict[str, Any] = {"steps": len(history), "stop_reason": str(history.stop_reason)}
+    flagged = getattr(history, "flagged_share", None)  # an attribute, a column, or derived
+    if flagged is None:
+        flagged = cols.get("flagged_share", 1.0 - np.asarray(cols["valid_share"], dtype=float))
+    flagged = np.asarray(flagged, dtype=float)
+    t = np.asarray(cols["t"], dtype=float)
+    if len(history):
+        i = int(np.argmax(cols["force"]))
+        j = int(np.argmax(cols["acceleration"]))
+        k = int(np.argmax(np.abs(cols["moment"])))
+        out.update(
+            peak_force=float(cols["force"][i]),
+            peak_time=float(t[i]),
+            peak_acceleration=float(cols["acceleration"][j]),
+            peak_acceleration_time=float(t[j]),
+            peak_moment=float(cols["moment"][k]),
+            peak_moment_time=float(t[k]),
+            flagged_share=float(flagged[i]),
+            max_flagged_share=float(flagged.max()),
+        )
+    for name, values in cols.items():
+        v = values[-1] if len(values) else math.nan
+        out[f"final_{name}"] = str(v) if isinstance(v, str) else float(v)
+    for rule, when in history.first_crossed.items():
+        out[f"first_crossed_{rule}"] = math.nan if when is None else float(when)
+    return out
+
+
+def _history_record(history) -> dict[str, list]:
+    return {
+        name: [str(v) if isinstance(v, str) else float(v) for v in values]
+        for name, values in history.columns().items()
+    }
+
+
+def run_batch(
+    hull, items: Sequence[tuple[int, dict]], inputs: Mapping, keep: bool, token: str = ""
+) -> list:
+    """Run cases one after the other on one hull: ``[(index, record), ...]``. A case that
+    fails gives a record with its one-line ``error``; the others are not affected.
+
+    ``token`` names the hull (its mesh's SHA-256 and axes): a process keeps the first copy
+    it gets under that name and uses it for every later task, with the cuts it has made,
+    whichever copy Dask hands it. With a token, ``hull`` may also be a :class:`HullState`,
+    built into the hull once; a hull that cannot be built fails every case of the batch
+    with its message."""
+    if token:
+        found = _SHARED.get(token)
+        if found is None:
+            try:
+                found = hull.build() if isinstance(hull, HullState) else hull
+            except HullsliceError as exc:
+                return [(index, {"error": str(exc), "runtime": 0.0}) for index, _ in items]
+            _SHARED[token] = found
+        hull = found
+        while len(_SHARED) > _SHARED_KEPT:
+            _SHARED.pop(next(iter(_SHARED)))
+    out = []
+    for index, case in items:
+        start = time.perf_counter()
+        try:
+            history = run_case(hull, case, inputs)
+            record = summarise(history)
+            if keep:
+                record["history"] = _history_record(history)
+            record["error"] = ""
+        except HullsliceError as exc:
+            record = {"error": str(exc)}
+        except Exception as exc:  # a bug must not lose the other cases: record it
+            where = traceback.extract_tb(exc.__traceback__)[-1]
+            record = {
+                "error": f"internal error: {type(exc).__name__}: {exc} "
+                f"({Path(where.filename).name}:{where.lineno})"
+            }
+        record["runtime"] = time.perf_counter() - start
+        out.append((index, record))
+    return out

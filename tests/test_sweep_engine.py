@@ -1,0 +1,75 @@
+"""How a sweep's cases are grouped into tasks, and how a worker gets its hull."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+import hullslice as hs
+from hullslice.sweeps import HullState, groups, make_plan, run_batch
+
+ROOT = Path(__file__).resolve().parents[1]
+WEDGE = ROOT / "meshes" / "wedge_prism.stl"
+
+BASE = {"mesh": str(WEDGE), "mass": 10.0, "velocity": -4.0, "t_end": 0.01, "dt": 0.001,
+        "slices": 8, "forward_speed": 2.0, "slicing": "fixed"}  # fmt: skip
+
+
+def _key(plan, i):
+    case = plan.case(i)
+    return case["mass"], case.get("pitch", 0.0)
+
+
+def test_cases_of_one_pitch_stay_together_and_the_last_tasks_are_small():
+    plan = make_plan(BASE, {"pitch": [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0],
+                            "velocity": [-1.0, -2.0, -3.0, -4.0]})  # fmt: skip
+    tasks = groups(plan, list(range(32)), 2)
+    assert sorted(i for t in tasks for i in t) == list(range(32))
+    # every task is of one pitch and mass: 6 whole pitches, then 2 pitches in pairs
+    assert all(len({_key(plan, i) for i in t}) == 1 for t in tasks)
+    assert [len(t) for t in tasks] == [4] * 6 + [2] * 4
+    # one worker: the same, the last task split
+    assert [len(t) for t in groups(plan, list(range(32)), 1)] == [4] * 7 + [2] * 2
+
+
+def test_too_few_pitches_are_split_to_give_every_worker_tasks():
+    plan = make_plan(BASE, {"velocity": [-1.0 - 0.1 * k for k in range(40)]})
+    tasks = groups(plan, list(range(40)), 2)
+    assert sorted(i for t in tasks for i in t) == list(range(40))
+    assert len(tasks) >= 8 and max(len(t) for t in tasks) <= 16
+
+
+def test_a_hull_built_from_its_state_computes_the_same():
+    hull = hs.load_hull(WEDGE)
+    plan = make_plan(BASE, {"mass": [10.0]})
+    items = [(0, plan.case(0))]
+    ref = run_batch(hull, items, {}, False)[0][1]
+    got = run_batch(HullState(hull), items, {}, False, token="test-state")[0][1]
+    assert got["error"] == ""
+    assert got["peak_force"] == ref["peak_force"]
+    assert got["final_velocity"] == ref["final_velocity"]
+
+
+class _Unbuildable:
+    def build(self):
+        raise hs.InputError("this hull cannot be built")
+
+
+def test_a_hull_that_cannot_be_built_fails_the_cases_by_name(monkeypatch):
+    from hullslice.sweeps import run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "HullState", _Unbuildable)
+    plan = make_plan(BASE, {"mass": [8.0, 12.0]})
+    out = run_batch(_Unbuildable(), [(0, plan.case(0)), (1, plan.case(1))], {}, False, "none")
+    assert [i for i, _ in out] == [0, 1]
+    assert all(r["error"] == "this hull cannot be built" for _, r in out)
+
+
+@pytest.mark.parametrize("workers", [1])
+def test_a_sweep_in_this_process_keeps_no_worker_hull(workers):
+    from hullslice.sweeps import run as sweep_run
+
+    before = dict(sweep_run._SHARED)
+    hs.sweep(BASE, {"mass": [8.0]}, workers=workers)
+    assert sweep_run._SHARED == before
