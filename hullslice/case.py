@@ -159,7 +159,7 @@ SCHEMA: dict[str, Key] = {
         Key("pitch_rate", "number", "deg/s", "pitch rate, positive nose up"),
         Key("t_end", "number", "s", "duration of a free fall", check=_positive),
         Key("dt", "number", "s", "time step of a free fall", check=_positive),
-        Key("kinematics", "path", "", "CSV of t, penetration, velocity, relative to the case"),
+        Key("kinematics", "path", "", "CSV of t, draft, velocity, relative to the case"),
         Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
         Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),

@@ -111,7 +111,7 @@ def _plain(value: Any) -> Any:
 
 #: Version of the layout of hullslice's JSON outputs: raised when a key changes meaning
 #: or goes away (new keys do not raise it).
-JSON_SCHEMA_VERSION = 1
+JSON_SCHEMA_VERSION = 2
 
 
 def json_text(data: Mapping[str, Any]) -> str:
@@ -212,7 +212,7 @@ def convergence_summary(study) -> dict[str, Any]:
 #: Columns of a time history (terminal view).
 HISTORY_COLUMNS = (
     Column("t", "t", "s", ".5f"),
-    Column("penetration", "draft", "m", ".5f"),
+    Column("draft", "draft", "m", ".5f"),
     Column("velocity", "v", "m/s", ".4f"),
     Column("acceleration", "a", "m/s^2", ".3f"),
     Column("force", "F", "N", ".3f"),
@@ -234,7 +234,7 @@ HISTORY_PITCH_COLUMNS = (
 def history_records(history, every: int = 1) -> list[dict[str, Any]]:
     """One dict per instant of a :class:`~hullslice.motion.History` (every ``every``-th,
     always with the last)."""
-    cols = history.output_columns()
+    cols = history.columns()
     n = len(history)
     idx = list(range(0, n, max(1, every)))
     if n and idx[-1] != n - 1:

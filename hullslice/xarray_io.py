@@ -40,7 +40,6 @@ __all__ = [
 UNITS: dict[str, tuple[str, str]] = {
     # histories
     "t": ("s", "time since the start of the run"),
-    "penetration": ("m", "draft of the lowest point below the calm water"),
     "draft": ("m", "draft of the lowest point below the calm water"),
     "velocity": ("m s-1", "vertical velocity, negative down"),
     "acceleration": ("m s-2", "vertical acceleration of the centre of gravity, positive up"),

@@ -455,14 +455,14 @@ def wedge_force_of_total_mass(data: dict) -> None:
     assert data["force"] == pytest.approx(wedge_force(), rel=1e-5)
 
 
-KINEMATICS = "t,penetration,velocity\n0,0,-5\n0.001,0.005,-5\n0.002,0.01,-5\n"
+KINEMATICS = "t,draft,velocity\n0,0,-5\n0.001,0.005,-5\n0.002,0.01,-5\n"
 
 
 def kinematics_rows(data: dict) -> None:
     # the table read as written: three rows to the end, the peak at its last, 0.01 m deep
     assert data["steps"] == 3 and data["stop_reason"] == "end of table"
     assert data["peak"]["t"] == pytest.approx(0.002, abs=1e-15)
-    assert data["peak"]["penetration"] == pytest.approx(0.01, abs=1e-15)
+    assert data["peak"]["draft"] == pytest.approx(0.01, abs=1e-15)
     assert data["peak"]["velocity"] == -5.0
 
 
@@ -831,10 +831,10 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "csv-line-numbers",
         "a bad row after comment lines",
-        "error: ... line N: 'x' in the column penetration is not a number (N counts every "
+        "error: ... line N: 'x' in the column draft is not a number (N counts every "
         "line of the file)",
         simulate_kinematics("# kinematics\n# from CFD\n" + KINEMATICS + "0.003,x,-5\n"),
-        error="line 7: 'x' in the column penetration is not a number",
+        error="line 7: 'x' in the column draft is not a number",
     ),
     Bad(
         "case-path-to-system-file",
@@ -842,7 +842,7 @@ CATALOGUE: tuple[Bad, ...] = (
         "error: kinematics file '...' lacks the column(s) ... (its first line is not a header "
         "of column names); nothing of the file is quoted",
         lambda t: ["run", secret_file(t)],
-        error="lacks the column(s) t, penetration, velocity (its first line is not a header "
+        error="lacks the column(s) t, draft, velocity (its first line is not a header "
         "of column names)",
     ),
     Bad(
@@ -1201,7 +1201,7 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "kinematics-missing-columns",
         "a kinematics CSV with missing columns",
-        "error: kinematics file '...' lacks the column(s) penetration",
+        "error: kinematics file '...' lacks the column(s) draft",
         lambda t: [
             "simulate",
             wedge_file(t),
@@ -1210,7 +1210,7 @@ CATALOGUE: tuple[Bad, ...] = (
             "--kinematics",
             kinematics(t, "t,velocity\n0,-5\n"),
         ],
-        error="lacks the column(s) penetration (its header: t, velocity)",
+        error="lacks the column(s) draft (its header: t, velocity)",
     ),
     Bad(
         "kinematics-backwards",
@@ -1222,7 +1222,7 @@ CATALOGUE: tuple[Bad, ...] = (
             "--mass",
             "10",
             "--kinematics",
-            kinematics(t, "t,penetration,velocity\n0,0,-5\n0.002,0.01,-5\n0.001,0.005,-5\n"),
+            kinematics(t, "t,draft,velocity\n0,0,-5\n0.002,0.01,-5\n0.001,0.005,-5\n"),
         ],
         error="time goes backwards or repeats at row 3 (t = 0.002 s, then 0.001 s)",
     ),
@@ -1254,7 +1254,7 @@ CATALOGUE: tuple[Bad, ...] = (
             "--kinematics",
             kinematics(
                 t,
-                "t,penetration,velocity,acceleration\n0,0,-5,100\n0.001,0.005,-5,100\n"
+                "t,draft,velocity,acceleration\n0,0,-5,100\n0.001,0.005,-5,100\n"
                 "0.002,0.01,-5,100\n",
             ),
         ],
@@ -1271,7 +1271,7 @@ CATALOGUE: tuple[Bad, ...] = (
             "--solver",
             "wagner",
             "--kinematics",
-            kinematics(t, "t,penetration,velocity\n0,0,-5\n0.001,0.005,-4.9\n"),
+            kinematics(t, "t,draft,velocity\n0,0,-5\n0.001,0.005,-4.9\n"),
         ],
         error="has 2 row(s), too few to differentiate velocity in time",
     ),

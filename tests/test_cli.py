@@ -175,4 +175,4 @@ def test_json_outputs_carry_the_version_and_the_schema(capsys):
 
     assert main(["solvers", "--format", "json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["hullslice_version"] == hs.__version__ and data["schema_version"] == 1
+    assert data["hullslice_version"] == hs.__version__ and data["schema_version"] == 2

@@ -28,7 +28,7 @@ def test_csv_history_matches_the_library(capsys, paper_hull):
     code, out, err = run(capsys, "simulate", PRISM, *FALL, "--format", "csv")
     assert code == 0, err
     rows = list(csv.DictReader(io.StringIO(out)))
-    assert list(rows[0])[:5] == ["t", "penetration", "velocity", "acceleration", "force"]
+    assert list(rows[0])[:5] == ["t", "draft", "velocity", "acceleration", "force"]
     h = simulate(paper_hull, -4.0, 0.006, dt=2e-4, slices=16)
     assert len(rows) == len(h)
     np.testing.assert_allclose([float(r["force"]) for r in rows], h.force, rtol=1e-15)

@@ -73,7 +73,7 @@ def test_prescribed_motion_reproduces_the_free_fall_force(paper_fall, paper_hull
 
 def test_kinematics_csv_round_trip(tmp_path, paper_fall):
     path = tmp_path / "kin.csv"
-    rows = ["# CFD kinematics", "time_note,t,penetration,velocity"]
+    rows = ["# CFD kinematics", "time_note,t,draft,velocity"]
     cols = (paper_fall.t, paper_fall.draft, paper_fall.velocity)
     rows += [f"x,{float(t)!r},{float(p)!r},{float(v)!r}" for t, p, v in zip(*cols, strict=True)]
     path.write_text("\n".join(rows) + "\n")
@@ -150,10 +150,10 @@ def test_bad_simulation_input(paper_hull, kw, message):
     ("text", "message"),
     [
         ("t,velocity\n0,-1\n", "lacks the column"),
-        ("t,penetration,velocity\n0,0,-1\n0.002,0.001,x\n", "line 3"),
-        ("t,penetration,velocity\n0,0,-1\n0.002,0.001,-1\n0.001,0.002,-1\n", "backwards"),
-        ("t,penetration,velocity\n0,-0.01,-1\n", "negative"),
-        ("t,penetration,velocity\n0,5,-1\n", "deeper than the body"),
+        ("t,draft,velocity\n0,0,-1\n0.002,0.001,x\n", "line 3"),
+        ("t,draft,velocity\n0,0,-1\n0.002,0.001,-1\n0.001,0.002,-1\n", "backwards"),
+        ("t,draft,velocity\n0,-0.01,-1\n", "negative"),
+        ("t,draft,velocity\n0,5,-1\n", "deeper than the body"),
         ("", "is empty"),
     ],
 )
@@ -214,8 +214,10 @@ def test_prescribed_former_keys_in_degrees_give_the_same_history(solver):
         "pitch_rate_deg_s": np.full_like(kin["t"], 100.0),
         "forward_speed": kin["forward_speed"],
     }
-    with pytest.warns(DeprecationWarning, match="'pitch_deg' is deprecated: give 'pitch'"):
+    with pytest.warns(DeprecationWarning) as record:
         before = prescribed(hull, old, solver=solver, slices=8)
+    said = {str(w.message).split("'")[1] for w in record}
+    assert said == {"penetration", "pitch_deg", "pitch_rate_deg_s"}
     np.testing.assert_allclose(before.force, now.force, rtol=1e-12)
     np.testing.assert_allclose(before.moment, now.moment, rtol=1e-12, atol=1e-12)
     with pytest.raises(hs.CaseError, match="give 'draft' only"):
@@ -225,10 +227,7 @@ def test_prescribed_former_keys_in_degrees_give_the_same_history(solver):
 def test_history_draft_and_its_former_name(paper_fall):
     assert np.array_equal(paper_fall.columns()["draft"], paper_fall.draft)
     assert "penetration" not in paper_fall.columns()
-    # the command line's files keep their header
-    out = paper_fall.output_columns()
-    assert list(out) == list(paper_fall.OUTPUT_COLUMNS)
-    assert np.array_equal(out["penetration"], paper_fall.draft)
+    assert paper_fall.peak["draft"] == paper_fall.draft[np.argmax(paper_fall.force)]
     with pytest.warns(DeprecationWarning, match="use History.draft"):
         assert np.array_equal(paper_fall.penetration, paper_fall.draft)
 
@@ -242,3 +241,18 @@ def test_kinematics_file_in_degrees_is_read_in_rad(tmp_path):
     assert list(kin) == ["t", "draft", "velocity", "pitch", "pitch_rate"]
     np.testing.assert_array_equal(kin["pitch"], np.radians([4.0, 4.09]))
     np.testing.assert_array_equal(kin["pitch_rate"], np.radians([90.0, 90.0]))
+
+
+def test_a_kinematics_file_may_name_the_draft_by_its_former_name(tmp_path):
+    now = tmp_path / "now.csv"
+    now.write_text("t,draft,velocity\n0,0.01,-3\n0.001,0.013,-3\n")
+    former = tmp_path / "former.csv"
+    former.write_text("t,penetration,velocity\n0,0.01,-3\n0.001,0.013,-3\n")
+    a, b = read_kinematics(now), read_kinematics(former)
+    assert list(a) == list(b) == ["t", "draft", "velocity"]
+    for key in a:
+        assert np.array_equal(a[key], b[key])
+    both = tmp_path / "both.csv"
+    both.write_text("t,draft,penetration,velocity\n0,0.01,0.01,-3\n")
+    with pytest.raises(hs.CaseError, match="both a draft and a penetration column"):
+        read_kinematics(both)

@@ -80,7 +80,7 @@ def test_a_sweep_on_a_cluster_equals_single_runs_exactly(client):
             assert point["peak_time"].item() == ref.peak["t"]
             assert point["peak_acceleration"].item() == float(np.max(ref.acceleration))
             assert point["final_velocity"].item() == float(ref.velocity[-1])
-            assert point["final_penetration"].item() == float(ref.draft[-1])
+            assert point["final_draft"].item() == float(ref.draft[-1])
             assert point["stop_reason"].item() == ref.stop_reason
             assert point["steps"].item() == len(ref)
             share = getattr(ref, "flagged_share", None)

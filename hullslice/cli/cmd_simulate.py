@@ -43,7 +43,7 @@ def add_parser(sub) -> None:
         description="Free fall: integrate the body's motion (M + A) dw/dt = F - m g from "
         "first contact (or --draft) with the 2D+t force (A: the added mass of a momentum-form "
         "solver, zero for a free-fall one), with pitch and surge when free. Prescribed: "
-        "compute the force along a table of t, penetration, velocity (--kinematics). The run "
+        "compute the force along a table of t, draft, velocity (--kinematics). The run "
         "stops early when the body stops sinking, the water reaches a chine, or slices "
         "outside the solver's range carry more than --max-flagged-share of the force "
         "(--continue-invalid goes on with flagged values).",
@@ -87,7 +87,7 @@ def add_parser(sub) -> None:
     g.add_argument(
         "--kinematics",
         metavar="CSV",
-        help="prescribed motion: CSV with columns t (s), penetration (m, positive), "
+        help="prescribed motion: CSV with columns t (s), draft (m, positive), "
         "velocity (m/s, negative down), optionally acceleration (m/s^2, up; derived from "
         "velocity when absent), pitch_deg, pitch_rate_deg_s, forward_speed (m/s)",
     )
@@ -172,8 +172,8 @@ def outcome(result: StudyResult) -> Outcome:
         )
     return Outcome(
         table=_table(hull, history, summary, solver_label(study)),
-        data={"mesh": str(study.mesh), **summary, "history": history.output_columns()},
-        csv_columns=list(history.OUTPUT_COLUMNS),
+        data={"mesh": str(study.mesh), **summary, "history": history.columns()},
+        csv_columns=list(history.COLUMNS),
         csv_rows=history_records(history),
         figures=figures,
     )
@@ -196,7 +196,7 @@ def _table(hull, history, summary, solver_text) -> str:
     if summary["peak"] is not None:
         pk = summary["peak"]
         lines.append(
-            f"peak force {pk['force']:.3f} N at t = {pk['t']:.5f} s (draft {pk['penetration']:.5f} "
+            f"peak force {pk['force']:.3f} N at t = {pk['t']:.5f} s (draft {pk['draft']:.5f} "
             f"m, velocity {pk['velocity']:.4f} m/s, acceleration {pk['acceleration']:.3f} m/s^2)"
         )
     reason = history.stop_reason

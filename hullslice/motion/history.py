@@ -35,10 +35,6 @@ STOP_RULES: dict[str, str] = {
 #: The stop rules a run applies by default (``slender`` is recorded, not applied).
 DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "chine", "validity", "pitch")
 
-#: The names the command line's files and tables, and the sweeps' datasets, give some
-#: columns of :meth:`History.columns`.
-OUTPUT_NAMES: dict[str, str] = {"draft": "penetration"}
-
 #: Default largest share of the force (sum of the slices' absolute forces) that slices
 #: outside the solver's range may carry before the ``validity`` rule ends a run.
 MAX_FLAGGED_SHARE = 0.1
@@ -195,22 +191,17 @@ class History:
     @property
     def peak(self) -> dict[str, float]:
         """The instant of the largest force: ``t``, ``force``, ``acceleration``, ``velocity``,
-        ``penetration`` (the draft, m), ``pitch_deg``, ``moment``: the names of the
-        command line's outputs (:data:`OUTPUT_NAMES`)."""
+        ``draft`` (m), ``pitch_deg``, ``moment``: the names of the command line's outputs."""
         i = int(np.argmax(self.force))
         return {
             "t": float(self.t[i]),
             "force": float(self.force[i]),
             "acceleration": float(self.acceleration[i]),
             "velocity": float(self.velocity[i]),
-            "penetration": float(self.draft[i]),
+            "draft": float(self.draft[i]),
             "pitch_deg": float(np.degrees(self.pitch[i])),
             "moment": float(self.moment[i]),
         }
-
-    #: The columns of :meth:`output_columns`, in order: the header of the files and tables
-    #: the command line and the sweeps write.
-    OUTPUT_COLUMNS = tuple(OUTPUT_NAMES.get(name, name) for name in COLUMNS)
 
     @property
     def penetration(self) -> np.ndarray:
@@ -221,11 +212,6 @@ class History:
             stacklevel=2,
         )
         return self.draft
-
-    def output_columns(self) -> dict[str, np.ndarray]:
-        """The per-instant arrays by the names of :attr:`OUTPUT_COLUMNS` (the draft as
-        ``penetration``): what the command line and the sweeps write."""
-        return {OUTPUT_NAMES.get(k, k): v for k, v in self.columns().items()}
 
     def columns(self) -> dict[str, np.ndarray]:
         """The per-instant arrays by the names of :attr:`COLUMNS`."""

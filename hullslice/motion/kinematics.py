@@ -10,7 +10,8 @@ a ``pitch_rate`` has its derivative as its rate. The former names ``penetration`
 taken, with a :class:`DeprecationWarning` (:data:`DEPRECATED_KEYS`).
 
 A CSV file of kinematics (:func:`read_kinematics`) names its columns as the command line's
-own history files do: ``t``, ``penetration`` (or ``draft``), ``velocity``, and the optional
+own history files do: ``t``, ``draft`` (formerly ``penetration``, still read), ``velocity``,
+and the optional
 ``acceleration``, ``pitch_deg``, ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``,
 ``forward_speed``, ``forward_acceleration`` (:data:`FILE_COLUMNS`): its angles are in
 degrees, converted to rad once, as it is read.
@@ -75,9 +76,10 @@ DEPRECATED_KEYS: dict[str, tuple[str, bool]] = {
 }
 
 #: The columns of a kinematics file -> the keys they are read into (angles converted from
-#: degrees). ``draft`` is also read (the key's own name).
+#: degrees). ``penetration`` is the former name of ``draft``.
 FILE_COLUMNS: dict[str, str] = {
     "t": "t",
+    "draft": "draft",
     "penetration": "draft",
     "velocity": "velocity",
     "acceleration": "acceleration",
@@ -189,14 +191,14 @@ def check_kinematics(
     if np.any(p < 0):
         i = int(np.flatnonzero(p < 0)[0])
         raise CaseError(
-            f"kinematics draft (penetration) at row {i + 1} is negative ({p[i]:g} m): the "
+            f"kinematics draft at row {i + 1} is negative ({p[i]:g} m): the "
             "draft is the depth of the lowest point below the water, >= 0"
         )
     heights = np.array([_height_at(hull, float(th)) for th in out["pitch"]])
     if np.any(p > heights):
         i = int(np.flatnonzero(p > heights)[0])
         raise CaseError(
-            f"kinematics draft (penetration) at row {i + 1} ({p[i]:g} m) is deeper than the "
+            f"kinematics draft at row {i + 1} ({p[i]:g} m) is deeper than the "
             f"body's height {heights[i]:.6g} m"
         )
     return out
@@ -205,8 +207,8 @@ def check_kinematics(
 def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
     """Read a kinematics table from CSV.
 
-    The header names the columns (:data:`FILE_COLUMNS`); ``t`` (s), ``penetration`` or
-    ``draft`` (m, the draft of the lowest point, positive) and ``velocity`` (m/s,
+    The header names the columns (:data:`FILE_COLUMNS`); ``t`` (s), ``draft`` (m, the
+    draft of the lowest point, positive; formerly ``penetration``) and ``velocity`` (m/s,
     negative down) are required; the optional columns are read when present, their angles
     in degrees; other columns are ignored. Lines starting with ``#`` are comments.
 
@@ -218,16 +220,17 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
         ``pitch_acceleration``).
     """
     header, rows = read_csv(path, "kinematics")  # hullslice/tables.py
+    if "draft" in header and "penetration" in header:
+        raise CaseError(
+            f"kinematics file {printable(path)!r} has both a draft and a penetration column "
+            "(the former name of the draft): keep draft"
+        )
     columns = {c: key for c, key in FILE_COLUMNS.items() if c in header}
-    if "draft" in header and "penetration" not in header:
-        columns["draft"] = "draft"
-    missing = [
-        c for c in ("t", "penetration", "velocity") if FILE_COLUMNS[c] not in columns.values()
-    ]
+    missing = [c for c in KINEMATICS_COLUMNS if c not in columns.values()]
     if missing:
         raise CaseError(
             f"kinematics file {printable(path)!r} lacks the column(s) {', '.join(missing)} "
-            f"({header_text(header)}); it needs t, penetration (or draft), velocity"
+            f"({header_text(header)}); it needs t, draft, velocity"
         )
     names = list(columns)
     idx = [header.index(c) for c in names]
