@@ -34,6 +34,7 @@ from .execute import (
     StudyResult,
     execute,
     load,
+    simulation,
 )
 from .spec import COMMANDS, Study, StudyError
 
@@ -48,4 +49,5 @@ __all__ = [
     "StudyResult",
     "execute",
     "load",
+    "simulation",
 ]

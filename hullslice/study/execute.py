@@ -30,6 +30,7 @@ __all__ = [
     "StudyResult",
     "execute",
     "load",
+    "simulation",
 ]
 
 #: Commands whose study needs the body's mass (unless a momentum-form solver does without).
@@ -228,6 +229,40 @@ def _force(study: Study) -> ForceStudyResult:
 def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> SimulationResult:
     hull = load(study)
     slv = build_solver(study)
+    kinematics = None if study.kinematics is None else read_kinematics(study.kinematics)
+    history = simulation(study, hull, slv, kinematics, progress=progress)
+    return SimulationResult(study, hull, slv, history)
+
+
+def simulation(
+    study: Study,
+    hull: Hull,
+    solver: SolverBase | None = None,
+    kinematics: dict[str, np.ndarray] | None = None,
+    *,
+    progress: Callable[[float, float], None] | None = None,
+) -> History:
+    """The history of a ``simulate`` study on a hull already read with its mass: the one
+    computation behind ``hullslice simulate``, ``hullslice run`` and every case of a sweep
+    (which reads the mesh once for all its cases).
+
+    Parameters
+    ----------
+    study : Study
+        A ``simulate`` study.
+    hull : Hull
+        Its body, with the study's mass properties.
+    solver : SolverBase, optional
+        The study's solver, if already built (default: built from the study).
+    kinematics : dict of (k,) float arrays, optional
+        The study's kinematics table, if already read (:func:`~hullslice.read_kinematics`;
+        default: read from the study's file).
+    progress : callable, optional
+        ``progress(t, t_end)`` (s) called as the run advances.
+    """
+    slv = build_solver(study) if solver is None else solver
+    if study.kinematics is not None and kinematics is None:
+        kinematics = read_kinematics(study.kinematics)
     common: dict[str, Any] = {
         "slices": study.slice_counts[0],
         "solver": slv,
@@ -236,9 +271,9 @@ def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> 
         "slicing": study.slicing,
         "progress": progress,
     }
-    if study.kinematics is None:
+    if kinematics is None:
         assert study.velocity is not None and study.t_end is not None  # checked by Study
-        history = simulate(
+        return simulate(
             hull,
             study.velocity,
             study.t_end,
@@ -253,15 +288,8 @@ def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> 
             max_flagged_share=study.max_flagged_share,
             **common,
         )
-    else:
-        # a prescribed motion is evaluated over the whole table, limits flagged
-        history = prescribed(
-            hull,
-            read_kinematics(study.kinematics),
-            max_flagged_share=study.max_flagged_share,
-            **common,
-        )
-    return SimulationResult(study, hull, slv, history)
+    # a prescribed motion is evaluated over the whole table, limits flagged
+    return prescribed(hull, kinematics, max_flagged_share=study.max_flagged_share, **common)
 
 
 def execute(study: Study, *, progress: Callable[[float, float], None] | None = None) -> StudyResult:

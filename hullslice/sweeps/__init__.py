@@ -23,10 +23,10 @@ How a case flows, module by module:
    ``Manifold``) at its first task, all of them at the same time, and keeps it under a
    token of the mesh, so a worker keeps its cuts from one case to the next. Each case is
    computed as a single run computes it: :func:`~hullslice.sweeps.run.hull_for` gives the
-   hull the case's mass properties, :func:`~hullslice.sweeps.run.motion_call` the call of
-   :func:`hullslice.simulate` (or :func:`hullslice.prescribed`) that ``hullslice simulate``
-   makes for the same case. Dask runs the tasks: a local cluster of worker processes by
-   default, any scheduler by its address, or in this process with ``workers=1``.
+   hull the case's mass properties, and the case, made a :class:`~hullslice.Study`, runs
+   by :func:`hullslice.study.simulation`, the call ``hullslice simulate`` makes for it.
+   Dask runs the tasks: a local cluster of worker processes by default, any scheduler by
+   its address, or in this process with ``workers=1``.
 5. **records** (:mod:`.run`, :mod:`.store`): each case gives a record, its results
    (:func:`summarise`) or its one-line error (the others go on); a task whose worker dies
    is rerun by Dask, and a case that kills its worker each time is recorded as failed.
@@ -73,10 +73,10 @@ from .run import (  # noqa: F401
     HullState,
     hull_for,
     load_inputs,
-    motion_call,
     run_batch,
     run_case,
     shaping,
+    study_of,
     summarise,
 )
 from .store import PARTIAL_SPEC, Partial, jsonable, remove_partial, sha256, spec  # noqa: F401

@@ -6,10 +6,9 @@ three steps, each written once here and used by every path of a sweep (in this p
 on a Dask worker): :func:`read_mesh` and :func:`read_files` read the mesh and the case's
 files, once per sweep;
 :func:`hull_for` gives the hull the case's mass properties (kept for the next case with the
-same ones); :func:`motion_call` turns the case's keys into the call of
-:func:`hullslice.simulate` or :func:`hullslice.prescribed` with the arguments that
-``hullslice simulate`` passes for the same case (angles in radians, the stop rules unless
-``continue_invalid``). :func:`run_batch` runs cases one after the other and records each
+same ones); :func:`run_case` makes the case a :class:`~hullslice.Study` and runs it by
+:func:`hullslice.study.simulation`, the call ``hullslice simulate`` makes for the same
+case. :func:`run_batch` runs cases one after the other and records each
 one's results (:func:`summarise`) or its one-line error.
 """
 
@@ -18,13 +17,13 @@ from __future__ import annotations
 import math
 import time
 import traceback
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ..errors import HullsliceError, InputError
+from ..errors import HullsliceError
 
 #: The hull each worker process keeps, by token (see run_batch).
 _SHARED: dict[str, Any] = {}
@@ -124,67 +123,27 @@ def hull_for(hull, case: Mapping[str, Any], inputs: Mapping[str, Any]):
     return h
 
 
-def motion_call(
-    case: Mapping[str, Any], inputs: Mapping[str, Any]
-) -> tuple[Callable[..., Any], tuple, dict[str, Any]]:
-    """The call a checked ``simulate`` case amounts to: ``(function, args, kwargs)``, to be
-    called as ``function(hull, *args, **kwargs)``.
+def study_of(case: Mapping[str, Any]):
+    """The :class:`~hullslice.Study` of a checked ``simulate`` case: validated as any
+    study is (a free fall without ``velocity`` or ``t_end`` is refused by name)."""
+    from ..study import Study
 
-    ``function`` is :func:`hullslice.prescribed` for a case with ``kinematics`` (``args``:
-    the table, from ``inputs``), else :func:`hullslice.simulate` (``args``: velocity in m/s
-    and t_end in s). Angles go from the case's degrees to radians; the default stop rules
-    apply unless ``continue_invalid``.
-
-    Raises
-    ------
-    InputError
-        A free fall without ``velocity`` or ``t_end``.
-    """
-    from ..motion import DEFAULT_STOP_ON, prescribed, simulate
-    from ..solvers.registry import DEFAULT_SOLVER, get_solver
-    from ..state import Fluid
-
-    slices = case.get("slices", [32])
-    common = {
-        "slices": slices if isinstance(slices, int) else slices[0],
-        "solver": get_solver(case.get("solver", DEFAULT_SOLVER), **case.get("solver_options", {})),
-        "fluid": Fluid(rho=case["rho"], g=case["g"]),
-        "deadrise": case["deadrise"],
-        "slicing": case["slicing"],
-        "max_flagged_share": case["max_flagged_share"],
-    }
-    if "kinematics" in case:
-        return prescribed, (inputs["kinematics"],), common
-    missing = [k for k in ("velocity", "t_end") if k not in case]
-    if missing:
-        raise InputError(
-            f"a free fall needs {' and '.join(missing)} in the case (or kinematics for a "
-            "prescribed motion)"
-        )
-    kwargs = {
-        "dt": case.get("dt"),
-        "draft": case.get("draft", 0.0),
-        "pitch": math.radians(case.get("pitch", 0.0)),
-        "forward_speed": case.get("forward_speed", 0.0),
-        "pitch_rate": math.radians(case.get("pitch_rate", 0.0)),
-        "free_pitch": case.get("free_pitch", False),
-        "free_surge": case.get("free_surge", False),
-        "stop_on": () if case.get("continue_invalid", False) else DEFAULT_STOP_ON,
-        **common,
-    }
-    return simulate, (case["velocity"], case["t_end"]), kwargs
+    return Study.from_case(case, checked=True)
 
 
 def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = None):
-    """The :class:`~hullslice.motion.History` of one checked ``simulate`` case, computed as
-    ``hullslice simulate`` computes it from the case's command line.
+    """The :class:`~hullslice.motion.History` of one checked ``simulate`` case, computed by
+    the same call as ``hullslice simulate`` and ``hullslice run`` make for it
+    (:func:`hullslice.study.simulation`).
 
     ``hull`` is the mesh without mass (its mass properties come from the case); ``inputs``
     holds the case's files already read (``mass_distribution``, ``kinematics``).
     """
+    from ..study import simulation
+
     inputs = inputs or {}
-    function, args, kwargs = motion_call(case, inputs)
-    return function(hull_for(hull, case, inputs), *args, **kwargs)
+    study = study_of(case)
+    return simulation(study, hull_for(hull, case, inputs), kinematics=inputs.get("kinematics"))
 
 
 def summarise(history) -> dict[str, Any]:
