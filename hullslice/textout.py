@@ -14,11 +14,14 @@ import numpy as np
 
 from ._version import __version__
 from .atomic import write_atomic
+from .constants import TOL
 
 __all__ = [
     "Column",
+    "coordinate_text",
     "csv_text",
     "json_text",
+    "significant",
     "table_text",
     "write_atomic",
 ]
@@ -37,13 +40,22 @@ class Column:
     unit : str
         Unit shown under the heading (``""`` for none).
     fmt : str
-        Format spec for numbers in a terminal table, e.g. ``".4f"``.
+        Format spec for numbers in a terminal table, e.g. ``".4f"``; ``"~N"`` prints the
+        column in fixed point with N significant digits for its largest value (the same
+        decimals on every row), so that rounding noise shows as 0.
     """
 
     key: str
     label: str
     unit: str = ""
     fmt: str = ".6g"
+
+
+def _unsigned_zero(text: str) -> str:
+    """``-0.000`` (a tiny negative number rounded) as ``0.000``."""
+    if text.startswith("-") and not text.strip("-0.") and "e" not in text:
+        return text[1:]
+    return text
 
 
 def _cell(value: Any, fmt: str) -> str:
@@ -53,8 +65,62 @@ def _cell(value: Any, fmt: str) -> str:
         return str(int(value))
     if isinstance(value, float | np.floating):
         v = float(value)
-        return "-" if math.isnan(v) else format(v, fmt)
+        if math.isnan(v):
+            return "-"
+        return _unsigned_zero(format(v, fmt)) if math.isfinite(v) else str(v)
     return str(value)
+
+
+#: Most decimals a ``"~N"`` column prints.
+_MAX_DECIMALS = 12
+
+
+def _column_format(fmt: str, values: Sequence[Any]) -> str:
+    """The format spec of a column: ``"~N"`` becomes fixed point with the decimals that give
+    its largest finite value N significant digits; other specs are kept."""
+    if not fmt.startswith("~"):
+        return fmt
+    digits = int(fmt[1:])
+    finite = [abs(float(v)) for v in values if _is_number(v) and math.isfinite(float(v))]
+    largest = max(finite, default=0.0)
+    if largest == 0.0:
+        return f".{digits - 1}f"
+    decimals = digits - 1 - math.floor(math.log10(largest))
+    return f".{min(max(decimals, 0), _MAX_DECIMALS)}f"
+
+
+def significant(value: float, digits: int = 7) -> str:
+    """A number with ``digits`` significant digits, for a line of text (``-`` for NaN).
+
+    Parameters
+    ----------
+    value : float
+        The number, in any unit.
+    digits : int
+        Significant digits (default 7: a force's precision, not its rounding noise).
+    """
+    v = float(value)
+    if math.isnan(v):
+        return "-"
+    return _unsigned_zero(format(v, f".{digits}g"))
+
+
+def coordinate_text(value: float, size: float, digits: int = 6) -> str:
+    """A coordinate in m for a table or line: 0 when it is below the mesh's tolerance
+    (:data:`hullslice.constants.TOL` ``.coordinate`` times ``size``), rounding noise rather
+    than a position; else ``digits`` significant digits.
+
+    Parameters
+    ----------
+    value : float
+        The coordinate, m.
+    size : float
+        The body's size (bounding-box diagonal), m, which scales the tolerance.
+    """
+    v = float(value)
+    if math.isfinite(v) and abs(v) < TOL.coordinate * size:
+        return "0"
+    return significant(v, digits)
 
 
 def table_text(columns: Sequence[Column], rows: Sequence[Mapping[str, Any]]) -> str:
@@ -62,7 +128,8 @@ def table_text(columns: Sequence[Column], rows: Sequence[Mapping[str, Any]]) -> 
 
     Numbers are right-aligned, text left-aligned.
     """
-    cells = [[_cell(r.get(c.key, ""), c.fmt) for c in columns] for r in rows]
+    fmts = [_column_format(c.fmt, [r.get(c.key) for r in rows]) for c in columns]
+    cells = [[_cell(r.get(c.key, ""), f) for c, f in zip(columns, fmts, strict=True)] for r in rows]
     heads = [c.label for c in columns]
     units = [f"[{c.unit}]" if c.unit else "" for c in columns]
     widths = [
@@ -111,7 +178,7 @@ def _plain(value: Any) -> Any:
 
 #: Version of the layout of hullslice's JSON outputs: raised when a key changes meaning
 #: or goes away (new keys do not raise it).
-JSON_SCHEMA_VERSION = 2
+JSON_SCHEMA_VERSION = 3
 
 
 def json_text(data: Mapping[str, Any]) -> str:
@@ -146,10 +213,10 @@ SLICE_COLUMNS = (
     Column("velocity", "v", "m/s", ".4f"),
     Column("half_beam", "c", "m", ".5f"),
     Column("deadrise_deg", "beta", "deg", ".3f"),
-    Column("mass_per_metre", "M", "kg/m", ".4f"),
+    Column("mass_per_metre", "mass/m", "kg/m", ".4f"),
     Column("z_tilde", "z~", "", ".5f"),
-    Column("force_per_metre", "f", "N/m", ".2f"),
-    Column("force", "F", "N", ".4f"),
+    Column("force_per_metre", "f", "N/m", "~7"),
+    Column("force", "F", "N", "~7"),
     Column("valid", "valid", ""),
     Column("reason", "reason", ""),
 )
@@ -163,7 +230,7 @@ SECTION_COLUMNS = (
     Column("half_beam", "c", "m", ".5f"),
     Column("deadrise_deg", "beta", "deg", ".3f"),
     Column("area", "A", "m^2", ".6g"),
-    Column("mass_per_metre", "M", "kg/m", ".4f"),
+    Column("mass_per_metre", "mass/m", "kg/m", ".4f"),
     Column("chine_wetted", "chine wet", ""),
 )
 
@@ -185,28 +252,93 @@ def force_records(result) -> list[dict[str, Any]]:
 
 
 def convergence_summary(study) -> dict[str, Any]:
-    """The totals of a :class:`~hullslice.forces.ConvergenceStudy` and its extrapolation."""
+    """The totals of a :class:`~hullslice.forces.ConvergenceStudy` and its extrapolation.
+
+    ``gci_fraction`` is the GCI error band as a fraction of the extrapolated force (0.01 is
+    1 %); each entry of ``convergence`` holds one count's vertical force, horizontal force
+    (N) and pitch moment about the centre of gravity (N m).
+    """
     rich = study.richardson
     out: dict[str, Any] = {
         "force": study.finest.total,
         "slices": study.counts[-1],
         "convergence": [
-            {"slices": n, "force": r.total, "valid": r.all_valid}
+            {
+                "slices": n,
+                "force": r.total,
+                "force_x": r.total_x,
+                "moment": r.moment,
+                "valid": r.all_valid,
+            }
             for n, r in zip(study.counts, study.results, strict=True)
         ],
         "extrapolated_force": None,
-        "gci": None,
+        "gci_fraction": None,
         "order": None,
         "convergence_behaviour": None,
     }
     if rich is not None:
         out.update(
             extrapolated_force=rich.extrapolated,
-            gci=rich.gci,
+            gci_fraction=rich.gci,
             order=rich.order,
             convergence_behaviour=rich.behaviour,
         )
     return out
+
+
+#: Leading columns of the force CSV: what a row is, and its slice count.
+FORCE_CSV_HEAD = ("row", "slices", "j")
+
+#: Trailing columns of the force CSV, filled on its ``extrapolated`` row.
+FORCE_CSV_TAIL = ("moment", "order", "gci_fraction", "convergence_behaviour")
+
+
+def force_csv(study) -> tuple[list[str], list[dict[str, Any]]]:
+    """The columns and rows of the force CSV: every count's slices and totals, and the
+    extrapolation, in one table.
+
+    ``row`` says what a row is: ``slice`` (one slice of the count ``slices``, numbered
+    ``j`` from 1, with the per-slice columns), ``total`` (the sums over that count's
+    slices: ``force``, ``force_x``, ``moment`` and ``valid``, all slices inside the
+    range), then ``extrapolated`` (the Richardson force with ``order``, ``gci_fraction``
+    and ``convergence_behaviour``; present with three or more counts).
+
+    Parameters
+    ----------
+    study : ConvergenceStudy
+        The force at each slice count.
+    """
+    names: list[str] = list(FORCE_CSV_HEAD)
+    for r in study.results:
+        names += [k for k in r.columns() if k not in names]
+    names += [k for k in FORCE_CSV_TAIL if k not in names]
+    rows: list[dict[str, Any]] = []
+    for n, r in zip(study.counts, study.results, strict=True):
+        rows += [{"row": "slice", "slices": n, **rec} for rec in force_records(r)]
+    for n, r in zip(study.counts, study.results, strict=True):
+        rows.append(
+            {
+                "row": "total",
+                "slices": n,
+                "force": r.total,
+                "force_x": r.total_x,
+                "moment": r.moment,
+                "valid": r.all_valid,
+            }
+        )
+    rich = study.richardson
+    if rich is not None:
+        rows.append(
+            {
+                "row": "extrapolated",
+                "force": rich.extrapolated,
+                "order": rich.order,
+                "gci_fraction": rich.gci,
+                "convergence_behaviour": rich.behaviour,
+            }
+        )
+    return names, rows
 
 
 #: Columns of a time history (terminal view).
@@ -215,7 +347,7 @@ HISTORY_COLUMNS = (
     Column("draft", "draft", "m", ".5f"),
     Column("velocity", "v", "m/s", ".4f"),
     Column("acceleration", "a", "m/s^2", ".3f"),
-    Column("force", "F", "N", ".3f"),
+    Column("force", "F", "N", "~7"),
     Column("wetted_length", "wetted L", "m", ".4f"),
     Column("slices", "slices", ""),
     Column("valid", "valid", ""),
@@ -227,18 +359,24 @@ HISTORY_COLUMNS = (
 HISTORY_PITCH_COLUMNS = (
     Column("pitch_deg", "pitch", "deg", ".3f"),
     Column("forward_speed", "u", "m/s", ".3f"),
-    Column("moment", "M", "N m", ".4g"),
+    Column("force_x", "Fx", "N", "~7"),
+    Column("moment", "My", "N m", "~7"),
 )
 
 
-def history_records(history, every: int = 1) -> list[dict[str, Any]]:
-    """One dict per instant of a :class:`~hullslice.motion.History` (every ``every``-th,
-    always with the last)."""
+def history_records(
+    history, every: int = 1, indices: Sequence[int] | None = None
+) -> list[dict[str, Any]]:
+    """One dict per instant of a :class:`~hullslice.motion.History`: those at ``indices``
+    when given, else every ``every``-th, always with the first and the last."""
     cols = history.columns()
     n = len(history)
-    idx = list(range(0, n, max(1, every)))
-    if n and idx[-1] != n - 1:
-        idx.append(n - 1)
+    if indices is None:
+        idx = list(range(0, n, max(1, every)))
+        if n and idx[-1] != n - 1:
+            idx.append(n - 1)
+    else:
+        idx = list(indices)
     return [{k: v[i] for k, v in cols.items()} for i in idx]
 
 

@@ -30,7 +30,7 @@ def test_force_json_matches_the_library(capsys, paper_hull):
     study = hs.convergence(paper_hull, 0.0383, -3.4943, slices=(16, 32, 64))
     assert data["force"] == pytest.approx(study.finest.total, rel=1e-12)
     assert data["extrapolated_force"] == pytest.approx(study.richardson.extrapolated, rel=1e-12)
-    assert data["gci"] == pytest.approx(study.richardson.gci, rel=1e-9)
+    assert data["gci_fraction"] == pytest.approx(study.richardson.gci, rel=1e-9)
     assert data["extrapolated_force"] == pytest.approx(147.7947, rel=2e-3)  # the paper
     assert len(data["slices"]) == 64
     first = data["slices"][0]
@@ -62,9 +62,11 @@ def test_force_csv(capsys):
     code, out, _ = run(capsys, "force", PRISM, *PAPER_ARGS, "--slices", "16", "--format", "csv")
     assert code == 0
     rows = list(csv.DictReader(io.StringIO(out)))
-    assert len(rows) == 16
+    slices = [r for r in rows if r["row"] == "slice"]
+    assert len(slices) == 16 and [r["row"] for r in rows[16:]] == ["total"]
     assert {"x", "penetration", "force", "valid"} <= set(rows[0])
-    assert sum(float(r["force"]) for r in rows) == pytest.approx(148.06, rel=1e-3)
+    assert sum(float(r["force"]) for r in slices) == pytest.approx(148.06, rel=1e-3)
+    assert float(rows[16]["force"]) == pytest.approx(148.06, rel=1e-3)
 
 
 def test_force_with_mesh_in_mm_and_other_axes(capsys, tmp_path):
@@ -175,4 +177,4 @@ def test_json_outputs_carry_the_version_and_the_schema(capsys):
 
     assert main(["solvers", "--format", "json"]) == 0
     data = json.loads(capsys.readouterr().out)
-    assert data["hullslice_version"] == hs.__version__ and data["schema_version"] == 2
+    assert data["hullslice_version"] == hs.__version__ and data["schema_version"] == 3

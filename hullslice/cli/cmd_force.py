@@ -11,7 +11,9 @@ from ..textout import (
     SLICE_COLUMNS,
     Column,
     convergence_summary,
+    force_csv,
     force_records,
+    significant,
     table_text,
 )
 from .common import (
@@ -84,9 +86,26 @@ def add_parser(sub) -> None:
 
 CONVERGENCE_COLUMNS = (
     Column("slices", "slices"),
-    Column("force", "force", "N", ".4f"),
+    Column("force", "force", "N", "~7"),
     Column("valid", "valid"),
 )
+
+#: Columns of a pitched or moving-forward state's convergence table: with the
+#: horizontal force and the pitch moment.
+CONVERGENCE_PITCH_COLUMNS = (
+    *CONVERGENCE_COLUMNS[:2],
+    Column("force_x", "force_x", "N", "~7"),
+    Column("moment", "My", "N m", "~7"),
+    CONVERGENCE_COLUMNS[2],
+)
+
+#: The per-slice horizontal force, shown after F for a pitched or moving state.
+SLICE_FX = Column("force_x", "Fx", "N", "~7")
+
+
+def pitched(study: Study) -> bool:
+    """Whether a force study's state has pitch, forward speed or pitch rate."""
+    return study.pitch != 0.0 or study.horizontal_speed != 0.0 or study.pitch_rate != 0.0
 
 
 def run(args: argparse.Namespace) -> int:
@@ -146,36 +165,58 @@ def outcome(result: StudyResult) -> Outcome:
     figures["sections"] = lambda: plots.plot_sections(
         hull, finest.sections, f"{hull.name}: the cut at {study.counts[-1]} slices"
     )
+    csv_columns, csv_rows = force_csv(study)
     return Outcome(
         table=_table(hull, spec, study, summary, records),
         data=data,
-        csv_columns=["j", *finest.columns()],
-        csv_rows=records,
+        csv_columns=csv_columns,
+        csv_rows=csv_rows,
         figures=figures,
     )
 
 
 def _table(hull, spec: Study, study, summary, records) -> str:
     finest = study.finest
+    moving = pitched(spec)
+    slice_columns: tuple[Column, ...] = SLICE_COLUMNS
+    if moving:
+        at = [c.key for c in SLICE_COLUMNS].index("force") + 1
+        slice_columns = (*SLICE_COLUMNS[:at], SLICE_FX, *SLICE_COLUMNS[at:])
     lines = [
         f"{hull.name}: "
         + (f"mass {hull.mass:g} kg" if hull.mass is not None else "no mass (not needed)")
         + f", draft {spec.draft:g} m, velocity "
         f"{spec.velocity:g} m/s, wetted length {finest.sections.wetted_length:.5f} m",
+    ]
+    if moving:
+        cg = hull.cg
+        lines.append(
+            f"pitch {spec.pitch_deg or 0.0:g} deg, forward speed {spec.horizontal_speed:g} m/s, "
+            f"pitch rate {spec.pitch_rate_deg_s or 0.0:g} deg/s, about the centre of gravity "
+            f"({significant(cg[0], 6)}, {significant(cg[2], 6)}) m"
+        )
+    lines += [
         f"solver {solver_label(spec)}, water {finest.fluid.rho:g} kg/m^3, "
         f"g {finest.fluid.g:g} m/s^2, deadrise by {finest.sections.deadrise_method}",
         "",
-        table_text(CONVERGENCE_COLUMNS, summary["convergence"]),
+        table_text(
+            CONVERGENCE_PITCH_COLUMNS if moving else CONVERGENCE_COLUMNS, summary["convergence"]
+        ),
         "",
         f"slices at n = {study.counts[-1]}:",
-        table_text(SLICE_COLUMNS, records),
+        table_text(slice_columns, records),
         "",
-        f"force {finest.total:.4f} N at {study.counts[-1]} slices",
+        f"force {significant(finest.total)} N at {study.counts[-1]} slices",
     ]
+    if moving:
+        lines.append(
+            f"horizontal force force_x {significant(finest.total_x)} N, pitch moment My "
+            f"{significant(finest.moment)} N m (nose up) about the centre of gravity"
+        )
     if finest.acceleration is not None:
         how = "given" if spec.acceleration is not None else "free in heave"
         lines.insert(
-            -1,
+            -2 if moving else -1,
             f"momentum form: heave added mass {finest.added_mass:.6g} kg, body acceleration "
             f"{finest.acceleration.vertical:.6g} m/s^2 ({how})",
         )
@@ -186,10 +227,12 @@ def _table(hull, spec: Study, study, summary, records) -> str:
         if rich.behaviour == "divergent":
             lines.append("extrapolated force: none, the forces do not converge")
         elif rich.behaviour == "converged":
-            lines.append(f"extrapolated force {rich.extrapolated:.4f} N (the same at every count)")
+            lines.append(
+                f"extrapolated force {significant(rich.extrapolated)} N (the same at every count)"
+            )
         else:
             lines.append(
-                f"extrapolated force {rich.extrapolated:.4f} N (Richardson, order "
+                f"extrapolated force {significant(rich.extrapolated)} N (Richardson, order "
                 f"{rich.order:.2f}, GCI {100 * rich.gci:.4f} %, {rich.behaviour})"
             )
     invalid = int((~finest.valid).sum())
