@@ -10,7 +10,7 @@ import numpy as np
 from .. import plots
 from ..paths import printable
 from ..study import InfoResult, Study, StudyResult
-from ..textout import Column, table_text
+from ..textout import Column, coordinate_text, significant, table_text
 from .common import (
     Outcome,
     add_mesh_options,
@@ -21,6 +21,23 @@ from .common import (
 )
 
 AREA_COLUMNS = (Column("x", "x", "m", ".5g"), Column("area", "area", "m^2", ".6g"))
+
+#: Relative tolerance of a flat maximum of the area curve: the stations whose area is
+#: within it of the largest, next to the largest one, make the span it is reported over.
+FLAT_MAXIMUM = 1e-3
+
+
+def largest_span(x: np.ndarray, area: np.ndarray) -> tuple[float, float]:
+    """The x span (m) of the stations around the largest area whose area is within
+    :data:`FLAT_MAXIMUM` of it (one station: both ends the same)."""
+    i = int(np.argmax(area))
+    floor = area[i] - FLAT_MAXIMUM * abs(area[i])
+    lo = hi = i
+    while lo > 0 and area[lo - 1] >= floor:
+        lo -= 1
+    while hi < len(area) - 1 and area[hi + 1] >= floor:
+        hi += 1
+    return float(x[lo]), float(x[hi])
 
 
 def add_parser(sub) -> None:
@@ -92,6 +109,7 @@ def outcome(result: StudyResult) -> Outcome:
         "max_area": float(area.max()),
         "max_area_x": float(x[int(np.argmax(area))]),
     }
+    data["max_area_x_from"], data["max_area_x_to"] = largest_span(x, area)
     rows = [{"x": xi, "area": ai} for xi, ai in zip(x, area, strict=True)]
     return Outcome(
         table=_table(hull, data, rows),
@@ -107,34 +125,43 @@ def outcome(result: StudyResult) -> Outcome:
     )
 
 
-def _vec(v) -> str:
-    return "(" + ", ".join(f"{c:.6g}" for c in v) + ")"
+def _vec(v, size: float) -> str:
+    """A point in m, coordinates below the mesh's tolerance (rounding noise) as 0."""
+    return "(" + ", ".join(coordinate_text(c, size) for c in v) + ")"
 
 
 def _table(hull, d, rows) -> str:
     repairs = d["repairs"]
+    size = hull.size
     lines = [
         f"{hull.name}: {printable(d['mesh'])} ({d['file_bytes']} bytes), units {d['units']}, "
         f"forward {d['forward']}, up {d['up']}",
         f"  faces {d['faces']}, vertices {d['vertices']}, closed (checked on loading)"
         + (f"; repaired: {'; '.join(repairs)}" if repairs else ", no repair needed"),
-        f"  bounding box {_vec(d['bounds_min'])} to {_vec(d['bounds_max'])} m",
+        f"  bounding box {_vec(d['bounds_min'], size)} to {_vec(d['bounds_max'], size)} m",
         f"  length {d['length']:.6g} m, beam {d['beam']:.6g} m, height {d['height']:.6g} m",
         f"  volume {d['volume']:.6g} m^3, surface {d['surface_area']:.6g} m^2, centre of volume "
-        f"{_vec(d['centre_of_volume'])} m",
+        f"{_vec(d['centre_of_volume'], size)} m",
     ]
     if d["mass"] is not None:
         lines.append(
             f"  mass {d['mass']:.6g} kg, mean density {d['density']:.6g} kg/m^3, centre of "
-            f"gravity {_vec(d['cg'])} m, pitch inertia {d['pitch_inertia']:.6g} kg*m^2"
+            f"gravity {_vec(d['cg'], size)} m, pitch inertia {d['pitch_inertia']:.6g} kg*m^2"
         )
     else:
         lines.append("  no mass given (--mass KG for the mass properties)")
     lines += _orientation_lines(d) + _body_lines(d)
+    x_from, x_to = d["max_area_x_from"], d["max_area_x_to"]
+    where = (
+        f"at x = {coordinate_text(d['max_area_x'], size)} m"
+        if x_from == x_to
+        else f"from x = {coordinate_text(x_from, size)} to {coordinate_text(x_to, size)} m, "
+        f"within {FLAT_MAXIMUM:.1%} of it"
+    )
     lines += [
         "",
-        f"sectional area curve ({len(rows)} stations; largest {d['max_area']:.6g} m^2 at "
-        f"x = {d['max_area_x']:.6g} m):",
+        f"sectional area curve ({len(rows)} stations; largest {significant(d['max_area'], 6)} "
+        f"m^2 {where}):",
         table_text(AREA_COLUMNS, rows),
     ]
     return "\n".join(lines)
