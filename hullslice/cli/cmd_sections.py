@@ -79,8 +79,14 @@ def outcome(result: StudyResult) -> Outcome:
         f"wetted length {sections.wetted_length:.5f} m, {sections.n_stations} slices "
         f"({study.slicing}), deadrise by {sections.deadrise_method}"
     )
+    table = head + "\n" + table_text(SECTION_COLUMNS, records)
+    if hull.mass is None:
+        table += (
+            "\nmass/m is '-': no mass given (give --mass KG or --mass-distribution CSV for "
+            "the mass per metre)"
+        )
     return Outcome(
-        table=head + "\n" + table_text(SECTION_COLUMNS, records),
+        table=table,
         data=data,
         csv_columns=["j", *sections.as_dict()],
         csv_rows=records,
