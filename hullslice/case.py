@@ -61,8 +61,8 @@ class Key:
     kind : str
         Its type: ``"text"``, ``"path"`` (text, a file relative to the case file),
         ``"number"`` (a float; an integer is accepted), ``"count"`` (a whole number),
-        ``"counts"`` (a whole number or a list of them), ``"flag"`` (true or false) or
-        ``"table"``.
+        ``"counts"`` (a whole number or a list of them), ``"times"`` (a number or a list of
+        numbers), ``"flag"`` (true or false) or ``"table"``.
     unit : str
         SI unit of a number (``""`` for none).
     help : str
@@ -168,6 +168,9 @@ SCHEMA: dict[str, Key] = {
         Key("acceleration", "number", "m/s^2", "vertical acceleration of the body, positive "
             "up, for a momentum-form solver's force (default: free in heave)"),
         Key("stations", "count", "", "stations of the sectional area curve (info)"),
+        Key("every", "count", "", "rows shown: every Nth instant, with the first and last "
+            "(simulate)", check=_positive),
+        Key("at", "times", "s", "rows shown: the instants nearest these times (simulate)"),
         Key("format", "text", "", "output format: table, json or csv", None,
             _one_of(("table", "json", "csv"))),
         Key("output", "path", "", "file to write the output to, relative to the case"),
@@ -181,6 +184,7 @@ _KIND_WORDS = {
     "number": "a number",
     "count": "a whole number",
     "counts": "a whole number or a list of whole numbers",
+    "times": "a number or a list of numbers",
     "pair": "a list of two numbers",
     "box": "a list of six numbers",
     "flag": "true or false",
@@ -226,6 +230,11 @@ def _convert(key: Key, value: Any, where: str) -> Any:
             and all(math.isfinite(i) for i in value)
         )
         hint = " (write e.g. [12.5, 0.3])"
+    elif kind == "times":
+        items = value if isinstance(value, list) else [value]
+        real = [i for i in items if isinstance(i, int | float) and not isinstance(i, bool)]
+        ok = bool(items) and len(real) == len(items) and all(map(math.isfinite, real))
+        hint = " (write e.g. [0.01, 0.02])"
     elif kind == "box":
         ok = (
             isinstance(value, list)
@@ -252,6 +261,8 @@ def _convert(key: Key, value: Any, where: str) -> Any:
         return [float(i) for i in value]
     if kind == "table":
         return dict(value)
+    if kind == "times":
+        return [float(i) for i in items]
     if kind == "count":
         return int(value)
     if kind == "counts":
@@ -415,7 +426,7 @@ COMMAND_KEYS: dict[str, set[str]] = {
     "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "acceleration", "plot"},
     "simulate": _COMMON | _MASS | _METHOD | _MOTION | {
         "velocity", "t_end", "dt", "draft", "kinematics", "free_pitch", "free_surge",
-        "continue_invalid", "max_flagged_share", "plot",
+        "continue_invalid", "max_flagged_share", "plot", "every", "at",
     },
 }  # fmt: skip
 

@@ -4,10 +4,14 @@ from __future__ import annotations
 
 import argparse
 import sys
+import time
+from collections.abc import Callable
+from typing import TextIO
 
 import numpy as np
 
 from .. import plots
+from ..errors import InputError
 from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
 from ..study import SimulationResult, Study, StudyResult
 from ..textout import (
@@ -16,6 +20,7 @@ from ..textout import (
     Column,
     history_records,
     history_summary,
+    significant,
     table_text,
 )
 from .common import (
@@ -117,26 +122,101 @@ def add_parser(sub) -> None:
     add_section_options(m)
     add_fluid_options(p)
     add_output_options(p, plot="the history (force, acceleration, velocity, draft, pitch)")
+    r = p.add_argument_group("rows")
+    rows = r.add_mutually_exclusive_group()
+    rows.add_argument(
+        "--every",
+        type=positive_int,
+        metavar="N",
+        help="give every Nth instant, with the first and the last, in the table, CSV and "
+        "JSON (default: every instant in CSV and JSON, about 40 in the table)",
+    )
+    rows.add_argument(
+        "--at",
+        type=times,
+        metavar="S[,S...]",
+        help="give the instants nearest these times in s, e.g. --at 0.01,0.02, in the "
+        "table, CSV and JSON (a time outside the run is refused, naming its range)",
+    )
     p.set_defaults(func=run)
 
 
-class Progress:
-    """A one-line progress display on a terminal's stderr."""
+def times(text: str) -> list[float]:
+    """``"0.01,0.02"`` to ``[0.01, 0.02]`` (s)."""
+    parts = [p.strip() for p in text.split(",") if p.strip()]
+    if not parts:
+        raise argparse.ArgumentTypeError("give one or more times in s, e.g. --at 0.01,0.02")
+    out = []
+    for part in parts:
+        try:
+            t = float(part)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{part!r} is not a time in s (give e.g. --at 0.01,0.02)"
+            ) from None
+        if not np.isfinite(t):
+            raise argparse.ArgumentTypeError(f"{part!r} is not a finite time in s")
+        out.append(t)
+    return out
 
-    def __init__(self) -> None:
+
+def _duration(seconds: float) -> str:
+    """A wall-clock duration as ``12 s`` or ``3 min 05 s``."""
+    s = max(0, round(seconds))
+    return f"{s} s" if s < 60 else f"{s // 60} min {s % 60:02d} s"
+
+
+class Progress:
+    """A one-line progress display on a terminal's stderr: the simulated time, the
+    percentage done, the wall time elapsed and the time left (from the rate so far).
+
+    Parameters
+    ----------
+    stream : text file, optional
+        Where the line is written (default: ``sys.stderr``).
+    clock : callable, optional
+        Wall clock in s (default: :func:`time.monotonic`).
+    """
+
+    #: Shortest wall time between two updates of the line, s.
+    INTERVAL = 0.25
+
+    def __init__(
+        self, stream: TextIO | None = None, clock: Callable[[], float] = time.monotonic
+    ) -> None:
+        self.stream = stream if stream is not None else sys.stderr
+        self.clock = clock
+        self.start = clock()
         self.shown = -1
+        self.last = -self.INTERVAL
+        self.width = 0
 
     def __call__(self, t: float, t_end: float) -> None:
-        pct = int(100 * t / t_end) if t_end > 0 else 100
-        if pct != self.shown:
-            self.shown = pct
-            sys.stderr.write(f"\rsimulating: t = {t:.5f} s of {t_end:g} s ({pct:3d} %)")
-            sys.stderr.flush()
+        pct = min(100, int(100 * t / t_end)) if t_end > 0 else 100
+        now = self.clock()
+        if pct == self.shown and now - self.last < self.INTERVAL:
+            return
+        self.shown, self.last = pct, now
+        elapsed = now - self.start
+        frac = t / t_end if t_end > 0 else 1.0
+        left = (
+            f"about {_duration(elapsed * (1 - frac) / frac)} left"
+            if 0 < frac
+            else "time left unknown"
+        )
+        line = (
+            f"simulating: t = {t:.5f} s of {t_end:g} s ({pct:3d} %), "
+            f"{_duration(elapsed)} elapsed, {left}"
+        )
+        self.stream.write("\r" + line.ljust(self.width))
+        self.width = len(line)
+        self.stream.flush()
 
     def done(self) -> None:
+        """Clear the line."""
         if self.shown >= 0:
-            sys.stderr.write("\r" + " " * 60 + "\r")
-            sys.stderr.flush()
+            self.stream.write("\r" + " " * self.width + "\r")
+            self.stream.flush()
 
 
 def run(args: argparse.Namespace) -> int:
@@ -165,21 +245,60 @@ def outcome(result: StudyResult) -> Outcome:
         else f"{hull.name}: prescribed motion"
     )
     figures = {"history": lambda: plots.plot_history(history, title)}
+    chosen = chosen_rows(history, study.every, study.at)
+    data: dict = {"mesh": str(study.mesh), **summary}
+    if chosen is None:
+        data["history"] = history.columns()
+    else:
+        data["rows"] = {"every": study.every, "at": study.at, "index": chosen}
+        data["history"] = {k: v[chosen] for k, v in history.columns().items()}
     if np.any(history.forward_speed != 0):
         x = hull.bounds[:, 0]
         figures["footprint"] = lambda: plots.plot_footprint(
             [history], [hull.name], (float(x[0]), float(x[1]))
         )
     return Outcome(
-        table=_table(hull, history, summary, solver_label(study)),
-        data={"mesh": str(study.mesh), **summary, "history": history.columns()},
+        table=_table(hull, history, summary, solver_label(study), chosen, study),
+        data=data,
         csv_columns=list(history.COLUMNS),
-        csv_rows=history_records(history),
+        csv_rows=history_records(history, indices=chosen),
         figures=figures,
     )
 
 
-def _table(hull, history, summary, solver_text) -> str:
+def chosen_rows(history, every: int | None, at) -> list[int] | None:
+    """The instants asked for: every ``every``-th with the first and the last, or the one
+    nearest each time of ``at`` (s, in time order, each once); None when neither is given.
+
+    Raises
+    ------
+    InputError
+        A time of ``at`` outside the run, naming its range.
+    """
+    n = len(history)
+    if every is not None:
+        idx = list(range(0, n, every))
+        if n and idx[-1] != n - 1:
+            idx.append(n - 1)
+        return idx
+    if at is None:
+        return None
+    t = np.asarray(history.t, dtype=float)
+    if n == 0:
+        raise InputError("--at: the run has no instant to show")
+    lo, hi = float(t[0]), float(t[-1])
+    slack = 1e-9 * max(abs(lo), abs(hi), 1e-300)
+    for ti in at:
+        if not lo - slack <= ti <= hi + slack:
+            ended = STOP_RULES.get(history.stop_reason, history.stop_reason)
+            raise InputError(
+                f"--at {ti:g} s is outside the run, which goes from t = {lo:g} to {hi:g} s "
+                f"(ended: {ended}); give times in that range"
+            )
+    return sorted({int(np.argmin(np.abs(t - ti))) for ti in at})
+
+
+def _table(hull, history, summary, solver_text, chosen, study) -> str:
     s = history.settings
     every = max(1, -(-len(history) // TABLE_ROWS))
     columns: tuple[Column, ...] = HISTORY_COLUMNS
@@ -189,15 +308,24 @@ def _table(hull, history, summary, solver_text) -> str:
     head = f"{hull.name}: {history.mode}, {mass}, solver {solver_text}, " + (
         f"{s['slices']} slices, dt {s['dt']:g} s" if "dt" in s else f"{s['slices']} slices"
     )
-    lines = [head, "", table_text(columns, history_records(history, every))]
-    if every > 1:
-        lines.append(f"(one instant in {every} of {len(history)} shown; --format csv for all)")
+    if chosen is not None:
+        lines = [head, "", table_text(columns, history_records(history, indices=chosen))]
+        how = f"every {study.every}" if study.every is not None else "nearest the times asked"
+        lines.append(f"({len(chosen)} of {len(history)} instants shown, {how})")
+    else:
+        lines = [head, "", table_text(columns, history_records(history, every))]
+        if every > 1:
+            lines.append(
+                f"(one instant in {every} of {len(history)} shown; --every N or --at S,S for "
+                "others, --format csv for all)"
+            )
     lines.append("")
     if summary["peak"] is not None:
         pk = summary["peak"]
         lines.append(
-            f"peak force {pk['force']:.3f} N at t = {pk['t']:.5f} s (draft {pk['draft']:.5f} "
-            f"m, velocity {pk['velocity']:.4f} m/s, acceleration {pk['acceleration']:.3f} m/s^2)"
+            f"peak force {significant(pk['force'])} N at t = {pk['t']:.5f} s "
+            f"(draft {pk['draft']:.5f} m, velocity {pk['velocity']:.4f} m/s, "
+            f"acceleration {pk['acceleration']:.3f} m/s^2)"
         )
     reason = history.stop_reason
     lines.append(f"ended: {STOP_RULES.get(reason, reason)}")

@@ -119,6 +119,12 @@ class Study:
         Largest share of the force that flagged slices may carry before a run stops.
     stations : int, optional
         Stations of the sectional area curve (``info``, default 40).
+    every : int, optional
+        Rows of a simulation's outputs: every Nth instant, with the first and the last
+        (default: the whole run in CSV and JSON, about 40 rows in a table).
+    at : tuple of float, optional
+        Rows of a simulation's outputs: the instants nearest these times, s (not with
+        ``every``).
     format : str, optional
         Output format: ``table``, ``json`` or ``csv``.
     output, plot : str, optional
@@ -164,6 +170,8 @@ class Study:
     continue_invalid: bool = False
     max_flagged_share: float = MAX_FLAGGED_SHARE
     stations: int | None = None
+    every: int | None = None
+    at: tuple[float, ...] | None = None
     format: str | None = None
     output: str | None = None
     plot: str | None = None
@@ -179,6 +187,10 @@ class Study:
             object.__setattr__(self, "slices", (self.slices,))
         elif self.slices is not None:
             object.__setattr__(self, "slices", tuple(self.slices))
+        if isinstance(self.at, int | float):
+            object.__setattr__(self, "at", (float(self.at),))
+        elif self.at is not None:
+            object.__setattr__(self, "at", tuple(float(t) for t in self.at))
         if isinstance(self.solver_options, Mapping):
             object.__setattr__(self, "solver_options", tuple(self.solver_options.items()))
         if self.slices is not None:
@@ -200,6 +212,7 @@ class Study:
             )
         if self.command == "simulate":
             self._check_motion()
+            self._check_rows()
 
     def _check_values(self) -> None:
         """The state and the water, checked by the objects the library computes with (so
@@ -249,6 +262,24 @@ class Study:
                 f"{', '.join(given)} (the table's columns t, penetration, velocity and "
                 "optionally pitch_deg, pitch_rate_deg_s, forward_speed give it)"
             )
+
+    def _check_rows(self) -> None:
+        """``every`` and ``at``: one of them, a positive step, times inside a free fall."""
+        if self.every is not None and self.every < 1:
+            self._refuse(f"--every {self.every!r} is not positive (give 1 or more)")
+        if self.at is None:
+            return
+        if self.every is not None:
+            self._refuse("give --every or --at, not both")
+        if not self.at:
+            self._refuse("--at needs one or more times in s, e.g. --at 0.01,0.02")
+        if self.kinematics is None and self.t_end is not None:
+            outside = [t for t in self.at if not 0.0 <= t <= self.t_end]
+            if outside:
+                self._refuse(
+                    f"--at {outside[0]:g} s is outside the run, from 0 to {self.t_end:g} s; "
+                    "give times in that range"
+                )
 
     # -- derived values -------------------------------------------------------------------
 
@@ -334,7 +365,7 @@ class Study:
                 value = str(value)
             elif name == "solver_options":
                 value = tuple(value.items())
-            elif name in ("slices", "cg", "keep_box"):
+            elif name in ("slices", "cg", "keep_box", "at"):
                 value = tuple(value)
             values[_FIELD_NAMES.get(name, name)] = value
         return cls(command=command, **values)
@@ -393,7 +424,7 @@ class Study:
                 continue
             if name in ("pitch", "pitch_rate") and value == 0.0:
                 continue
-            if name in ("slices", "cg"):
+            if name in ("slices", "cg", "at"):
                 value = list(value)
             if name == "keep_box":
                 box = parse_box(value)
@@ -423,6 +454,8 @@ class Study:
                 argv.append(f"--cg={value[0]!r},{value[1]!r}")
             elif name == "slices":
                 argv.append(f"--slices={','.join(str(n) for n in value)}")
+            elif name == "at":
+                argv.append(f"--at={','.join(repr(float(t)) for t in value)}")
             elif name == "keep_box" and not isinstance(value, str):
                 argv.append(f"--keep-box={','.join(repr(float(x)) for x in value)}")
             elif isinstance(value, float):
