@@ -1,4 +1,4 @@
-"""Loading a hull mesh: STL/OBJ to an immutable :class:`Hull` in SI units and the body frame.
+"""Loading a hull mesh: a mesh file to an immutable :class:`Hull` in SI units and the body frame.
 
 The body frame (:mod:`hullslice.axes`): ``x`` forward, ``y`` to port, ``z`` up, metres.
 Files are read by :mod:`hullslice.readers` and prepared by :mod:`hullslice.prepare`; every
@@ -178,17 +178,46 @@ class Hull:
         v = (v * scale) @ rot.T
         src = {"units": str(units), "forward": str(forward), "up": str(up), **(source or {})}
         return cls(
-            v,
-            faces,
-            mass=mass,
-            name=name,
-            source=src,
-            mass_distribution=mass_distribution,
-            cg=cg,
-            inertia=inertia,
-            mass_properties=mass_properties,
-            fix=fix,
-        )
+            v, faces, mass=mass, name=name, source=src, mass_distribution=mass_distribution,
+            cg=cg, inertia=inertia, mass_properties=mass_properties, fix=fix,
+        )  # fmt: skip
+
+    @classmethod
+    def from_trimesh(cls, mesh, **kwargs) -> Hull:
+        """Build a hull from a ``trimesh.Trimesh`` (or a ``trimesh.Scene``, its meshes placed
+        and joined), checked and repaired as a file is.
+
+        ``mesh`` is in ``units`` and mesh axes; ``kwargs`` are those of
+        :meth:`Hull.from_arrays` (``units``, ``forward``, ``up``, ``mass``, ``name``, ...).
+        """
+        from .readers.extra import trimesh_arrays
+
+        return cls.from_arrays(*trimesh_arrays(mesh), **kwargs)
+
+    def to_trimesh(self):
+        """The checked and repaired body as a ``trimesh.Trimesh`` in m, body frame (copies
+        of :attr:`vertices` and :attr:`faces`, in their order). Needs trimesh (``pip
+        install 'hullslice[formats]'``)."""
+        from .readers.extra import to_trimesh
+
+        return to_trimesh(self._vertices, self._faces)
+
+    def save(self, path: str | os.PathLike, format: str | None = None, units: str = "m") -> Path:
+        """Write the checked and repaired mesh, completely or not at all, in the body frame.
+
+        Parameters
+        ----------
+        path : str or path-like
+            The file; its extension gives the format: ``.stl`` (binary), ``.obj``, ``.tri``
+            (Cart3D), and with ``hullslice[formats]`` ``.ply``, ``.off``, ``.glb``, ``.3mf``.
+        format : str, optional
+            The format, instead of the extension.
+        units : str
+            Length unit of the coordinates written: ``m, cm, mm, in, ft`` (default ``m``).
+        """
+        from .readers.write import write_mesh
+
+        return write_mesh(self._vertices, self._faces, path, format, name=self.name, units=units)
 
     def with_mass(
         self,
@@ -340,31 +369,12 @@ class Hull:
 
 
 #: Cached attributes that depend on the geometry only (kept by Hull.with_mass).
-_GEOMETRY = (
-    "_vertices",
-    "_faces",
-    "_manifold",
-    "name",
-    "source",
-    "bounds",
-    "size",
-    "volume",
-    "centroid",
-    "edges",
-)
-
+_GEOMETRY = ("_vertices", "_faces", "_manifold", "name", "source", "bounds", "size", "volume",
+             "centroid", "edges")  # fmt: skip
 
 #: What a pickled hull holds (see Hull.__getstate__).
-_PICKLED = (
-    "_vertices",
-    "_faces",
-    "name",
-    "source",
-    "mass",
-    "mass_distribution",
-    "_cg_given",
-    "_inertia_given",
-)
+_PICKLED = ("_vertices", "_faces", "name", "source", "mass", "mass_distribution", "_cg_given",
+            "_inertia_given")  # fmt: skip
 
 
 def load_hull(
@@ -386,13 +396,14 @@ def load_hull(
     mass_properties: MassProperties | None = None,
     fix: bool = True,
 ) -> Hull:
-    """Read an STL or OBJ file into a :class:`Hull`.
+    """Read a mesh file into a :class:`Hull` (the formats of :data:`SUPPORTED_FORMATS`).
 
     Parameters
     ----------
     path : str, path-like or binary file object
-        The mesh file, or a file open in binary mode; the extension of its name (``.stl``
-        or ``.obj``) gives the format unless ``format`` does.
+        The mesh file, or a file open in binary mode; the extension of its name (``.stl``,
+        ``.obj``, ``.tri``; ``.ply``, ``.off``, ``.glb``, ``.gltf``, ``.3mf``, ``.msh`` with
+        the extra ``hullslice[formats]``) gives the format unless ``format`` does.
     units : str
         Length unit of the file's coordinates: ``m, cm, mm, in, ft`` (default ``m``).
     forward : str
@@ -424,7 +435,7 @@ def load_hull(
         ``xmin, xmax, ymin, ymax, zmin, zmax`` in m, body frame after scaling: only the
         part of the body inside this box is kept (cut by manifold3d).
     format : str, optional
-        ``"stl"`` or ``"obj"``: needed for a file object without a name.
+        The format (``"stl"``, ``"obj"``, ...): needed for a file object without a name.
     mass_properties : MassProperties, optional
         All four mass properties in one (not with their keywords).
     fix : bool
@@ -462,23 +473,13 @@ def load_hull(
         mass_properties, mass=mass, mass_distribution=mass_distribution, cg=cg, inertia=inertia
     )
     source = {
-        "repairs": tuple(prep.notes),
-        "scale": prep.scale,
-        "bodies": prep.bodies,
-        "kept": prep.kept,
-        "path": str(Path(file_name)) if file_name else None,
-    }
+        "repairs": tuple(prep.notes), "scale": prep.scale, "bodies": prep.bodies,
+        "kept": prep.kept, "path": str(Path(file_name)) if file_name else None,
+    }  # fmt: skip
     hull = Hull.from_arrays(
-        prep.vertices,
-        prep.faces,
-        units=units,
-        forward=forward,
-        up=up,
-        name=name,
-        mass_properties=props if box is None else None,
-        fix=fix,
-        source=source,
-    )
+        prep.vertices, prep.faces, units=units, forward=forward, up=up, name=name,
+        mass_properties=props if box is None else None, fix=fix, source=source,
+    )  # fmt: skip
     if box is not None:
         hull = _cut_to_box(hull, box, props, fix)
     return hull

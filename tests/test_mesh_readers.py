@@ -19,7 +19,7 @@ PRISM = MESHES / "paper_prism.stl"
 
 
 def test_the_table_names_every_format():
-    assert set(READERS) == {"stl", "obj"}
+    assert set(READERS) == {"stl", "obj", "tri", "ply", "off", "glb", "gltf", "3mf", "msh"}
     assert SUPPORTED_FORMATS == tuple(READERS)
     assert read_mesh is read_mesh_of_readers
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -15,6 +16,7 @@ from .common import (
     Outcome,
     add_mesh_options,
     add_output_options,
+    check_path,
     compute,
     finish,
     positive_int,
@@ -57,16 +59,57 @@ def add_parser(sub) -> None:
         help="stations of the sectional area curve, along the body's length (default: 40)",
     )
     add_output_options(p, plot="the sectional area curve")
+    p.add_argument(
+        "--write-mesh",
+        metavar="OUT.stl",
+        help="also write the mesh as checked and repaired (after --units, axes, --scale, "
+        "--keep, --keep-box), in metres and the body frame (x forward, z up): binary STL, "
+        "OBJ or Cart3D .tri by the extension; .ply, .off, .glb or .3mf need "
+        "pip install 'hullslice[formats]'",
+    )
     p.set_defaults(func=run)
 
 
 def run(args: argparse.Namespace) -> int:
-    return run_study(Study.from_args(args), args.save_case)
+    study = Study.from_args(args)
+    if args.write_mesh:
+        check_mesh_output(args.write_mesh, study, args.save_case)
+    return run_study(study, args.save_case, args.write_mesh)
 
 
-def run_study(study: Study, save_case: str | None = None) -> int:
-    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file."""
-    return finish(study, outcome(compute(study, save_case)), save_case)
+def check_mesh_output(out: str, study: Study, save_case: str | None = None) -> None:
+    """Refuse a ``--write-mesh`` path before any work: a folder, a missing folder, one of
+    the inputs, another output of the run, or a format hullslice does not write."""
+    from ..errors import InputError
+    from ..readers.write import WRITERS
+
+    check_path(out, study, "--write-mesh")
+    ext = Path(out).suffix.lower().lstrip(".")
+    if ext not in WRITERS:
+        raise InputError(
+            f"cannot write {printable(out)!r} (--write-mesh): a mesh is written as "
+            f"{', '.join(WRITERS)} by the file's extension; name it .stl or .obj"
+        )
+    for option, other in (
+        ("--output", study.output),
+        ("--plot", study.plot),
+        ("--save-case", save_case),
+    ):
+        if other and Path(other).resolve() == Path(out).resolve():
+            raise InputError(
+                f"cannot write {printable(out)!r} (--write-mesh): {option} writes the same "
+                "file; give another file"
+            )
+
+
+def run_study(study: Study, save_case: str | None = None, write_mesh: str | None = None) -> int:
+    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file,
+    ``write_mesh`` the checked and repaired mesh (m, body frame)."""
+    result = compute(study, save_case)
+    if write_mesh:
+        result.hull.save(write_mesh)
+        print(f"wrote {write_mesh}", file=sys.stderr)
+    return finish(study, outcome(result), save_case)
 
 
 def outcome(result: StudyResult) -> Outcome:

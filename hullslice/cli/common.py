@@ -123,7 +123,12 @@ def solver_label(study: Study) -> str:
 
 
 def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) -> None:
-    p.add_argument("mesh", metavar="MESH", help="hull mesh file, STL or OBJ")
+    p.add_argument(
+        "mesh",
+        metavar="MESH",
+        help="hull mesh file: STL, OBJ or Cart3D .tri; PLY, OFF, GLB/glTF, 3MF or Gmsh .msh "
+        "with pip install 'hullslice[formats]'",
+    )
     g = p.add_argument_group("mesh options")
     g.add_argument(
         "--units",

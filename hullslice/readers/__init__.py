@@ -7,8 +7,15 @@ which is bounded by :data:`~hullslice.readers.base.MAX_FILE_BYTES` (a binary STL
 header claims more triangles than the file holds is refused before anything is
 allocated). The same checks apply whatever the format and however the file is given.
 
+STL, OBJ and Cart3D ``.tri`` are read by hullslice's own parsers. PLY, OFF, GLB/glTF and
+3MF (through trimesh) and Gmsh ``.msh`` (through meshio) are read with the optional extra
+``hullslice[formats]`` (:mod:`hullslice.readers.extra`): without it such a file gives one
+line naming what to install. Every format's vertices and faces then go through the same
+checks and repairs.
+
 A new format is a module with a function ``read(fh, size) -> (vertices, faces)`` (see
 :class:`~hullslice.readers.base.Reader`) and a row in :data:`READERS`.
+:func:`~hullslice.readers.write.write_mesh` writes a mesh back out.
 """
 
 from __future__ import annotations
@@ -22,10 +29,13 @@ import numpy as np
 
 from ..errors import InputError, MeshError
 from .base import MAX_FILE_BYTES, FormatError, Reader
+from .extra import EXTRA_READERS
 from .obj import read_obj
 from .stl import read_stl
+from .tri import read_tri
 
 __all__ = [
+    "EXTRA_FORMATS",
     "MAX_FILE_BYTES",
     "READERS",
     "SUPPORTED_FORMATS",
@@ -36,7 +46,10 @@ __all__ = [
 ]
 
 #: The reader of each format, by file extension (lower case, without the dot).
-READERS: dict[str, Reader] = {"stl": read_stl, "obj": read_obj}
+READERS: dict[str, Reader] = {"stl": read_stl, "obj": read_obj, "tri": read_tri, **EXTRA_READERS}
+
+#: Formats read with the optional extra ``hullslice[formats]`` (trimesh, meshio).
+EXTRA_FORMATS = tuple(EXTRA_READERS)
 
 #: File formats :func:`~hullslice.load_hull` reads (by file extension).
 SUPPORTED_FORMATS = tuple(READERS)
@@ -86,7 +99,9 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
         The mesh file, or a file open for reading in binary mode (``open(path, "rb")``,
         ``io.BytesIO``), read from its current position.
     format : str, optional
-        ``"stl"`` or ``"obj"``; default: the file name's extension.
+        One of :data:`SUPPORTED_FORMATS` (``"stl"``, ``"obj"``, ``"tri"``, and with the
+        extra ``hullslice[formats]`` ``"ply"``, ``"off"``, ``"glb"``, ``"gltf"``, ``"3mf"``,
+        ``"msh"``); default: the file name's extension.
 
     Returns
     -------
@@ -101,6 +116,9 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
         or holds no triangles; the message says which and, for text formats, on what line.
     InputError
         A file object without a name and no ``format``, or one open in text mode.
+    MissingDependencyError
+        A format of the extra ``hullslice[formats]`` without it installed: the message
+        names what to install.
     """
     label = source_name(source) or "(file object)"
     if not _is_file(source):
@@ -108,12 +126,13 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
         if not path.exists():
             raise MeshError(f"mesh file {label!r} does not exist")
         if not path.is_file():
-            raise MeshError(f"mesh path {label!r} is not a file: give the path of an STL or OBJ")
+            raise MeshError(f"mesh path {label!r} is not a file: give the path of a mesh file")
     ext = format_of(source, format)
     if ext not in READERS:
         raise MeshError(
             f"mesh file {label!r} has format {ext or '(no extension)'!r}; "
-            f"hullslice reads {', '.join(SUPPORTED_FORMATS)}: export the hull as STL or OBJ"
+            f"hullslice reads {', '.join(SUPPORTED_FORMATS)}: export the hull as STL or OBJ, "
+            "or give format="
         )
     try:
         if _is_file(source):

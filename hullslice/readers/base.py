@@ -13,11 +13,14 @@ from typing import IO, Protocol
 
 import numpy as np
 
-__all__ = ["MAX_FILE_BYTES", "FormatError", "Reader"]
+__all__ = ["MAX_FILE_BYTES", "MAX_UNPACKED_BYTES", "FormatError", "Reader"]
 
 #: Largest file :func:`~hullslice.load_hull` reads, in bytes (about 4 GiB holds a 80M-face
 #: binary STL).
 MAX_FILE_BYTES = 4 * 1024**3
+
+#: Largest total a compressed mesh file (a 3MF zip archive) may unpack to, in bytes.
+MAX_UNPACKED_BYTES = MAX_FILE_BYTES
 
 
 class FormatError(ValueError):

@@ -1,0 +1,202 @@
+"""PLY, OFF, GLB/glTF and 3MF through trimesh, Gmsh ``.msh`` through meshio: the readers
+of the optional extra ``hullslice[formats]``.
+
+Each reader takes the bytes of the file (bounded by the size limit) and hands them to the
+library as data, never as a path: no other file is opened (a glTF whose buffers are
+separate files is refused: export it as ``.glb``), and a 3MF archive is refused when it
+would unpack to more than :data:`~hullslice.readers.base.MAX_UNPACKED_BYTES`. The vertices
+and faces are returned as in the file, without the library's own merging or repair, so that
+hullslice's checks apply to them as to any other format.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import tempfile
+import zipfile
+from types import ModuleType
+from typing import IO, Any
+
+import numpy as np
+
+from ..errors import MissingDependencyError
+from .base import MAX_UNPACKED_BYTES, FormatError, Reader
+
+__all__ = ["EXTRA_READERS", "need", "to_trimesh", "trimesh_arrays"]
+
+#: What each format of the extra needs, by extension.
+_NEEDS = {
+    "ply": ("trimesh",),
+    "off": ("trimesh",),
+    "glb": ("trimesh",),
+    "gltf": ("trimesh",),
+    "3mf": ("trimesh", "lxml", "networkx"),
+    "msh": ("meshio",),
+}
+
+
+def need(module: str, what: str) -> ModuleType:
+    """Import an optional dependency, or raise the one-line hint naming what to install.
+
+    Raises
+    ------
+    MissingDependencyError
+        ``module`` is not installed.
+    """
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ImportError:
+        raise MissingDependencyError(
+            f"{what} needs {module}: pip install 'hullslice[formats]' (or pip install {module})"
+        ) from None
+
+
+def _data(fh: IO[bytes], size: int) -> bytes:
+    data = fh.read(size)
+    if len(data) != size:
+        raise FormatError(f"it holds {len(data)} bytes where {size} were expected")
+    return data
+
+
+def _check_zip(data: bytes) -> None:
+    """Refuse a 3MF archive that is not a zip file or unpacks to too much."""
+    try:
+        with zipfile.ZipFile(io.BytesIO(data)) as z:
+            unpacked = sum(i.file_size for i in z.infolist())
+    except (zipfile.BadZipFile, ValueError) as exc:
+        raise FormatError(f"a 3MF is a zip archive and this one is not ({exc})") from None
+    if unpacked > MAX_UNPACKED_BYTES:
+        raise FormatError(
+            f"it unpacks to {unpacked / 1024**3:.1f} GiB, more than the "
+            f"{MAX_UNPACKED_BYTES / 1024**3:.0f} GiB hullslice reads: decimate the mesh"
+        )
+
+
+def _check_gltf(data: bytes) -> None:
+    """Refuse a glTF whose buffers are separate files (hullslice opens no other file)."""
+    try:
+        tree = json.loads(data)
+    except (ValueError, UnicodeDecodeError) as exc:
+        raise FormatError(f"a .gltf is JSON text and this one is not ({exc})") from None
+    buffers = tree.get("buffers", []) if isinstance(tree, dict) else []
+    for b in buffers if isinstance(buffers, list) else []:
+        uri = b.get("uri") if isinstance(b, dict) else None
+        if isinstance(uri, str) and not uri.startswith("data:"):
+            raise FormatError(
+                f"its buffer {uri[:60]!r} is a separate file, which hullslice does not "
+                "open: export the mesh as .glb (one binary file) or with embedded buffers"
+            )
+
+
+def _trimesh_reader(ext: str) -> Reader:
+    def read(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
+        trimesh = need("trimesh", f"reading {ext.upper()} files")
+        for module in _NEEDS[ext][1:]:
+            need(module, f"reading {ext.upper()} files")
+        data = _data(fh, size)
+        if ext == "3mf":
+            _check_zip(data)
+        elif ext == "gltf":
+            _check_gltf(data)
+        try:
+            mesh = trimesh.load(io.BytesIO(data), file_type=ext, force="mesh", process=False)
+        except MemoryError:
+            raise
+        except Exception as exc:  # a third-party parser: any failure is the file's
+            raise FormatError(f"trimesh cannot read it ({_reason(exc)})") from None
+        return trimesh_arrays(mesh)
+
+    read.__doc__ = f"{ext.upper()} through trimesh (the extra hullslice[formats])."
+    return read
+
+
+def read_msh(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gmsh ``.msh`` (versions 2.2 and 4, ASCII or binary) through meshio: its triangles,
+    or the boundary of its tetrahedra when it has no triangles."""
+    need("meshio", "reading Gmsh .msh files")
+    from meshio.gmsh.main import read_buffer
+
+    try:
+        fh.fileno()  # numpy reads meshio's blocks from a real file only
+        mesh = _meshio_read(read_buffer, fh)
+    except (OSError, AttributeError, io.UnsupportedOperation):
+        with tempfile.TemporaryFile() as tmp:
+            tmp.write(_data(fh, size))
+            tmp.seek(0)
+            mesh = _meshio_read(read_buffer, tmp)
+    tris = [c.data for c in mesh.cells if c.type == "triangle"]
+    if tris:
+        return np.asarray(mesh.points, dtype=np.float64), np.concatenate(tris).astype(np.int64)
+    tets = [c.data for c in mesh.cells if c.type == "tetra"]
+    if not tets:
+        return np.asarray(mesh.points, dtype=np.float64), np.empty((0, 3), dtype=np.int64)
+    v = np.asarray(mesh.points, dtype=np.float64)
+    return v, _tet_boundary(v, np.concatenate(tets).astype(np.int64))
+
+
+def _meshio_read(read_buffer, fh) -> Any:
+    try:
+        return read_buffer(fh)
+    except MemoryError:
+        raise
+    except Exception as exc:  # a third-party parser: any failure is the file's
+        raise FormatError(f"meshio cannot read it as Gmsh ({_reason(exc)})") from None
+
+
+def _tet_boundary(v: np.ndarray, tets: np.ndarray) -> np.ndarray:
+    """The faces of ``tets`` that belong to one tetrahedron only, facing out."""
+    if len(tets) and (tets.min() < 0 or tets.max() >= len(v)):
+        raise FormatError("a tetrahedron refers to a node that does not exist")
+    a, b, c, d = (v[tets[:, k]] for k in range(4))
+    flip = np.einsum("ij,ij->i", b - a, np.cross(c - a, d - a)) < 0
+    tets = tets.copy()
+    tets[flip, 2], tets[flip, 3] = tets[flip, 3], tets[flip, 2].copy()
+    faces = tets[:, [[1, 2, 3], [0, 3, 2], [0, 1, 3], [0, 2, 1]]].reshape(-1, 3)
+    _, inverse, count = np.unique(
+        np.sort(faces, axis=1), axis=0, return_inverse=True, return_counts=True
+    )
+    return faces[count[inverse.ravel()] == 1]
+
+
+def _reason(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())[:160]
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__
+
+
+def trimesh_arrays(mesh: Any) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices and triangles of a ``trimesh.Trimesh`` (or of a ``trimesh.Scene``, its
+    meshes placed and joined), as float64 and int64 arrays.
+
+    Raises
+    ------
+    InputError
+        ``mesh`` is neither.
+    """
+    from ..errors import InputError
+
+    if hasattr(mesh, "graph") and hasattr(mesh, "dump"):  # a Scene: placed and joined
+        mesh = mesh.to_geometry() if hasattr(mesh, "to_geometry") else mesh.dump(concatenate=True)
+    if not (hasattr(mesh, "vertices") and hasattr(mesh, "faces")):
+        raise InputError(
+            f"expected a trimesh.Trimesh or trimesh.Scene, got {type(mesh).__name__}: give a "
+            "triangle mesh"
+        )
+    v = np.array(mesh.vertices, dtype=np.float64).reshape(-1, 3)
+    f = np.array(mesh.faces, dtype=np.int64).reshape(-1, 3)
+    return v, f
+
+
+def to_trimesh(vertices: np.ndarray, faces: np.ndarray) -> Any:
+    """A ``trimesh.Trimesh`` of copies of the arrays, unprocessed (same vertex order)."""
+    trimesh = need("trimesh", "Hull.to_trimesh")
+    return trimesh.Trimesh(vertices=vertices.copy(), faces=faces.copy(), process=False)
+
+
+#: The readers of the extra, by extension.
+EXTRA_READERS: dict[str, Reader] = {
+    **{ext: _trimesh_reader(ext) for ext in ("ply", "off", "glb", "gltf", "3mf")},
+    "msh": read_msh,
+}
