@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import argparse
 import gc
+import importlib.util
 import os
 import statistics
 import subprocess
@@ -337,6 +338,12 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh")
     ap.add_argument("--repeat", type=int, default=5, help="repetitions (default 5)")
     args = ap.parse_args()
+    if importlib.util.find_spec("trimesh") is None:
+        # the comparison with trimesh runs in a process of its own, after minutes of work
+        sys.exit(
+            "benchmarks/run.py: trimesh is not installed (the benchmark compares with it): "
+            'pip install -e ".[test]" or pip install trimesh'
+        )
     table = Table()
     print(f"hullslice {hs.__version__}, numpy {np.__version__}, {os.cpu_count()} cores")
     with tempfile.TemporaryDirectory() as tmp:

@@ -11,7 +11,7 @@ command takes it:
 - a **result** is a run that works although the input looks odd, checked the same way.
 
 Entries marked as library calls (case files, before ``hullslice run`` exists) raise the
-same errors from the Python API. The README's "Bad input" table is this catalogue:
+same errors from the Python API. The "Bad input" table of docs/meshes.md is this catalogue:
 ``python -m tests.test_bad_input`` prints it, and a test checks that the two agree.
 """
 
@@ -255,9 +255,9 @@ class Bad:
     id : str
         Test id.
     input : str
-        The bad input, as the README lists it.
+        The bad input, as docs/meshes.md lists it.
     gets : str
-        What the user gets, as the README lists it.
+        What the user gets, as docs/meshes.md lists it.
     argv : callable
         ``argv(tmp)`` makes the files in the folder ``tmp`` and returns the command line;
         None for a library call.
@@ -1915,22 +1915,22 @@ def test_sigterm_raises_where_the_run_is(tmp_path):
     assert signal.getsignal(signal.SIGTERM) is not _raise_terminated
 
 
-# -- the README's table ---------------------------------------------------------------------
+# -- the docs' table -------------------------------------------------------------------------
 
 
 def readme_table() -> str:
-    """The catalogue as the README's Markdown table."""
+    """The catalogue as the Markdown table of docs/meshes.md."""
     rows = ["| Bad input | What you get |", "| --- | --- |"]
     rows += [f"| {b.input} | {b.gets} |" for b in CATALOGUE]
     return "\n".join(rows)
 
 
 def test_the_readme_lists_every_bad_input():
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    readme = (ROOT / "docs" / "meshes.md").read_text(encoding="utf-8")
     assert "## Bad input" in readme
     section = readme.split("## Bad input", 1)[1].split("\n## ", 1)[0]
     assert readme_table() in section, (
-        "the README's Bad input table differs from the catalogue: "
+        "the Bad input table of docs/meshes.md differs from the catalogue: "
         "paste the output of 'python -m tests.test_bad_input'"
     )
 

@@ -242,13 +242,13 @@ def test_ditching_with_free_pitch_runs_with_the_added_mass_on_the_left():
 
 
 def test_the_readme_plugin_example_is_a_working_momentum_solver(paper_hull):
-    # the README's worked example of a momentum-form plugin, run as it is written: with
+    # the plugin guide's worked example of a momentum-form plugin, run as it is written: with
     # gamma = pi / 2 it is the wagner plugin
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    readme = (ROOT / "docs" / "plugins.md").read_text(encoding="utf-8")
     section = readme.split("**A momentum-form solver** implements", 1)[1]
     code = section.split("```python\n", 1)[1].split("```", 1)[0]
     namespace: dict = {}
-    exec(compile(code, "README.md", "exec"), namespace)
+    exec(compile(code, "docs/plugins.md", "exec"), namespace)
     mine = namespace["FlatPlate"](gamma=math.pi / 2)
     assert mine.kind == "momentum"
     ref = hs.compute_force(paper_hull, 0.0383, -3.4943, slices=16, solver="wagner")
