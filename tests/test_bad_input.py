@@ -536,10 +536,11 @@ CATALOGUE: tuple[Bad, ...] = (
     ),
     Bad(
         "unknown-format",
-        "an unknown format (`.step`, `.3mf`, ...)",
-        "error: hullslice reads stl, obj: export the hull as STL or OBJ",
+        "an unknown format (`.step`, `.iges`, ...)",
+        "error: hullslice reads stl, obj, tri, ply, off, glb, gltf, 3mf, msh: export the hull "
+        "as STL or OBJ, or give format=",
         lambda t: ["sections", text(t, "hull.step", "ISO-10303-21;\n"), "--draft", "0.01"],
-        error="hullslice reads stl, obj",
+        error="hullslice reads stl, obj, tri, ply, off, glb, gltf, 3mf, msh",
     ),
     Bad(
         "binary-garbage",
