@@ -1,14 +1,15 @@
 """Sweep throughput: cases per second on 1 and 2 Dask workers, and the cost per case beyond
 the simulation itself.
 
-    python benchmarks/sweep.py [--t-end 0.05] [--repeat 1]
+    python benchmarks/sweep.py [--t-end 0.05,0.2] [--repeat 1]
 
 The sweep: the 1:10 model fuselage (``meshes/fuselage_model.obj``, 128k faces, 60 kg) at
 19 m/s forward, its pitch held (not free), with the fixed slicing (32 slices, cut once per
 pitch), 8 sink rates by 8 pitches = 64 cases of ``--t-end`` seconds at 1 ms steps, each run
-to its end (``continue_invalid``). It runs in this process (``workers=1``, no Dask), then on
-a local cluster of 1 and of 2 worker processes (1 thread each); the cluster's start is timed
-apart. For each: the wall time of ``hullslice.sweep`` (the mesh read and checked, the hull
+to its end (``continue_invalid``); by default twice, with short cases (0.05 s, 50 steps: the
+sweep's fixed costs weigh) and with cases of a ditching's length (0.2 s, 200 steps). It
+runs in this process (``workers=1``, no Dask), then on a local cluster of 1 and of 2 worker
+processes (1 thread each); the cluster's start is timed apart. For each: the wall time of ``hullslice.sweep`` (the mesh read and checked, the hull
 sent to the workers as its state and built by each, the cases, the dataset), the cases per
 second, and the overhead per case, ``(wall time x workers - the cases' own computing time) /
 cases``: what the sweep adds to the simulations (the scheduler, the workers' hulls, the
@@ -69,20 +70,32 @@ def measure(base, grid, client=None, workers=None) -> dict:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--t-end", type=float, default=0.05, help="duration of each case, s")
+    ap.add_argument(
+        "--t-end",
+        type=lambda text: [float(v) for v in text.split(",")],
+        default=[0.05, 0.2],
+        help="duration of each case, s; several, comma-separated, for one sweep each "
+        "(default 0.05,0.2)",
+    )
     ap.add_argument("--repeat", type=int, default=1, help="sweeps per setting (median)")
     args = ap.parse_args()
+    for t_end in args.t_end:
+        run_sweeps(t_end, args.repeat)
+        print()
+
+
+def run_sweeps(t_end: float, repeat: int) -> None:
     from distributed import Client, LocalCluster
 
-    base, grid = study(args.t_end)
+    base, grid = study(t_end)
     t0 = time.perf_counter()
     hs.load_hull(MESH, mass=60.0)
     load = time.perf_counter() - t0
-    print(f"sweep of {len(VELOCITIES) * len(PITCHES)} cases: {MESH.name}, {args.t_end:g} s "
+    print(f"sweep of {len(VELOCITIES) * len(PITCHES)} cases: {MESH.name}, {t_end:g} s "
           f"at 1 ms, fixed slicing, 32 slices; load average {os.getloadavg()[0]:.2f} "
           f"on {os.cpu_count()} cores")  # fmt: skip
     rows = []
-    runs = [measure(base, grid, workers=1) for _ in range(args.repeat)]
+    runs = [measure(base, grid, workers=1) for _ in range(repeat)]
     rows.append(("in this process", 1, None, runs))
     for n in (1, 2):
         t0 = time.perf_counter()
@@ -93,7 +106,7 @@ def main() -> None:
             Client(cluster) as client,
         ):
             startup = time.perf_counter() - t0
-            runs = [measure(base, grid, client=client) for _ in range(args.repeat)]
+            runs = [measure(base, grid, client=client) for _ in range(repeat)]
         rows.append((f"Dask, {n} worker{'s' * (n > 1)}", n, startup, runs))
     ref = rows[0][3][0]["peak"]
     diff = max(float(abs(r["peak"] / ref - 1).max()) for row in rows for r in row[3])
