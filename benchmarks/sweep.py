@@ -3,17 +3,17 @@ the simulation itself.
 
     python benchmarks/sweep.py [--t-end 0.05,0.2] [--repeat 1]
 
-The sweep: the 1:10 model fuselage (``meshes/fuselage_model.obj``, 128k faces, 60 kg) at
-19 m/s forward, its pitch held (not free), with the fixed slicing (32 slices, cut once per
+The sweep: the 1:10 model fuselage (``meshes/fuselage_model.obj``, 128k faces, 60 kg) at 19
+m/s forward, its pitch held (not free), with the fixed slicing (32 slices, cut once per
 pitch), 8 sink rates by 8 pitches = 64 cases of ``--t-end`` seconds at 1 ms steps, each run
 to its end (``continue_invalid``); by default twice, with short cases (0.05 s, 50 steps: the
-sweep's fixed costs weigh) and with cases of a ditching's length (0.2 s, 200 steps). It
-runs in this process (``workers=1``, no Dask), then on a local cluster of 1 and of 2 worker
-processes (1 thread each); the cluster's start is timed apart. For each: the wall time of ``hullslice.sweep`` (the mesh read and checked, the hull
-sent to the workers as its state and built by each, the cases, the dataset), the cases per
-second, and the overhead per case, ``(wall time x workers - the cases' own computing time) /
-cases``: what the sweep adds to the simulations (the scheduler, the workers' hulls, the
-results, idle workers at the end).
+sweep's fixed costs weigh) and with cases of a ditching's length (0.2 s, 200 steps). It runs
+in this process (``workers=1``, no Dask), then on a local cluster of 1 and of 2 worker
+processes (1 thread each); the cluster's start is timed apart. For each: the wall time of
+``hullslice.sweep`` (the mesh read and checked, the hull sent to the workers as its state
+and built by each, the cases, the dataset), the cases per second, and the overhead per case,
+``(wall time x workers - the cases' own computing time) / cases``: what the sweep adds to
+the simulations (the scheduler, the workers' hulls, the results, idle workers at the end).
 Targets: 2 workers at least 1.7 times as fast as 1; overhead below 50 ms a case. The machine
 may be shared: its load average is printed with the figures.
 """
