@@ -3,8 +3,8 @@ the simulation itself.
 
     python benchmarks/sweep.py [--t-end 0.05,0.2] [--repeat 1]
 
-The sweep: the 1:10 model fuselage (``meshes/fuselage_model.obj``, 128k faces, 60 kg) at 19
-m/s forward, its pitch held (not free), with the fixed slicing (32 slices, cut once per
+The sweep: the 1:10 model fuselage (``meshes/fuselage_model.obj``, 128k faces, 60 kg) at
+19 m/s forward, its pitch held (not free), with the fixed slicing (32 slices, cut once per
 pitch), 8 sink rates by 8 pitches = 64 cases of ``--t-end`` seconds at 1 ms steps, each run
 to its end (``continue_invalid``); by default twice, with short cases (0.05 s, 50 steps: the
 sweep's fixed costs weigh) and with cases of a ditching's length (0.2 s, 200 steps). It runs
