@@ -34,7 +34,7 @@ from typing import Any
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
 from .limits import MAX_CASE_BYTES
-from .paths import WRITTEN_KEYS, confined, printable, toml_string
+from .paths import WRITTEN_KEYS, confined, printable, toml_string, toml_value
 from .safety import non_finite
 from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
@@ -380,9 +380,22 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
     Raises
     ------
     CaseError
-        The file is missing, not a file, larger than :data:`MAX_CASE_BYTES`, not UTF-8,
-        not valid TOML (the message gives the line), or its content fails
+        The file cannot be read as TOML (:func:`read_case_file`), or its content fails
         :func:`validate_case`.
+    """
+    data, p, name = read_case_file(path)
+    return validate_case(data, base=p.parent, source=name)
+
+
+def read_case_file(path: str | os.PathLike) -> tuple[dict[str, Any], Path, str]:
+    """The TOML of a case file, unchecked: ``(data, path, printable name)``.
+
+    Raises
+    ------
+    CaseError
+        The file is missing, not a file, larger than :data:`MAX_CASE_BYTES`, not UTF-8
+        (a byte-order mark is allowed), cannot be read, or is not valid TOML (the message
+        gives the line).
     """
     p = Path(path)
     name = printable(p)
@@ -402,8 +415,7 @@ def load_case(path: str | os.PathLike) -> dict[str, Any]:
     except OSError as exc:
         raise CaseError(f"case file {name!r} cannot be read: {exc.strerror or exc}") from None
     try:
-        data = tomllib.loads(text)
-        return validate_case(data, base=p.parent, source=name)
+        return tomllib.loads(text), p, name
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(f"case file {name!r} is not valid TOML: {exc}") from None
     except RecursionError:
@@ -444,23 +456,6 @@ def case_command(case: Mapping[str, Any]) -> str:
     return "info"
 
 
-def _toml_value(value: Any) -> str:
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        if not math.isfinite(value):
-            raise CaseError(f"case: {value!r} cannot be written to a case file")
-        text = repr(value)
-        return text if any(c in text for c in ".en") else text + ".0"
-    if isinstance(value, str | Path):
-        return toml_string(value)
-    if isinstance(value, list | tuple):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    raise CaseError(f"case: a value of type {type(value).__name__} cannot be written")
-
-
 def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
     """Write a case to a TOML file, completely or not at all.
 
@@ -489,10 +484,10 @@ def write_case(case: Mapping[str, Any], path: str | os.PathLike) -> Path:
                 continue
         key = SCHEMA[name]
         unit = f" [{key.unit}]" if key.unit else ""
-        lines.append(f"{name} = {_toml_value(value)}  # {key.help}{unit}")
+        lines.append(f"{name} = {toml_value(value)}  # {key.help}{unit}")
     if table:
         lines.append("")
         lines.append("[solver_options]")
-        lines += [f"{toml_string(k)} = {_toml_value(v)}" for k, v in table.items()]
+        lines += [f"{toml_string(k)} = {toml_value(v)}" for k, v in table.items()]
     validate_case(tomllib.loads("\n".join(lines)))  # what is written reads back
     return write_atomic(target, "\n".join(lines) + "\n")

@@ -19,6 +19,7 @@ Three rules keep a run's files safe from its inputs:
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from collections.abc import Iterable
@@ -34,6 +35,7 @@ __all__ = [
     "printable",
     "run_inputs",
     "toml_string",
+    "toml_value",
 ]
 
 #: Keys of a case file naming files that a run writes (confined to the case's folder).
@@ -115,6 +117,31 @@ def toml_string(text: object, what: str = "a value") -> str:
             out.append(ch)
     out.append('"')
     return "".join(out)
+
+
+def toml_value(value: Any) -> str:
+    """A value as TOML text: a boolean, an integer, a finite float (always with a point or
+    an exponent), a string or path (:func:`toml_string`), or a list of them.
+
+    Raises
+    ------
+    CaseError
+        A non-finite number, or a value of another type.
+    """
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            raise CaseError(f"case: {value!r} cannot be written to a case file")
+        text = repr(value)
+        return text if any(c in text for c in ".en") else text + ".0"
+    if isinstance(value, str | Path):
+        return toml_string(value)
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(toml_value(v) for v in value) + "]"
+    raise CaseError(f"case: a value of type {type(value).__name__} cannot be written")
 
 
 def confined(value: str, folder: Path, key: str, where: str) -> Path:

@@ -14,7 +14,6 @@ import difflib
 import itertools
 import math
 import os
-import tomllib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -22,7 +21,7 @@ from typing import Any, NamedTuple
 
 import numpy as np
 
-from ..case import COMMAND_KEYS, MAX_CASE_BYTES, SCHEMA, case_command, validate_case
+from ..case import COMMAND_KEYS, SCHEMA, case_command, read_case_file, validate_case
 from ..errors import CaseError
 from ..paths import printable
 
@@ -352,20 +351,7 @@ def _raw(case: Mapping[str, Any]) -> dict[str, Any]:
 
 def load_sweep(path: str | os.PathLike) -> Plan:
     """Read a case file with a ``[sweep]`` table and check it (see :func:`make_plan`)."""
-    p = Path(path)
-    name = str(p)
-    if not p.exists():
-        raise CaseError(f"case file {name!r} does not exist")
-    if not p.is_file():
-        raise CaseError(f"case path {name!r} is not a file: give a TOML case file")
-    if p.stat().st_size > MAX_CASE_BYTES:
-        raise CaseError(f"case file {name!r} is larger than {MAX_CASE_BYTES // 1024} KiB")
-    try:
-        data = tomllib.loads(p.read_bytes().decode("utf-8"))
-    except UnicodeDecodeError as exc:
-        raise CaseError(f"case file {name!r} is not UTF-8 text (byte {exc.start})") from None
-    except tomllib.TOMLDecodeError as exc:
-        raise CaseError(f"case file {name!r} is not valid TOML: {exc}") from None
+    data, p, name = read_case_file(path)
     grid = data.pop("sweep", None)
     if grid is None:
         raise CaseError(
