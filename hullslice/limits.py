@@ -21,7 +21,6 @@ __all__ = [
     "MAX_PITCH_DEG",
     "MAX_SLICES",
     "MAX_STEPS",
-    "check_number",
     "check_pitch",
     "check_slice_count",
     "no_mass",
@@ -67,30 +66,3 @@ def no_mass(name: str | None = None) -> InputError:
     """The error for a computation that needs the body's mass and has none."""
     what = "the hull" if name is None else f"hull {name!r}"
     return InputError(f"{what} has no mass: give its mass in kg (mass=...)")
-
-
-def check_number(
-    value: Any,
-    name: str,
-    unit: str,
-    *,
-    positive: bool = False,
-    minimum: float | None = None,
-    maximum: float | None = None,
-) -> float:
-    """A finite real number as a ``float``, inside the given bounds, or an :class:`InputError`.
-
-    ``positive`` asks for ``value > 0``; ``minimum`` and ``maximum`` are inclusive.
-    """
-    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
-        raise InputError(f"{name} {value!r} is not a number: give it in {unit}")
-    v = float(value)
-    if not math.isfinite(v):
-        raise InputError(f"{name} {value!r} is not finite: give a finite number in {unit}")
-    if positive and v <= 0.0:
-        raise InputError(f"{name} {v!r} {unit} is not positive: give a value above 0")
-    if minimum is not None and v < minimum:
-        raise InputError(f"{name} {v!r} {unit} is below {minimum:g}: give at least {minimum:g}")
-    if maximum is not None and v > maximum:
-        raise InputError(f"{name} {v!r} {unit} is above {maximum:g}: give at most {maximum:g}")
-    return v

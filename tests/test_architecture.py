@@ -51,7 +51,6 @@ LAYERS: dict[str, int] = {
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,
-    "hullslice.cut": 3,
     "hullslice.slicing": 3,
     # 4 the 2D solvers and their registry
     "hullslice.solvers": 4,
@@ -63,7 +62,6 @@ LAYERS: dict[str, int] = {
     "hullslice.study": 7,
     "hullslice.case": 7,
     "hullslice.sweeps": 7,
-    "hullslice.sweep": 7,
     # 8 output and the command line
     "hullslice.textout": 8,
     "hullslice.plots": 8,
@@ -112,7 +110,9 @@ GRAPH = {name: _imports(name, path) for name, path in MODULES.items()}
 
 
 def layer(name: str) -> int:
-    best = max((k for k in LAYERS if name == k or name.startswith(k + ".")), key=len, default=None)
+    # the package's front door is its own row only: every other module needs a row
+    rows = (k for k in LAYERS if name == k or (k != "hullslice" and name.startswith(k + ".")))
+    best = max(rows, key=len, default=None)
     if best is None:
         raise KeyError(f"module {name} has no layer: add it to LAYERS in {__file__}")
     return LAYERS[best]
@@ -179,3 +179,8 @@ def test_module_is_small(name):
 def test_the_walker_sees_lazy_imports():
     # forces/result.py converts to xarray inside a method: the walker must see that import.
     assert "hullslice.xarray_io" in GRAPH["hullslice.forces.result"]
+
+
+def test_a_module_without_a_row_has_no_layer():
+    with pytest.raises(KeyError, match="add it to LAYERS"):
+        layer("hullslice.a_module_nobody_placed")

@@ -5,9 +5,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import trimesh
 from hypothesis import given
 from hypothesis import strategies as st
 
+import hullslice as hs
 from hullslice.geometry import KeelLine
 
 
@@ -46,3 +48,21 @@ def test_a_keel_under_the_water_everywhere_is_wetted_end_to_end():
     assert line.below(0.0) == (0.0, 2.0)
     assert line.below(-0.4) == pytest.approx((0.5, 4.0 / 3.0), abs=1e-15)
     assert line.below(-0.6) is None
+
+
+def test_a_body_of_two_parts_wetted_only_forward_of_the_gap_between_them():
+    # two 2 x 1 x 1 boxes one behind the other, 1 m apart, the aft one 0.2 m higher: at a
+    # draft of 0.1 m only the forward box is wet, over its 2 m length (the keel line has no
+    # point in the gap between them, so its crossing of the water is at the forward box)
+    aft = trimesh.creation.box(extents=(2.0, 1.0, 1.0))
+    aft.apply_translation((0.0, 0.0, 0.7))
+    fore = trimesh.creation.box(extents=(2.0, 1.0, 1.0))
+    fore.apply_translation((3.0, 0.0, 0.5))
+    both = trimesh.util.concatenate([aft, fore])
+    hull = hs.Hull.from_arrays(both.vertices, both.faces, mass=1000.0)
+    for slicing in ("wetted", "fixed"):
+        s = hs.cut(hull, 0.1, slices=8, slicing=slicing)
+        assert s.wetted_length == pytest.approx(2.0, rel=1e-9)
+        assert np.all(s.x[s.penetration > 0] > 2.0)
+        r = hs.compute_force(hull, 0.1, -1.0, slices=8, slicing=slicing)
+        assert np.isfinite(r.total) and r.total > 0.0

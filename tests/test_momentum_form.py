@@ -61,12 +61,12 @@ def test_constant_speed_entry_of_a_wedge_prism_is_the_closed_form(name, deadrise
     assert h.valid.all()
     expected = closed_form(name, V, kin["t"], beta, 1.0)
     assert h.force[0] == 0.0
-    # measured 6e-8 (the mesh's single-precision cut)
-    np.testing.assert_allclose(h.force[1:], expected[1:], rtol=0.01)
+    # measured up to 1.7e-6 (the cut is in single precision)
+    np.testing.assert_allclose(h.force[1:], expected[1:], rtol=1e-5)
     # the heave added mass is that of the flat plate of the wetted width, rho pi c^2 / 2 per
     # metre with c = gamma p / tan(beta)
     c = GAMMA[name] * kin["draft"] / math.tan(beta)
-    np.testing.assert_allclose(h.added_mass[1:], RHO * math.pi * c[1:] ** 2 / 2, rtol=0.01)
+    np.testing.assert_allclose(h.added_mass[1:], RHO * math.pi * c[1:] ** 2 / 2, rtol=1e-5)
 
 
 def test_the_force_does_not_depend_on_the_mass_or_its_distribution(paper_hull):

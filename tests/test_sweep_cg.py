@@ -106,3 +106,35 @@ def test_a_part_of_cg_needs_the_other_part():
     # both parts swept: no cg needed in the base case
     ds = hs.sweep(base, {"cg_x": [0.4], "cg_z": [0.05]}, workers=1)
     assert ds["peak_force"].item() == single((0.4, 0.05)).peak["force"]
+
+
+def test_a_sweep_of_slice_counts_equals_single_runs_exactly():
+    ds = hs.sweep(BASE, {"slices": [4, 8]}, workers=1)
+    for n in (4, 8):
+        point = ds.sel(slices=n)
+        assert point["error"].item() == ""
+        hull = hs.load_hull(WEDGE, mass=10.0, cg=(0.5, 0.05))
+        ref = hs.simulate(hull, -4.0, 0.01, dt=0.001, slices=n, pitch=math.radians(3.0),
+                          forward_speed=2.0, free_pitch=True)  # fmt: skip
+        assert point["peak_force"].item() == ref.peak["force"]
+        assert point["final_slices"].item() == ref.slices[-1]
+
+
+def test_a_sweep_reads_its_mesh_as_a_single_run_does(tmp_path):
+    # no_fix: a mesh that needs a fix (one face wound against its neighbours) is refused by
+    # a sweep as by hullslice simulate, naming the pass, and nothing is computed
+    from hullslice import shapes
+
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    f = f.copy()
+    f[0] = f[0][::-1]
+    mesh = tmp_path / "flipped.obj"
+    rows = [f"v {a!r} {b!r} {c!r}" for a, b, c in v.tolist()]
+    rows += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f.tolist()]
+    mesh.write_text("\n".join(rows) + "\n")
+    base = {**BASE, "mesh": str(mesh), "no_fix": True}
+    with pytest.raises(hs.MeshError, match="would fix it"):
+        hs.sweep(base, {"velocity": [-3.0, -4.0]}, workers=1)
+    with pytest.warns(hs.MeshRepairWarning, match="re-oriented 1 faces"):
+        fixed = hs.sweep({**base, "no_fix": False}, {"velocity": [-3.0, -4.0]}, workers=1)
+    assert (fixed["error"].values == "").all()

@@ -172,7 +172,9 @@ def evaluate_often(hull, deadrise, drafts):
     for d in drafts:
         a, b = model(hs.Pose(d), motion), fresh(hs.Pose(d), motion)
         assert a.total == pytest.approx(b.total, rel=1e-12)
-    return fixed_cut(frame(hull, 0.0), 32, TOL.coordinate * hull.size)
+    store = fixed_cut(frame(hull, 0.0), 32, TOL.coordinate * hull.size)
+    assert store.evaluations >= len(drafts)  # the store the model used, not a new one
+    return store
 
 
 def test_tables_are_made_for_time_histories_only(paper_hull):

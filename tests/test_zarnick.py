@@ -20,6 +20,8 @@ import pytest
 import hullslice as hs
 from hullslice import shapes
 from hullslice.cli import main
+from hullslice.forces import momentum_terms, solve_accelerations
+from hullslice.solvers.registry import get_solver
 
 from .conftest import MESHES
 
@@ -283,3 +285,23 @@ def test_buoyancy_is_vertical_on_a_pitched_body():
     area = 0.5 * abs(sum(x1 * z2 - x2 * z1 for (x1, z1), (x2, z2)
                          in zip(under, under[1:] + under[:1], strict=True)))  # fmt: skip
     assert r.total == pytest.approx(RHO * 9.81 * 0.4 * area, rel=5e-3)
+
+
+def test_a_free_body_obeys_newton_with_the_forces_it_reports():
+    # zarnick's buoyancy acts vertically, not along the section's normal: the accelerations
+    # solved over heave, pitch and surge must be the reported force, moment and horizontal
+    # force divided by the body's mass and inertia (Newton, to rounding)
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    hull = hs.Hull.from_arrays(v, f, mass=5.0)
+    solver = get_solver("zarnick")
+    motion = hs.Motion(-2.0, 5.0, 0.3)
+    s = hs.cut(hull, hs.Pose(0.06, math.radians(6)), slices=16)
+    fluid = hs.Fluid()
+    terms = momentum_terms(s, motion, solver, fluid, hull.cg[0])
+    assert np.abs(terms.added.vertical).sum() > 0.0  # the buoyancy is there
+    acc = solve_accelerations(terms, hull.mass, hull.pitch_inertia, fluid.g, (True, True, True))
+    r = terms.result(acc, solver, fluid, motion, hull.cg[0])
+    heave, pitch, surge = acc.as_array()
+    assert hull.mass * heave == pytest.approx(r.total - hull.mass * fluid.g, rel=1e-9)
+    assert hull.pitch_inertia * pitch == pytest.approx(r.moment, rel=1e-9)
+    assert hull.mass * surge == pytest.approx(r.total_x, rel=1e-9)

@@ -125,9 +125,9 @@ def run(args: argparse.Namespace) -> int:
     from .. import sweeps
     from ..xarray_io import output_format, write_dataset
 
-    sweeps._require("xarray")
+    sweeps.require("xarray")
     if args.workers != 1 or args.scheduler:
-        sweeps._require("distributed")
+        sweeps.require("distributed")
     partial = None
     if args.output:
         ext = output_format(args.output)

@@ -180,7 +180,6 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         help="pitch moment of inertia about the centre of gravity in kg*m^2 (default: from "
         "the mass distribution, or the mesh with uniform density)",
     )
-    p.set_defaults(mass_required=mass_required)
 
 
 def add_shape_options(g) -> None:

@@ -145,11 +145,8 @@ def solve_accelerations(
     acc = [0.0, 0.0, 0.0] if fixed is None else list(fixed.as_array())
     if not idx:
         return fixed or Acceleration()
-    s = terms.sections
-    weight = terms.added.added_mass * s.dx
-    jac = terms.jac[:, idx] if len(idx) < 3 else terms.jac
-    total = (jac * weight[:, None]).T @ jac
-    rhs = jac.T @ (terms.f0 * s.dx)
+    total = terms.matrix[np.ix_(idx, idx)]
+    rhs = terms.generalized[idx]  # a vertical force (buoyancy) acts vertically, not normal
     body = {0: mass, 1: inertia, 2: mass}
     for k, i in enumerate(idx):
         if body[i] is None:
@@ -159,7 +156,7 @@ def solve_accelerations(
         rhs[0] -= mass * gravity
     held = [i for i in range(3) if not free[i] and acc[i] != 0.0]
     if held:  # prescribed accelerations of the other degrees of freedom
-        cross = (terms.jac[:, idx] * weight[:, None]).T @ terms.jac[:, held]
+        cross = terms.matrix[np.ix_(idx, held)]
         rhs -= cross @ np.array([acc[i] for i in held])
     if len(idx) == 1:
         ok = bool(total[0, 0] > 0.0 and np.isfinite(total[0, 0]))

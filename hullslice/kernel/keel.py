@@ -115,6 +115,10 @@ class KeelLine:
         last = len(z) - 1 - int(under[::-1].argmax())
 
         def crossing(i: int) -> float:  # where the segment i, i + 1 meets the level
+            if not np.isfinite(z[i]):  # a gap between parts (z = inf) before point i + 1
+                return float(x[i + 1])
+            if not np.isfinite(z[i + 1]):  # a gap after point i
+                return float(x[i])
             t = (level - z[i]) / (z[i + 1] - z[i])
             return float(x[i] + t * (x[i + 1] - x[i]))
 

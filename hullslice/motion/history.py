@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..errors import InputError
-from ..forces import MIN_SLENDERNESS, ForceResult
+from ..forces import CHINE_REASON, MIN_SLENDERNESS, ForceResult
 from ..limits import MAX_PITCH
 
 __all__ = [
@@ -270,8 +270,9 @@ class _Recorder:
         w = r.motion.velocity
         crossed = {
             "velocity": w >= 0.0,
-            # a solver that models the separation at the chine does not flag it
-            "chine": bool((r.sections.chine_wetted & ~r.loads.valid).any()),
+            # flagged by hullslice where the solver does not model the separation at the
+            # chine (a flag for another reason, e.g. a float wholly under water, is not it)
+            "chine": CHINE_REASON in reasons,
             "validity": 1.0 - share > self.max_flagged_share,
             "slender": slender < MIN_SLENDERNESS,
         }

@@ -19,6 +19,7 @@ from ..axes import unit_scale
 from ..errors import InputError
 from ..paths import printable
 from .extra import to_trimesh
+from .stl import _STL_RECORD
 
 __all__ = ["WRITERS", "write_mesh"]
 
@@ -28,8 +29,7 @@ def _stl(v: np.ndarray, f: np.ndarray, name: str) -> bytes:
     normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
     length = np.linalg.norm(normals, axis=1, keepdims=True)
     normals = np.divide(normals, length, out=np.zeros_like(normals), where=length > 0)
-    record = np.dtype([("normal", "<f4", (3,)), ("corners", "<f4", (3, 3)), ("attr", "<u2")])
-    data = np.zeros(len(f), dtype=record)
+    data = np.zeros(len(f), dtype=_STL_RECORD)  # the reader's own record
     data["normal"] = normals
     data["corners"] = corners
     header = f"hullslice mesh {printable(name)}".encode("ascii", "replace")[:80].ljust(80, b" ")

@@ -251,7 +251,6 @@ def fixed_sections(
     )
 
 
-#: A kept outline gets a waterline table from its this many-th evaluation on (a table
 def outline_of(fr: Frame, rel: np.ndarray, tol: float) -> tuple[Outline, list[Polygons]]:
     """The outline and contours of the sections at relative stations ``rel`` (m), cut
     afresh."""

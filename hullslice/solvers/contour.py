@@ -45,7 +45,6 @@ __all__ = [
     "SECTION_METHODS",
     "WEDGE_TOLERANCE",
     "contour_half_widths",
-    "submerged_areas",
     "submerged_parts",
 ]
 
@@ -88,33 +87,6 @@ def _lowest(edges: np.ndarray, y: np.ndarray) -> np.ndarray:
     z = np.where(span, z, np.inf)
     out = z.min(axis=0)
     return np.where(np.isfinite(out), out, np.nan)
-
-
-def submerged_areas(polygons: Sequence[Sequence[np.ndarray]], stations: np.ndarray) -> np.ndarray:
-    """Area of each listed station's polygons below the water ``z = 0``, m^2.
-
-    Parameters
-    ----------
-    polygons : sequence of sequences of (k, 2) float
-        Contours of every station in the earth ``(y, z)`` plane (outer ones
-        counter-clockwise, holes clockwise).
-    stations : (n,) int
-        The stations to measure.
-
-    Returns
-    -------
-    (n,) float
-    """
-    out = np.zeros(len(stations))
-    cache: dict[int, float] = {}
-    for i, st in enumerate(np.asarray(stations, dtype=int)):
-        if st not in cache:
-            total = 0.0
-            for c in polygons[st]:
-                total += _clipped_area(np.asarray(c, dtype=np.float64))
-            cache[st] = max(total, 0.0)
-        out[i] = cache[st]
-    return out
 
 
 def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:

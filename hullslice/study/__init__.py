@@ -34,6 +34,7 @@ from .execute import (
     StudyResult,
     execute,
     load,
+    mesh_options,
     simulation,
 )
 from .spec import COMMANDS, Study, StudyError
@@ -49,5 +50,6 @@ __all__ = [
     "StudyResult",
     "execute",
     "load",
+    "mesh_options",
     "simulation",
 ]

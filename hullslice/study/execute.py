@@ -4,8 +4,8 @@ result returned as objects (no text), for the outputs to be made from."""
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -30,6 +30,7 @@ __all__ = [
     "StudyResult",
     "execute",
     "load",
+    "mesh_options",
     "simulation",
 ]
 
@@ -152,21 +153,41 @@ def load(study: Study, **overrides: Any) -> Hull:
             study.command, "give the body's mass, --mass KG or --mass-distribution CSV"
         )
     options: dict[str, Any] = {
-        "units": study.units,
-        "forward": study.forward,
-        "up": study.up,
+        **mesh_options(study),
         "mass": study.mass,
         "mass_distribution": dist,
         "cg": study.cg,
         "inertia": study.inertia,
-        "scale": study.scale,
-        "length": study.length,
-        "repair": None if study.repair in (None, "none") else study.repair,
-        "keep": study.keep,
-        "keep_box": study.keep_box,
-        "fix": not study.no_fix,
     }
     return load_hull(study.mesh, **{**options, **overrides})
+
+
+#: The fields of a study (and keys of a case) that say how its mesh is read and shaped.
+MESH_FIELDS = ("units", "forward", "up", "scale", "length", "repair", "keep", "keep_box",
+               "no_fix")  # fmt: skip
+
+
+def mesh_options(source: Study | Mapping[str, Any]) -> dict[str, Any]:
+    """The keyword arguments of :func:`~hullslice.load_hull` that say how a study's mesh is
+    read and shaped (units, axes, scale, repair, parts, fixes; :data:`MESH_FIELDS`), without
+    its mass: the same for a single run and for every case of a sweep. ``source`` is a
+    study or a checked case (a key it lacks takes the study's default)."""
+    if isinstance(source, Mapping):
+        defaults = {f.name: f.default for f in fields(Study) if f.name in MESH_FIELDS}
+        v = {**defaults, **{k: source[k] for k in MESH_FIELDS if k in source}}
+    else:
+        v = {k: getattr(source, k) for k in MESH_FIELDS}
+    return {
+        "units": v["units"],
+        "forward": v["forward"],
+        "up": v["up"],
+        "scale": v["scale"],
+        "length": v["length"],
+        "repair": None if v["repair"] in (None, "none") else v["repair"],
+        "keep": v["keep"],
+        "keep_box": v["keep_box"],
+        "fix": not v["no_fix"],
+    }
 
 
 def _info(study: Study) -> InfoResult:

@@ -61,7 +61,7 @@ class Study:
     command : str
         ``info``, ``sections``, ``force`` or ``simulate``.
     mesh : str
-        The hull mesh file, STL or OBJ.
+        The hull mesh file (a format of :data:`hullslice.readers.SUPPORTED_FORMATS`).
     title : str, optional
         A name for the study, for reports.
     units, forward, up : str
@@ -112,7 +112,7 @@ class Study:
     t_end, dt : float, optional
         Duration and time step of a free fall in s.
     kinematics : str, optional
-        CSV of a prescribed motion (t, penetration, velocity, ...).
+        CSV of a prescribed motion (t, draft, velocity, ...).
     free_pitch, free_surge, continue_invalid : bool
         Integrate the pitch, the forward speed; go on past the stop rules.
     max_flagged_share : float
@@ -259,7 +259,7 @@ class Study:
         if given:
             self._refuse(
                 f"--kinematics gives the motion; leave out "
-                f"{', '.join(given)} (the table's columns t, penetration, velocity and "
+                f"{', '.join(given)} (the table's columns t, draft, velocity and "
                 "optionally pitch_deg, pitch_rate_deg_s, forward_speed give it)"
             )
 

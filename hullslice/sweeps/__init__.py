@@ -48,7 +48,6 @@ from .engine import (  # noqa: F401
     MAX_TASK_CASES,
     MIN_TASKS_PER_WORKER,
     TAIL_TASK_CASES,
-    TASKS_PER_WORKER,
     DaskRun,
     groups,
     require,
@@ -69,7 +68,6 @@ from .plan import (  # noqa: F401
 from .run import (  # noqa: F401
     _HULLS,
     _SHARED,
-    SHAPE_KEYS,
     HullState,
     hull_for,
     load_inputs,
@@ -80,10 +78,5 @@ from .run import (  # noqa: F401
     summarise,
 )
 from .store import PARTIAL_SPEC, Partial, jsonable, remove_partial, sha256, spec  # noqa: F401
-
-# names of the single module this package was, kept for code that reached them
-_require = require
-_groups = groups
-_hull_for = hull_for
 
 __all__ = ["RESULTS", "SWEEP_KEYS", "Plan", "load_sweep", "make_plan", "sweep"]

@@ -102,7 +102,7 @@ def sweep(
         if progress is not None:
             progress(len(records), total, failed)
 
-    token = f"{mesh_sha}:{base['units']}:{base['forward']}:{base['up']}:{shaping(base)!r}"
+    token = f"{mesh_sha}:{shaping(base)!r}"
     with session(client, workers, timeout, needed=bool(todo)) as dask_client:
         if kept is not None:
             kept.create()

@@ -32,8 +32,6 @@ MIN_TASKS_PER_WORKER = 4
 MAX_TASK_CASES = 16
 #: Cases in each of the last, small tasks of a sweep (see :func:`groups`).
 TAIL_TASK_CASES = 2
-#: The former name of :data:`MIN_TASKS_PER_WORKER`.
-TASKS_PER_WORKER = MIN_TASKS_PER_WORKER
 
 
 def require(*modules: str) -> None:

@@ -76,12 +76,12 @@ def key_spec(name: str) -> Any:
 def apply(base: Mapping[str, Any], over: Mapping[str, Any]) -> dict[str, Any]:
     """The case ``base`` with the keys of one case of a sweep: a component key replaces its
     part of the pair (``cg_x`` the x of ``cg``, kept as a tuple like a checked pair); any
-    other key replaces the key."""
+    other key replaces the key (a slice count as the one-count list a checked case holds)."""
     case = dict(base)
     for name, value in over.items():
         c = COMPONENTS.get(name)
         if c is None:
-            case[name] = value
+            case[name] = [value] if name == "slices" else value
             continue
         pair = list(case.get(c.key, (math.nan, math.nan)))
         pair[c.part] = value
@@ -331,8 +331,6 @@ def make_plan(
             )
     for i, over in enumerate(cases):  # every case is a valid case file
         merged = _raw(apply(checked, over))
-        if "slices" in over:
-            merged["slices"] = [over["slices"]]
         try:
             validate_case(merged)
         except CaseError as exc:

@@ -33,27 +33,21 @@ _SHARED_KEPT = 2
 _HULLS: dict[tuple, Any] = {}
 _HULLS_KEPT = 8
 
-#: Keys of a case that shape its mesh (the keyword arguments of ``load_hull`` they give).
-SHAPE_KEYS = ("scale", "length", "repair", "keep", "keep_box")
-
 
 def shaping(case: Mapping[str, Any]) -> dict[str, Any]:
-    """The keys of ``case`` that shape its mesh (:data:`SHAPE_KEYS`), as given."""
-    return {k: case[k] for k in SHAPE_KEYS if k in case}
+    """How a checked case's mesh is read and shaped (units, axes, scale, repair, parts,
+    fixes): the keyword arguments of :func:`~hullslice.load_hull` a single run passes
+    (:func:`hullslice.study.mesh_options`)."""
+    from ..study import mesh_options
+
+    return mesh_options(case)
 
 
 def read_mesh(case: Mapping[str, Any]):
-    """The mesh of a checked case, without mass: read with the case's units, axes, scale,
-    repair and parts, as a single run reads it."""
+    """The mesh of a checked case, without mass, read as a single run reads it."""
     from ..mesh import load_hull
 
-    return load_hull(
-        Path(case["mesh"]),
-        units=case["units"],
-        forward=case["forward"],
-        up=case["up"],
-        **shaping(case),
-    )
+    return load_hull(Path(case["mesh"]), **shaping(case))
 
 
 def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
@@ -148,14 +142,11 @@ def run_case(hull, case: Mapping[str, Any], inputs: Mapping[str, Any] | None = N
 
 def summarise(history) -> dict[str, Any]:
     """A case's results from its history (see :data:`~hullslice.sweeps.dataset.RESULTS`),
-    read from its columns generically: every column's final value; the flagged share is the
-    history's own ``flagged_share`` when it has one, else ``1 - valid_share``."""
+    read from its columns generically: every column's final value, and the history's
+    flagged share."""
     cols = history.columns()
     out: dict[str, Any] = {"steps": len(history), "stop_reason": str(history.stop_reason)}
-    flagged = getattr(history, "flagged_share", None)  # an attribute, a column, or derived
-    if flagged is None:
-        flagged = cols.get("flagged_share", 1.0 - np.asarray(cols["valid_share"], dtype=float))
-    flagged = np.asarray(flagged, dtype=float)
+    flagged = np.asarray(history.flagged_share, dtype=float)
     t = np.asarray(cols["t"], dtype=float)
     if len(history):
         i = int(np.argmax(cols["force"]))
