@@ -1,8 +1,9 @@
-"""Every limit hullslice enforces, each one named constant, and the checks that use them.
+"""The limits that the library, case files and the command line all enforce, each one named
+constant, and their checks.
 
 The checks raise :class:`~hullslice.errors.InputError` with a message that names the value
-and the fix; the library, case files and the command line all call them, so a limit and
-its message are written once.
+and the fix; every layer calls them, so each of these limits and its message is written
+once.
 """
 
 from __future__ import annotations
