@@ -123,7 +123,8 @@ class Frame:
 
     @property
     def scale(self) -> float:
-        """The cutter's coordinates are metres times this (the body brought to unit size)."""
+        """The cutter's coordinates are metres times this (the body brought to
+        :data:`CUTTER_SIZE`)."""
         return self._scale
 
     @property
@@ -140,6 +141,11 @@ class Frame:
         return np.stack([X, r[:, 1] + self.cg[1], Z], axis=1)
 
 
+#: The size of the body in the cutter's coordinates. manifold3d rounds its sections to a
+#: grid of 1e-8 of these units (Clipper2's precision), so its sections are exact to about
+#: 1e-12 of the body's size: at unit size the rounding moved the force on a barely wetted
+#: body by some 1e-6, and jumped as the pitch crossed grid lines.
+CUTTER_SIZE = 1e4
 #: How many pitches' frames a hull keeps.
 FRAME_CACHE = 4
 #: Hulls with fewer faces are always cut whole (turning them is cheap).
@@ -226,16 +232,16 @@ def _frame(hull, pitch: float) -> Frame:
     ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
     lowest = float(min(ta[:, 1].min(), tb[:, 1].min()))
     highest = float(max(ta[:, 1].max(), tb[:, 1].max()))
-    # centre the cutter's coordinates on the body (manifold3d's sections are single
-    # precision): the bounding-box centre, in the pitched frame relative to the cg
+    # centre the cutter's coordinates on the body (its sections are rounded to a fixed
+    # grid): the bounding-box centre, in the pitched frame relative to the cg
     box = hull.bounds.mean(axis=0) - g
     ox = box[0] * c - box[2] * s
     oz = box[0] * s + box[2] * c
     oy = box[1] + g[1]
     # rows map a body point to (Y, Z, X) relative to that centre; manifold3d cuts at Z = X.
-    # Scaled to a unit size too: manifold3d rounds its sections to a fixed grid (Clipper2,
+    # Scaled to a fixed size too: manifold3d rounds its sections to a fixed grid (Clipper2,
     # 1e-8), so a tiny body would be cut into nothing and a huge one coarsely
-    scale = 1.0 / hull.size
+    scale = CUTTER_SIZE / hull.size
     cut_matrix = scale * np.array(
         [
             [0.0, 1.0, 0.0, -oy],

@@ -142,3 +142,18 @@ def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
         # the same points in another order: sums may differ in the last bits only
         np.testing.assert_allclose(a.force, b.force, rtol=1e-12, atol=0)
         assert a.moment == pytest.approx(b.moment, rel=1e-12)
+
+
+@pytest.mark.parametrize("draft", [0.0123456789, 0.0314159265, 0.05])
+def test_sections_exact_to_rounding_not_to_the_cutters_grid(draft):
+    # closed form: a wedge of deadrise beta wetted to depth p has half-beam p / tan(beta).
+    # manifold3d rounds sections to a grid of 1e-8 of the cutter's units; the body spans
+    # geometry.CUTTER_SIZE of them, so the sections hold to about 1e-12 of its size (at
+    # unit size they were off by up to 2e-9 of it)
+    from hullslice import shapes
+
+    hull = hs.Hull.from_arrays(*shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0))
+    s = hs.cut(hull, draft, stations=[0.3, 0.61])
+    exact = draft / np.tan(np.radians(30.0))
+    assert np.abs(s.half_beam - exact).max() <= 5e-12 * hull.size
+    assert np.abs(s.penetration - draft).max() <= 5e-12 * hull.size
