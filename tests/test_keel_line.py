@@ -66,3 +66,36 @@ def test_a_body_of_two_parts_wetted_only_forward_of_the_gap_between_them():
         assert np.all(s.x[s.penetration > 0] > 2.0)
         r = hs.compute_force(hull, 0.1, -1.0, slices=8, slicing=slicing)
         assert np.isfinite(r.total) and r.total > 0.0
+
+
+def lowest_brute_force(a: np.ndarray, b: np.ndarray, x: float) -> float:
+    """The lowest height over ``x`` of the segments from ``a`` to ``b``, one at a time."""
+    best = np.inf
+    for (xa, za), (xb, zb) in zip(a, b, strict=True):
+        if min(xa, xb) <= x <= max(xa, xb):
+            z = min(za, zb) if xb == xa else za + (x - xa) / (xb - xa) * (zb - za)
+            best = min(best, z)
+    return best
+
+
+coordinate = st.integers(-20, 20).map(lambda k: k / 8)  # ties between ends, vertical ones
+
+
+@given(
+    ends=st.lists(
+        st.tuples(coordinate, coordinate, coordinate, coordinate), min_size=1, max_size=30
+    )
+)
+def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
+    # the envelope holds, at each of its points, the lowest of the segments over it (and
+    # is infinitely high where none is: a gap between parts)
+    from hullslice.kernel.keel import lower_envelope
+
+    e = np.array(ends, dtype=np.float64)
+    a, b = e[:, :2], e[:, 2:]
+    line = lower_envelope(a, b)
+    assert np.all(np.diff(line.x) >= 0)
+    want = np.array([lowest_brute_force(a, b, x) for x in line.x])
+    np.testing.assert_allclose(line.z, want, rtol=0.0, atol=1e-12)
+    ends_x = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
+    assert set(ends_x.tolist()) <= set(line.x.tolist())

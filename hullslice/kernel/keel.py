@@ -160,10 +160,14 @@ def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
     envelope is refined at the middle of that interval (the crossing point itself is not
     found, so there the line may lie a little high).
     """
-    xs = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
-    z = _envelope_at(a, b, xs)
+    xs = np.concatenate([a[:, 0], b[:, 0]])
+    xs.sort()
+    if len(xs) > 1:  # np.unique's values, without its bookkeeping
+        xs = xs[np.concatenate([[True], xs[1:] != xs[:-1]])]
+    segments = _Segments(a, b)
+    z = segments.lowest(xs)
     mid = 0.5 * (xs[1:] + xs[:-1])
-    zm = _envelope_at(a, b, mid)
+    zm = segments.lowest(mid)
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
@@ -176,20 +180,40 @@ def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
     return KeelLine(xs, z)
 
 
-def _envelope_at(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
-    """Lowest height of the segments over each of the sorted abscissae ``xs``."""
-    lo = np.minimum(a[:, 0], b[:, 0])
-    hi = np.maximum(a[:, 0], b[:, 0])
-    i0 = np.searchsorted(xs, lo, side="left")
-    i1 = np.searchsorted(xs, hi, side="right")  # abscissae i0 .. i1-1 lie on the segment
-    count = i1 - i0
-    seg = np.repeat(np.arange(len(a)), count)
-    idx = np.arange(count.sum()) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
-    xa, za, xb, zb = a[seg, 0], a[seg, 1], b[seg, 0], b[seg, 1]
-    x = xs[idx]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = np.where(xb != xa, (x - xa) / (xb - xa), 0.0)
-    z_on = np.where(xb != xa, za + t * (zb - za), np.minimum(za, zb))
-    z = np.full(len(xs), np.inf)
-    np.minimum.at(z, idx, z_on)
-    return z
+class _Segments:
+    """Segments from ``a`` to ``b`` ((e, 2) arrays of x, z), their columns apart."""
+
+    def __init__(self, a: np.ndarray, b: np.ndarray) -> None:
+        self.xa, self.za = np.ascontiguousarray(a[:, 0]), np.ascontiguousarray(a[:, 1])
+        self.xb, self.zb = np.ascontiguousarray(b[:, 0]), np.ascontiguousarray(b[:, 1])
+        self.lo = np.minimum(self.xa, self.xb)
+        self.hi = np.maximum(self.xa, self.xb)
+        self.dx = self.xb - self.xa
+        self.dz = self.zb - self.za
+        self.vertical = self.dx == 0.0
+        self.z_vertical = np.minimum(self.za, self.zb)
+
+    def lowest(self, xs: np.ndarray) -> np.ndarray:
+        """Lowest height of the segments over each of the sorted abscissae ``xs``."""
+        i0 = np.searchsorted(xs, self.lo, side="left")
+        i1 = np.searchsorted(xs, self.hi, side="right")  # abscissae i0 .. i1-1 on a segment
+        count = np.maximum(i1 - i0, 0)
+        total = int(count.sum())
+        z = np.full(len(xs), np.inf)
+        if total == 0:
+            return z
+        seg = np.repeat(np.arange(len(count)), count)
+        # each pair's abscissa: i0 of its segment plus its rank within the segment
+        step = np.ones(total, dtype=np.int64)
+        starts = np.cumsum(count) - count
+        has = count > 0
+        step[starts[has]] = i0[has] - np.concatenate([[0], (i0 + count - 1)[has][:-1]])
+        idx = np.cumsum(step)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (xs[idx] - self.xa[seg]) / self.dx[seg]
+        z_on = self.za[seg] + t * self.dz[seg]
+        vertical = self.vertical[seg]
+        if vertical.any():
+            z_on[vertical] = self.z_vertical[seg[vertical]]
+        np.minimum.at(z, idx, z_on)
+        return z
