@@ -60,6 +60,10 @@ SAMPLES = 96
 #: A side is a wedge when its height at half the calm-water half-width is within this
 #: share of half the penetration.
 WEDGE_TOLERANCE = 0.1
+#: Most Newton steps (each inside a bracket kept by bisection) for Wagner's ``c``.
+MAX_ROOT_STEPS = 64
+#: Wagner's ``c`` is solved to this share of the side's extent (or to rounding).
+ROOT_TOLERANCE = 1e-15
 #: Gauss-Legendre nodes over ``t`` in ``(0, pi/2)`` for Wagner's condition.
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(32)
 _T = (_NODES + 1.0) * np.pi / 4.0
@@ -78,14 +82,27 @@ def _edges(contours: Sequence[np.ndarray]) -> np.ndarray:
 
 
 def _lowest(edges: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Lowest ``z`` of the contours on the vertical lines ``y`` (NaN where none crosses)."""
-    y1, z1, y2, z2 = (edges[:, i : i + 1] for i in range(4))
+    """Lowest ``z`` of the contours on the vertical lines ``y`` (NaN where none crosses).
+
+    Each edge is met only with the lines over its own span (found by a search in the
+    sorted ``y``), not with every line."""
+    y = np.asarray(y, dtype=np.float64)
+    out = np.full(len(y), np.inf)
+    y1, z1, y2, z2 = edges[:, 0], edges[:, 1], edges[:, 2], edges[:, 3]
     lo, hi = np.minimum(y1, y2), np.maximum(y1, y2)
-    span = (lo <= y) & (y <= hi) & (hi > lo)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        z = z1 + (y - y1) * (z2 - z1) / (y2 - y1)
-    z = np.where(span, z, np.inf)
-    out = z.min(axis=0)
+    keep = hi > lo
+    if keep.any() and len(y):
+        order = np.argsort(y, kind="stable")
+        ys = y[order]
+        y1, z1, y2, z2, lo, hi = y1[keep], z1[keep], y2[keep], z2[keep], lo[keep], hi[keep]
+        i0 = np.searchsorted(ys, lo, side="left")
+        count = np.searchsorted(ys, hi, side="right") - i0  # lines i0 .. i0 + count - 1
+        if count.sum():
+            seg = np.repeat(np.arange(len(count)), count)
+            idx = np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
+            with np.errstate(divide="ignore", invalid="ignore"):
+                z = z1[seg] + (ys[idx] - y1[seg]) * (z2[seg] - z1[seg]) / (y2[seg] - y1[seg])
+            np.minimum.at(out, order[idx], z)
     return np.where(np.isfinite(out), out, np.nan)
 
 
@@ -300,13 +317,7 @@ def _solve(
 
     target = 0.5 * np.pi * p[None, :]
     past = bad | ~(integral(extent) >= target)
-    lo, hi = np.zeros_like(extent), extent.copy()
-    for _ in range(48):  # bisection: 48 halvings of each side's extent, all sides at once
-        mid = 0.5 * (lo + hi)
-        below = integral(mid) < target
-        lo = np.where(below, mid, lo)
-        hi = np.where(below, hi, mid)
-    c = 0.5 * (lo + hi)
+    c = _wagner_root(g, ds, extent, np.broadcast_to(target, extent.shape), past)
     y = c[..., None] * _SIN
     with np.errstate(invalid="ignore", divide="ignore"):
         idx = np.clip(np.floor(np.where(ds[..., None] > 0, y / ds[..., None], 0)), 0, k - 1)
@@ -314,3 +325,42 @@ def _solve(
         denom = fprime @ (_SIN * _W)
         dc = np.where(denom > 0, 0.5 * np.pi / denom, np.nan)
     return np.where(past, np.nan, c), np.where(past, np.nan, dc)
+
+
+def _wagner_root(
+    g: np.ndarray, ds: np.ndarray, extent: np.ndarray, target: np.ndarray, past: np.ndarray
+) -> np.ndarray:
+    """The ``c`` in ``(0, extent)`` where ``integral_0^{pi/2} g(c sin t) dt`` (the
+    quadrature of :data:`_W`) reaches ``target``, for each side: ``g`` ((..., K) rising
+    heights sampled every ``ds``) is piecewise linear, and so is the integral in ``c``.
+
+    Newton's steps inside a bracket that bisection keeps: a step lands on the root as soon
+    as it starts on the root's linear piece, so a few steps solve it to rounding where 48
+    halvings of the bracket did before. Sides in ``past`` are left at any value.
+    """
+    k = g.shape[-1]
+    flat = g.reshape(-1, k)
+    base = (np.arange(flat.shape[0]) * k).reshape(g.shape[:-1])[..., None]
+    step = np.where(ds > 0, ds, 1.0)[..., None]
+    lo = np.zeros_like(extent)
+    hi = np.where(past, 0.0, extent)
+    c = 0.5 * (lo + hi)
+    for _ in range(MAX_ROOT_STEPS):
+        x = np.where(ds[..., None] > 0, c[..., None] * _SIN / step, 0.0)
+        i0 = np.clip(np.floor(x).astype(np.int64), 0, k - 2)
+        a = flat.ravel()[base + i0]
+        b = flat.ravel()[base + i0 + 1]
+        frac = x - i0
+        f = (a * (1.0 - frac) + b * frac) @ _W - target
+        slope = ((b - a) / step) @ (_SIN * _W)
+        lo = np.where(f < 0, c, lo)
+        hi = np.where(f < 0, hi, c)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            newton = c - f / slope
+        inside = (slope > 0) & (newton >= lo) & (newton <= hi)
+        nxt = np.where(f == 0, c, np.where(inside, newton, 0.5 * (lo + hi)))
+        done = np.abs(nxt - c) <= ROOT_TOLERANCE * extent
+        c = nxt
+        if done.all():
+            break
+    return c
