@@ -73,3 +73,25 @@ def test_a_sweep_in_this_process_keeps_no_worker_hull(workers):
     before = dict(sweep_run._SHARED)
     hs.sweep(BASE, {"mass": [8.0]}, workers=workers)
     assert sweep_run._SHARED == before
+
+
+def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):
+    # Dask sets MALLOC_TRIM_THRESHOLD_ in its workers (and in the process that starts
+    # them), which doubles the time of a free-pitch case there; the cluster a sweep starts
+    # leaves it unset, and Dask's settings and this process's environment as they were
+    import os
+
+    import dask
+
+    from hullslice.sweeps import engine
+
+    pytest.importorskip("distributed")
+    before = dict(dask.config.get("distributed.nanny.pre-spawn-environ"))
+    monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "65536")  # as an earlier cluster leaves it
+    with engine.session(None, 2, 30.0, True) as client:
+        seen = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
+        threads = client.run(lambda: os.environ.get("OMP_NUM_THREADS"))
+    assert list(seen.values()) == [None, None]
+    assert set(threads.values()) == {str(before["OMP_NUM_THREADS"])}
+    assert dict(dask.config.get("distributed.nanny.pre-spawn-environ")) == before
+    assert os.environ["MALLOC_TRIM_THRESHOLD_"] == "65536"

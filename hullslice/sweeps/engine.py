@@ -25,6 +25,13 @@ Finish = Callable[[int, dict], None]
 #: Seconds to wait for a scheduler given by its address.
 CONNECT_TIMEOUT = 10.0
 
+#: Environment variables Dask sets in its workers that a sweep's own cluster leaves unset.
+#: ``MALLOC_TRIM_THRESHOLD_`` (glibc) also fixes the threshold above which memory comes from
+#: ``mmap``: every array of the cut is then mapped and unmapped afresh, and a free-pitch case
+#: takes twice as long in a worker as in a plain process. (A cluster given to a sweep is
+#: left as it is.)
+UNSET_WORKER_ENVIRON = ("MALLOC_TRIM_THRESHOLD_",)
+
 #: Tasks a sweep's cases are grouped into, at least, per worker: more balance the
 #: workers' loads at the end, fewer share more cuts (see :func:`groups`).
 MIN_TASKS_PER_WORKER = 4
@@ -97,13 +104,23 @@ def _client(client, workers: int | None, timeout: float):
                 "to run on this machine"
             ) from None
     n = workers or os.cpu_count() or 1
-    cluster = LocalCluster(
-        n_workers=n,
-        threads_per_worker=1,
-        processes=True,
-        dashboard_address=None,
-        silence_logs=50,
-    )
+    import dask
+
+    # None unsets a variable in Dask's settings; the workers inherit this process's
+    # environment too, where an earlier cluster of this process may have left it
+    unset = {f"distributed.nanny.pre-spawn-environ.{key}": None for key in UNSET_WORKER_ENVIRON}
+    saved = {key: os.environ.pop(key) for key in UNSET_WORKER_ENVIRON if key in os.environ}
+    try:
+        with dask.config.set(unset):  # read by the nannies as they are made
+            cluster = LocalCluster(
+                n_workers=n,
+                threads_per_worker=1,
+                processes=True,
+                dashboard_address=None,
+                silence_logs=50,
+            )
+    finally:
+        os.environ.update(saved)
     return Client(cluster), True
 
 
