@@ -401,8 +401,8 @@ def bench_fresh_cuts(table: Table, path: Path) -> None:
     poses = [hs.Pose(d, 0.08) for d in np.linspace(0.055, 0.295, 20)]
     err = max(relative_error(kept(p, motion), fresh(p, motion), hull.size) for p in poses)
     table.add(
-        f"128k, held pitch: kept cut and table against fresh cuts, {len(poses)} drafts "
-        "(largest relative difference of Fz, Fx, My / size)",
+        f"{len(hull.faces) / 1000:.0f}k, held pitch: kept cut and table against fresh cuts, "
+        f"{len(poses)} drafts (largest relative difference of Fz, Fx, My / size)",
         f"{err:.1e}",
     )
 
@@ -419,7 +419,7 @@ def bench_fresh_cuts(table: Table, path: Path) -> None:
     f = np.array([force(p0 + k * step) for k in range(11)])
     noise = float(np.max(np.abs(np.diff(f)) / np.abs(f[:-1])))
     slope = abs(force(p0 + 1e-6) - f[0]) / 1e-6 * step / abs(f[0])
-    table.add("free pitch against fresh cuts", "no approximation: each stage cut afresh")
+    table.add("free pitch against fresh cuts", "none: each stage cut afresh")
     table.add(
         "free pitch: a fresh cut's largest relative change of force, 10 steps of 1e-10 rad",
         f"{noise:.1e}",
