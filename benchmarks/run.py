@@ -29,7 +29,7 @@ force between pitches 1e-10 rad apart over 10 such steps (the 1:10 model
 ``meshes/fuselage_model.obj``, 32 fixed slices, draft 0.012 m, pitch 6 deg, 19 m/s
 forward, 1 m/s down), next to the force's own change over that step. Unless ``--quick``
 or ``--no-sweep``: the 64-case free-pitch sweep of ``benchmarks/sweep.py`` (cases of
-0.04 s at 1 ms, about 2 minutes) in this process and on 1 and 2 Dask workers, cases per
+0.03 s at 1 ms, 2 to 3 minutes) in this process and on 1 and 2 Dask workers, cases per
 second, target 2 / 1 workers >= 1.7 (it needs the ``sweep`` extra).
 
 Times are medians of ``--repeat`` runs on this machine (the 1M process and the sweep run
@@ -64,7 +64,7 @@ SIZES = {"10k": (63, 80), "100k": (313, 160), "128k": (400, 160), "1M": (1563, 3
 #: the pitch-step comparison: steps of each timed run (0.02 s at 0.2 ms), steps of warm-up
 PITCH_STEPS, WARM_STEPS = 100, 5
 #: the 64-case free-pitch sweep's case length, s (at 1 ms steps)
-SWEEP_T_END = 0.04
+SWEEP_T_END = 0.03
 
 
 def median_time(fn, repeat: int) -> float:
@@ -491,7 +491,7 @@ def main() -> None:
     ap.add_argument(
         "--no-sweep",
         action="store_true",
-        help="skip the 64-case free-pitch sweep on 1 and 2 Dask workers (about 2 minutes; "
+        help="skip the 64-case free-pitch sweep on 1 and 2 Dask workers (2 to 3 minutes; "
         "--quick skips it too)",
     )
     args = ap.parse_args()
