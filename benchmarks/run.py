@@ -486,7 +486,7 @@ def bench_process(table: Table, repeat: int) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh")
+    ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh and the sweep")
     ap.add_argument("--repeat", type=int, default=5, help="repetitions (default 5)")
     ap.add_argument(
         "--no-sweep",
