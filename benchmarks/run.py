@@ -1,6 +1,6 @@
 """hullslice's benchmark suite: one command, a table of measured figures against targets.
 
-    python benchmarks/run.py [--quick] [--repeat 5]
+    python benchmarks/run.py [--quick] [--repeat 5] [--no-sweep]
 
 Meshes: the generic fuselage of ``hullslice.shapes`` at about 10k, 100k and 1M faces
 (``--quick`` stops at 100k). For each: the time to load it from a file; the time to cut
@@ -12,10 +12,28 @@ every step (naive); the cost of an evaluation at a new pitch (the cut must be re
 once the hull has its first region, and the cost of making that region. Then: the cached
 cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
 2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
-step, peak memory) and 100 steps of it with free pitch, the paper's free-fall case from
+RK4 step of 4 evaluations against 0.5 ms, peak memory), the paper's free-fall case from
 process start to printed report, and the time of ``import hullslice`` and ``hullslice
---help``. Times are medians of ``--repeat`` runs on this
-machine; ratios compare figures measured in the same run.
+--help``.
+
+Free pitch: the time step with free pitch (each of its 4 stages at a new pitch, cut
+afresh) against the same run at a held pitch, 100 steps of 0.2 ms each with 128 fixed
+slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's process), each
+run after a 5-step warm-up of its own (the held pitch's cut and waterline table, the
+hull's first region made there); target free / held <= 2. What the approximations cost
+against fresh cuts: the held pitch's kept cut and waterline table against fresh cuts over
+20 drafts of the 128k fuselage (largest difference of the force, the horizontal force and
+the moment / body size, relative to the force); free pitch has none (every stage is cut
+afresh), and the fresh cut's own resolution is shown: the largest relative change of the
+force between pitches 1e-10 rad apart over 10 such steps (the 1:10 model
+``meshes/fuselage_model.obj``, 32 fixed slices, draft 0.012 m, pitch 6 deg, 19 m/s
+forward, 1 m/s down), next to the force's own change over that step. Unless ``--quick``
+or ``--no-sweep``: the 64-case free-pitch sweep of ``benchmarks/sweep.py`` (cases of
+0.03 s at 1 ms, 2 to 3 minutes) in this process and on 1 and 2 Dask workers, cases per
+second, target 2 / 1 workers >= 1.7 (it needs the ``sweep`` extra).
+
+Times are medians of ``--repeat`` runs on this machine (the 1M process and the sweep run
+once); ratios compare figures measured in the same run.
 """
 
 from __future__ import annotations
@@ -41,7 +59,12 @@ from hullslice.geometry import REGIONS, frame
 from hullslice.motion import ForceModel
 
 ROOT = Path(__file__).resolve().parents[1]
-SIZES = {"10k": (63, 80), "100k": (313, 160), "1M": (1563, 320)}  # stations, points
+# stations, points; 128k only for the time step at a held and at a free pitch
+SIZES = {"10k": (63, 80), "100k": (313, 160), "128k": (400, 160), "1M": (1563, 320)}
+#: the pitch-step comparison: steps of each timed run (0.02 s at 0.2 ms), steps of warm-up
+PITCH_STEPS, WARM_STEPS = 100, 5
+#: the 64-case free-pitch sweep's case length, s (at 1 ms steps)
+SWEEP_T_END = 0.03
 
 
 def median_time(fn, repeat: int) -> float:
@@ -266,7 +289,7 @@ def bench_steps(table: Table, repeat: int) -> None:
 
 CHILD = textwrap.dedent(
     """
-    import resource, sys, time
+    import resource, runpy, sys, time
     import hullslice as hs
     t0 = time.perf_counter()
     hull = hs.load_hull(sys.argv[1], mass=60000.0)
@@ -276,21 +299,22 @@ CHILD = textwrap.dedent(
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    # then free pitch: every stage of every step at a new pitch
-    t0 = time.perf_counter()
-    f = hs.simulate(hull, -1.5, 0.02, dt=0.0002, pitch=0.08, forward_speed=60.0,
-                    slices=128, slicing="fixed", stop_on=(), free_pitch=True)
-    t_free = time.perf_counter() - t0
-    print(t_load, t_sim, len(h), peak, t_free, len(f))
+    # then the same 100 steps at the held pitch and with free pitch, by run.py's own code
+    step_pair = runpy.run_path(sys.argv[2])["step_pair"]
+    t_held, t_free, steps = step_pair(hull, 1)
+    print(t_load, t_sim, len(h), peak, t_held, t_free, steps)
     """
 )
 
 
 def bench_big_simulation(table: Table, path: Path) -> None:
     out = subprocess.run(
-        [sys.executable, "-c", CHILD, str(path)], capture_output=True, text=True, check=True
+        [sys.executable, "-c", CHILD, str(path), __file__],
+        capture_output=True,
+        text=True,
+        check=True,
     )
-    t_load, t_sim, steps, peak, t_free, free_steps = (float(v) for v in out.stdout.split())
+    t_load, t_sim, steps, peak, t_held, t_free, pair_steps = (float(v) for v in out.stdout.split())
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -299,11 +323,138 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         t_sim < 1.5 * t_load,
     )
     table.add("1M: ratio simulation / load", f"{t_sim / t_load:.2f}")
-    table.add("1M: time step of that free fall (4 evaluations)", fmt(t_sim / (steps - 1)))
-    table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
+    step = t_sim / (steps - 1)
     table.add(
-        f"1M: time step with free pitch (4 new pitches), {int(free_steps) - 1} steps",
-        fmt(t_free / (free_steps - 1)),
+        "1M: time step of that free fall (4 evaluations, RK4)", fmt(step), "<= 0.5 ms", step <= 5e-4
+    )
+    table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
+    pitch_rows(table, "1M", t_held, t_free, int(pair_steps))
+
+
+def step_pair(hull, repeat: int) -> tuple[float, float, int]:
+    """The time per step (s) of the same run at a held pitch and with free pitch (4 new
+    pitches a step, each cut afresh), and the steps of each: the median of ``repeat``
+    runs of :data:`PITCH_STEPS` steps of 0.2 ms, 128 fixed slices, from pitch 4.6 deg at
+    60 m/s forward and 1.5 m/s down; each after a warm-up run of :data:`WARM_STEPS` steps
+    (it makes the held pitch's cut and waterline table, and the hull's first region)."""
+    dt = 2e-4
+
+    def run(steps: int, free: bool):
+        return hs.simulate(hull, -1.5, steps * dt, dt=dt, pitch=0.08, forward_speed=60.0,
+                           slices=128, slicing="fixed", stop_on=(), free_pitch=free)  # fmt: skip
+
+    times, counts = [], []
+    for free in (False, True):
+        run(WARM_STEPS, free)
+        runs = []
+        for _ in range(max(1, repeat)):
+            gc.collect()
+            t0 = time.perf_counter()
+            history = run(PITCH_STEPS, free)
+            runs.append(time.perf_counter() - t0)
+        counts.append(len(history) - 1)
+        times.append(statistics.median(runs) / counts[-1])
+    assert counts[0] == counts[1], counts
+    return times[0], times[1], counts[0]
+
+
+def pitch_rows(table: Table, size: str, t_held: float, t_free: float, steps: int) -> None:
+    table.add(
+        f"{size}: time step, held pitch, 128 fixed slices ({steps} steps after {WARM_STEPS})",
+        fmt(t_held),
+    )
+    table.add(f"{size}: time step, free pitch (each stage cut afresh), same steps", fmt(t_free))
+    table.add(
+        f"{size}: ratio free / held pitch step",
+        f"{t_free / t_held:.1f}",
+        "<= 2",
+        t_free <= 2 * t_held,
+    )
+
+
+def bench_pitch_steps(table: Table, tmp: Path, results: dict, repeat: int) -> None:
+    """The time step at a held and at a free pitch at 10k and 128k faces, in this process."""
+    for size in ("10k", "128k"):
+        path = results[size]["path"] if size in results else fuselage_file(tmp, size)
+        hull = hs.load_hull(path, mass=60000.0)
+        t_held, t_free, steps = step_pair(hull, repeat)
+        pitch_rows(table, f"{size} ({len(hull.faces)} faces)", t_held, t_free, steps)
+        results.setdefault(size, {"hull": hull, "path": path})
+
+
+def relative_error(a, b, size: float) -> float:
+    """The largest difference of two force results' ``total``, ``total_x`` and ``moment /
+    size`` (``size`` in m) relative to the second's ``abs(total)``."""
+    diffs = (a.total - b.total, a.total_x - b.total_x, (a.moment - b.moment) / size)
+    return max(abs(float(d)) for d in diffs) / abs(float(b.total))
+
+
+def bench_fresh_cuts(table: Table, path: Path) -> None:
+    """What the approximations cost against fresh cuts: the fixed slicing's reuse at a held
+    pitch, and (free pitch cutting afresh at every stage) the fresh cut's own resolution."""
+    hull = hs.load_hull(path, mass=60000.0)
+    motion = hs.Motion(-1.5, 60.0)
+    kept = ForceModel(hull, slices=128, slicing="fixed")
+    fresh = ForceModel(hull, slices=128, slicing="fixed", cache=False)
+    for d in np.linspace(0.05, 0.3, 8):  # its cut, and its waterline table (the 8th)
+        kept(hs.Pose(d, 0.08), motion)
+    poses = [hs.Pose(d, 0.08) for d in np.linspace(0.055, 0.295, 20)]
+    err = max(relative_error(kept(p, motion), fresh(p, motion), hull.size) for p in poses)
+    table.add(
+        f"{len(hull.faces) / 1000:.0f}k, held pitch: kept cut and table against fresh cuts, "
+        f"{len(poses)} drafts (largest relative difference of Fz, Fx, My / size)",
+        f"{err:.1e}",
+    )
+
+    # free pitch: no approximation, every stage cut afresh at its own pitch; the fresh
+    # cut's own resolution, on the model fuselage barely wetted
+    model = hs.load_hull(ROOT / "meshes" / "fuselage_model.obj", mass=60.0)
+    cut = ForceModel(model, slices=32, slicing="fixed", cache=False)
+    motion = hs.Motion(-1.0, 19.0)
+    p0, step = np.radians(6.0), 1e-10
+
+    def force(pitch: float) -> float:
+        return float(cut(hs.Pose(0.012, pitch), motion).total)
+
+    f = np.array([force(p0 + k * step) for k in range(11)])
+    noise = float(np.max(np.abs(np.diff(f)) / np.abs(f[:-1])))
+    slope = abs(force(p0 + 1e-6) - f[0]) / 1e-6 * step / abs(f[0])
+    table.add("free pitch against fresh cuts", "none: each stage cut afresh")
+    table.add(
+        "free pitch: a fresh cut's largest relative change of force, 10 steps of 1e-10 rad",
+        f"{noise:.1e}",
+    )
+    table.add(
+        "free pitch: of which the force's own change (its slope over 1e-6 rad)", f"{slope:.1e}"
+    )
+
+
+def bench_sweep(table: Table, repeat: int) -> None:
+    """The 64-case free-pitch sweep's cases per second in this process and on 1 and 2
+    Dask workers (``benchmarks/sweep.py``)."""
+    missing = [m for m in ("distributed", "xarray") if importlib.util.find_spec(m) is None]
+    if missing:
+        table.add(
+            "64-case free-pitch sweep",
+            f'not run: {" and ".join(missing)} missing: pip install -e ".[sweep]"',
+        )
+        return
+    spec = importlib.util.spec_from_file_location(
+        "sweep_benchmark", ROOT / "benchmarks" / "sweep.py"
+    )
+    assert spec is not None and spec.loader is not None
+    sweep = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(sweep)
+    what = f"64-case free-pitch sweep ({SWEEP_T_END:g} s cases at 1 ms, 1:10 model)"
+    rates = sweep.throughput(SWEEP_T_END, repeat=repeat, free_pitch=True)
+    one, two = rates[sweep.workers_name(1)], rates[sweep.workers_name(2)]
+    table.add(f"{what}, in this process", f"{rates[sweep.IN_PROCESS]:.2f} cases/s")
+    table.add(f"{what}, 1 worker", f"{one:.2f} cases/s")
+    table.add(f"{what}, 2 workers", f"{two:.2f} cases/s")
+    table.add("ratio 2 / 1 workers", f"{two / one:.2f}", ">= 1.7", two >= 1.7 * one)
+    table.add(
+        "free-pitch sweep: largest relative difference of a peak force between settings",
+        f"{rates['peak difference']:.1e}",
     )
 
 
@@ -335,8 +486,14 @@ def bench_process(table: Table, repeat: int) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh")
+    ap.add_argument("--quick", action="store_true", help="skip the 1M-face mesh and the sweep")
     ap.add_argument("--repeat", type=int, default=5, help="repetitions (default 5)")
+    ap.add_argument(
+        "--no-sweep",
+        action="store_true",
+        help="skip the 64-case free-pitch sweep on 1 and 2 Dask workers (2 to 3 minutes; "
+        "--quick skips it too)",
+    )
     args = ap.parse_args()
     if importlib.util.find_spec("trimesh") is None:
         # the comparison with trimesh runs in a process of its own, after minutes of work
@@ -354,8 +511,14 @@ def main() -> None:
             results[size] = bench_mesh(table, Path(tmp), size, args.repeat)
         bench_slices(table, results["100k"]["hull"], args.repeat)
         bench_steps(table, args.repeat)
+        print("time step at a held and a free pitch ...")
+        bench_pitch_steps(table, Path(tmp), results, args.repeat)
+        bench_fresh_cuts(table, results["128k"]["path"])
         if not args.quick:
             bench_big_simulation(table, results["1M"]["path"])
+            if not args.no_sweep:
+                print("64-case free-pitch sweep ...")
+                bench_sweep(table, 1)
         bench_process(table, args.repeat)
     table.show()
 

@@ -1,0 +1,100 @@
+"""The benchmark scripts' own figures: the helpers of ``benchmarks/run.py`` and the study of
+``benchmarks/sweep.py`` (the timings themselves are the scripts' business)."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+from types import ModuleType, SimpleNamespace
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def load(name: str) -> ModuleType:
+    spec = importlib.util.spec_from_file_location(f"bench_{name}", ROOT / "benchmarks" / name)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture(scope="module")
+def run() -> ModuleType:
+    return load("run.py")
+
+
+@pytest.fixture(scope="module")
+def sweep() -> ModuleType:
+    return load("sweep.py")
+
+
+def test_relative_error_takes_the_largest_of_force_horizontal_force_and_moment(run):
+    fresh = SimpleNamespace(total=-200.0, total_x=10.0, moment=50.0)
+    kept = SimpleNamespace(total=-200.0 + 1e-9, total_x=10.0 - 4e-9, moment=50.0 + 3e-8)
+    # moment over a 5 m body: 6e-9 N, the largest; relative to |total| = 200 N
+    assert run.relative_error(kept, fresh, 5.0) == pytest.approx(3e-11, rel=1e-6)
+
+
+@pytest.mark.parametrize(("t_free", "verdict"), [(1.9e-3, "met"), (2.1e-3, "NOT MET")])
+def test_the_free_over_held_pitch_ratio_is_judged_against_2(run, t_free, verdict):
+    table = run.Table()
+    run.pitch_rows(table, "10k", 1e-3, t_free, 100)
+    assert [r[3] for r in table.rows] == ["", "", verdict]
+    assert table.rows[2][1] == f"{t_free / 1e-3:.1f}"
+    assert table.rows[2][2] == "<= 2"
+    assert "100 steps after 5" in table.rows[0][0]
+
+
+def test_the_step_pair_times_the_same_steps_at_held_and_free_pitch(run, tmp_path, monkeypatch):
+    import hullslice as hs
+
+    monkeypatch.setattr(run, "PITCH_STEPS", 4)
+    monkeypatch.setattr(run, "WARM_STEPS", 1)
+    hull = hs.load_hull(run.fuselage_file(tmp_path, "10k"), mass=60000.0)
+    t_held, t_free, steps = run.step_pair(hull, 1)
+    assert steps == 4
+    assert 0.0 < t_held < 1.0 and 0.0 < t_free < 1.0
+
+
+def test_the_128k_size_has_about_128k_faces(run):
+    from hullslice import shapes
+
+    stations, points = run.SIZES["128k"]
+    _, faces = shapes.fuselage(stations=stations, points=points)
+    assert len(faces) == pytest.approx(128_000, rel=0.01)
+
+
+def test_fresh_cut_figures_agree_with_the_cuts_kept(run, tmp_path):
+    table = run.Table()
+    run.bench_fresh_cuts(table, run.fuselage_file(tmp_path, "10k"))
+    values = {what: value for what, value, _, _ in table.rows}
+    (kept,) = [v for w, v in values.items() if w.startswith("10k, held pitch: kept cut")]
+    assert float(kept) <= 1e-12  # the kept cut and its table agree with fresh cuts
+    noise = float(values["free pitch: a fresh cut's largest relative change of force, "
+                         "10 steps of 1e-10 rad"])  # fmt: skip
+    slope = float(values["free pitch: of which the force's own change (its slope over 1e-6 rad)"])
+    assert 0.0 < noise < 1e-7 and 0.0 < slope < 1e-7
+    assert values["free pitch against fresh cuts"] == "none: each stage cut afresh"
+
+
+def test_the_sweep_row_says_what_to_install_without_distributed(run, monkeypatch):
+    find = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "distributed" else find(name)
+    )
+    table = run.Table()
+    run.bench_sweep(table, 1)
+    assert len(table.rows) == 1
+    assert 'pip install -e ".[sweep]"' in table.rows[0][1] and "distributed" in table.rows[0][1]
+
+
+def test_the_sweep_study_frees_the_pitch_only_when_asked(sweep):
+    held, grid = sweep.study(0.05)
+    free, same = sweep.study(0.05, free_pitch=True)
+    assert "free_pitch" not in held and free["free_pitch"] is True
+    assert grid == same and len(grid["velocity"]) * len(grid["pitch"]) == sweep.CASES == 64
+    assert {k: v for k, v in free.items() if k not in ("free_pitch", "title")} == {
+        k: v for k, v in held.items() if k != "title"
+    }
