@@ -10,8 +10,10 @@ to its end (``continue_invalid``); by default twice, with short cases (0.05 s, 5
 sweep's fixed costs weigh) and with cases of a ditching's length (0.2 s, 200 steps). With
 ``--free-pitch`` the same grid with free pitch: the 8 pitches are the initial ones, and
 every stage of every step is cut afresh at its own pitch (about 5 ms a stage on this mesh,
-5 times a held pitch's). It runs in this process (``workers=1``, no Dask), then on a local
-cluster of 1 and of 2 worker processes (1 thread each); the cluster's start is timed apart.
+against about 0.3 ms at a held pitch). It runs in this process (``workers=1``, no Dask),
+then on a local cluster of 1 and of 2 worker processes (1 thread each), made as
+``hullslice.sweep`` makes its own (``hullslice.sweeps.engine.local_client``); the cluster's
+start is timed apart.
 For each: the wall time of ``hullslice.sweep`` (the mesh read and checked, the hull sent to
 the workers as its state and built by each, the cases, the dataset), the cases per second,
 and the overhead per case, ``(wall time x workers - the cases' own computing time) /
@@ -88,7 +90,7 @@ def settings(
     """The sweep measured ``repeat`` times in this process (unless ``in_process`` is
     False) and on a local Dask cluster of 1 and of 2 workers: rows of (setting, workers,
     the cluster's start in s or None, the runs' :func:`measure` figures)."""
-    from distributed import Client, LocalCluster
+    from hullslice.sweeps.engine import local_client
 
     base, grid = study(t_end, free_pitch)
     rows: list[tuple[str, int, float | None, list[dict]]] = []
@@ -97,14 +99,13 @@ def settings(
         rows.append((IN_PROCESS, 1, None, runs))
     for n in (1, 2):
         t0 = time.perf_counter()
-        with (
-            LocalCluster(
-                n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None
-            ) as cluster,
-            Client(cluster) as client,
-        ):
+        client = local_client(n)  # the cluster hullslice.sweep starts for workers=n
+        try:
             startup = time.perf_counter() - t0
             runs = [measure(base, grid, client=client) for _ in range(repeat)]
+        finally:
+            client.close()
+            client.cluster.close()
         rows.append((workers_name(n), n, startup, runs))
     return rows
 

@@ -88,7 +88,7 @@ def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
 def _client(client, workers: int | None, timeout: float):
     """``(client, owned)``: the Dask client to use, and whether this sweep made it."""
     require("distributed")
-    from distributed import Client, LocalCluster
+    from distributed import Client
 
     if client is not None and not isinstance(client, str | os.PathLike):
         return client, False
@@ -103,8 +103,15 @@ def _client(client, workers: int | None, timeout: float):
                 "start one ('dask scheduler'), check the address, or leave out --scheduler "
                 "to run on this machine"
             ) from None
-    n = workers or os.cpu_count() or 1
+    return local_client(workers or os.cpu_count() or 1), True
+
+
+def local_client(workers: int):
+    """A Dask client of a cluster of ``workers`` processes on this machine, one thread each,
+    made as a sweep makes its own (:data:`UNSET_WORKER_ENVIRON` unset in the workers)."""
+    require("distributed")
     import dask
+    from distributed import Client, LocalCluster
 
     # None unsets a variable in Dask's settings; the workers inherit this process's
     # environment too, where an earlier cluster of this process may have left it
@@ -113,7 +120,7 @@ def _client(client, workers: int | None, timeout: float):
     try:
         with dask.config.set(unset):  # read by the nannies as they are made
             cluster = LocalCluster(
-                n_workers=n,
+                n_workers=workers,
                 threads_per_worker=1,
                 processes=True,
                 dashboard_address=None,
@@ -121,7 +128,7 @@ def _client(client, workers: int | None, timeout: float):
             )
     finally:
         os.environ.update(saved)
-    return Client(cluster), True
+    return Client(cluster)
 
 
 def _value(x):
