@@ -34,6 +34,20 @@ def test_lowest_crossing_is_the_dense_one(edges, y):
     np.testing.assert_array_equal(contour._lowest(e, ys), lowest_dense(e, ys))
 
 
+@given(
+    edges=st.lists(st.tuples(grid, grid, grid, grid, st.integers(0, 2)), max_size=25),
+    y=st.lists(st.tuples(grid, st.integers(0, 2)), min_size=1, max_size=30),
+)
+def test_lowest_crossing_by_group_is_each_groups_dense_one(edges, y):
+    # many contours at once: each line meets only the edges of its own group
+    e = np.array([t[:4] for t in edges], dtype=np.float64).reshape(-1, 4)
+    eg = np.array([t[4] for t in edges], dtype=np.int64)
+    ys = np.array([t[0] for t in y], dtype=np.float64)
+    yg = np.array([t[1] for t in y], dtype=np.int64)
+    want = np.array([lowest_dense(e[eg == g], ys[i : i + 1])[0] for i, g in enumerate(yg)])
+    np.testing.assert_array_equal(contour._lowest(e, ys, eg, yg), want)
+
+
 def wagner_integral(g: np.ndarray, ds: float, c: float) -> float:
     """The quadrature of Wagner's condition, linearly between the samples of ``g``."""
     x = c * contour._SIN / ds

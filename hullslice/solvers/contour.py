@@ -81,29 +81,77 @@ def _edges(contours: Sequence[np.ndarray]) -> np.ndarray:
     return np.concatenate(parts) if parts else np.empty((0, 4))
 
 
-def _lowest(edges: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """Lowest ``z`` of the contours on the vertical lines ``y`` (NaN where none crosses).
+def _lowest(
+    edges: np.ndarray,
+    y: np.ndarray,
+    edge_group: np.ndarray | None = None,
+    y_group: np.ndarray | None = None,
+) -> np.ndarray:
+    """Lowest ``z`` of the contours on the vertical lines ``y`` (NaN where none crosses);
+    with groups, of the edges of each line's own group only (many contours at once).
 
-    Each edge is met only with the lines over its own span (found by a search in the
-    sorted ``y``), not with every line."""
+    Each edge meets only the lines of its group over its own span, found by a search in
+    the lines sorted by group then ``y`` (a complex key ``group + i y`` sorts so, exactly).
+    """
     y = np.asarray(y, dtype=np.float64)
     out = np.full(len(y), np.inf)
     y1, z1, y2, z2 = edges[:, 0], edges[:, 1], edges[:, 2], edges[:, 3]
     lo, hi = np.minimum(y1, y2), np.maximum(y1, y2)
     keep = hi > lo
     if keep.any() and len(y):
-        order = np.argsort(y, kind="stable")
-        ys = y[order]
-        y1, z1, y2, z2, lo, hi = y1[keep], z1[keep], y2[keep], z2[keep], lo[keep], hi[keep]
-        i0 = np.searchsorted(ys, lo, side="left")
-        count = np.searchsorted(ys, hi, side="right") - i0  # lines i0 .. i0 + count - 1
+        eg = np.zeros(len(edges)) if edge_group is None else edge_group.astype(np.float64)
+        yg = np.zeros(len(y)) if y_group is None else y_group.astype(np.float64)
+        key = yg + 1j * y
+        order = np.argsort(key, kind="stable")
+        keys = key[order]
+        y1, z1, y2, z2, lo, hi, eg = (v[keep] for v in (y1, z1, y2, z2, lo, hi, eg))
+        i0 = np.searchsorted(keys, eg + 1j * lo, side="left")
+        count = np.searchsorted(keys, eg + 1j * hi, side="right") - i0  # i0 .. i0 + count - 1
         if count.sum():
             seg = np.repeat(np.arange(len(count)), count)
-            idx = np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]
+            line = order[np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]]
             with np.errstate(divide="ignore", invalid="ignore"):
-                z = z1[seg] + (ys[idx] - y1[seg]) * (z2[seg] - z1[seg]) / (y2[seg] - y1[seg])
-            np.minimum.at(out, order[idx], z)
+                z = z1[seg] + (y[line] - y1[seg]) * (z2[seg] - z1[seg]) / (y2[seg] - y1[seg])
+            np.minimum.at(out, line, z)
     return np.where(np.isfinite(out), out, np.nan)
+
+
+def _heights(sections, p: np.ndarray, reach: np.ndarray) -> np.ndarray:
+    """The height of each side's contour above its keel, (2, n, SAMPLES) m, sampled from
+    the keel out to ``reach`` ((2, n) m); NaN past the side's extent."""
+    n = len(sections)
+    unit = np.linspace(0.0, 1.0, SAMPLES)
+    station = np.asarray(sections.station, dtype=np.int64)
+    stations, st_index = np.unique(station, return_inverse=True)
+    per_station = [_edges(sections.polygons[int(st)]) for st in stations]
+    sizes = np.array([len(e) for e in per_station], dtype=np.int64)
+    edges = np.concatenate(per_station) if len(per_station) else np.empty((0, 4))
+    yk = np.asarray(sections.y_keel, dtype=np.float64)
+    lowest = _lowest(edges, yk, np.repeat(np.arange(len(stations)), sizes), st_index)
+    # a slice at an end of the wetted part may carry its neighbour's section made similar
+    # to its own depth (the fixed slicing): its contour is that section scaled by the depth
+    # ratio about the waterline above the keel
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where((lowest < 0) & (p > 0), p / -lowest, 1.0)
+    side = np.concatenate([reach[0][:, None] * unit, -reach[1][:, None] * unit], axis=1)
+    y = yk[:, None] + side / ratio[:, None]  # (n, 2 SAMPLES)
+    # each entry's edges: those of its station below the keel's height plus the reach,
+    # over the sampled width
+    first = np.concatenate([[0], np.cumsum(sizes)])[st_index]
+    own = sizes[st_index]
+    entry = np.repeat(np.arange(n), own)
+    e = edges[np.arange(int(own.sum())) - np.repeat(np.cumsum(own) - own, own) + first[entry]]
+    lo_y, hi_y = yk - reach[1] / ratio, yk + reach[0] / ratio
+    z_top = lowest + 4.0 * np.maximum(reach[0], reach[1]) / ratio
+    near = (
+        (np.maximum(e[:, 0], e[:, 2]) >= lo_y[entry])
+        & (np.minimum(e[:, 0], e[:, 2]) <= hi_y[entry])
+        & (np.minimum(e[:, 1], e[:, 3]) <= z_top[entry])
+    )
+    lines = np.repeat(np.arange(n), 2 * SAMPLES)
+    low = _lowest(e[near], y.ravel(), entry[near], lines).reshape(n, 2 * SAMPLES)
+    heights = ratio[:, None] * (low - lowest[:, None])
+    return np.moveaxis(heights.reshape(n, 2, SAMPLES), 1, 0)
 
 
 def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
@@ -210,30 +258,7 @@ def contour_half_widths(
     p = np.asarray(sections.penetration, dtype=np.float64)
     calm = np.stack([sections.half_beam_port, sections.half_beam_stbd])  # (2, n)
     reach = 2.5 * np.maximum(calm, 0.0)
-    unit = np.linspace(0.0, 1.0, SAMPLES)
-    heights = np.full((2, n, SAMPLES), np.nan)
-    by_station: dict[int, np.ndarray] = {}
-    for i in range(n):
-        st = int(sections.station[i])
-        edges = by_station.get(st)
-        if edges is None:
-            edges = by_station[st] = _edges(sections.polygons[st])
-        yk = float(sections.y_keel[i])
-        # a slice at an end of the wetted part may carry its neighbour's section made
-        # similar to its own depth (the fixed slicing): its contour is that section scaled
-        # by the depth ratio about the waterline above the keel
-        lowest = float(_lowest(edges, np.array([yk]))[0])
-        ratio = p[i] / -lowest if lowest < 0 and p[i] > 0 else 1.0
-        y = yk + np.concatenate([reach[0, i] * unit, -reach[1, i] * unit]) / ratio
-        # only the edges below the keel's height plus the reach, over the sampled width
-        lo_y, hi_y = yk - reach[1, i] / ratio, yk + reach[0, i] / ratio
-        z_top = lowest + 4.0 * max(reach[0, i], reach[1, i]) / ratio
-        near = (
-            (np.maximum(edges[:, 0], edges[:, 2]) >= lo_y)
-            & (np.minimum(edges[:, 0], edges[:, 2]) <= hi_y)
-            & (np.minimum(edges[:, 1], edges[:, 3]) <= z_top)
-        )
-        heights[:, i, :] = (ratio * (_lowest(edges[near], y) - lowest)).reshape(2, SAMPLES)
+    heights = _heights(sections, p, reach)
     ds = reach / (SAMPLES - 1)  # (2, n)
     gamma = 0.5 * np.pi if law == "wagner" else 1.0
     with np.errstate(invalid="ignore", divide="ignore"):
