@@ -25,7 +25,7 @@ against fresh cuts: the held pitch's kept cut and waterline table against fresh 
 20 drafts of the 128k fuselage (largest difference of the force, the horizontal force and
 the moment / body size, relative to the force); free pitch has none (every stage is cut
 afresh), and the fresh cut's own resolution is shown: the largest relative change of the
-force between pitches 1e-10 rad apart over 10 such steps (the 1:10 model
+force from one pitch to the next, 1e-10 rad apart, over 10 such steps (the 1:10 model
 ``meshes/fuselage_model.obj``, 32 fixed slices, draft 0.012 m, pitch 6 deg, 19 m/s
 forward, 1 m/s down), next to the force's own change over that step. Unless ``--quick``
 or ``--no-sweep``: the 64-case free-pitch sweep of ``benchmarks/sweep.py`` (cases of
@@ -421,7 +421,8 @@ def bench_fresh_cuts(table: Table, path: Path) -> None:
     slope = abs(force(p0 + 1e-6) - f[0]) / 1e-6 * step / abs(f[0])
     table.add("free pitch against fresh cuts", "none: each stage cut afresh")
     table.add(
-        "free pitch: a fresh cut's largest relative change of force, 10 steps of 1e-10 rad",
+        "free pitch: a fresh cut's force, largest relative change over a pitch step of 1e-10 rad"
+        " (10 steps)",
         f"{noise:.1e}",
     )
     table.add(
