@@ -71,13 +71,18 @@ _W = _WEIGHTS * np.pi / 4.0
 _SIN = np.sin(_T)
 
 
+def _next(a: np.ndarray) -> np.ndarray:
+    """Each point's successor along a closed contour (``np.roll(a, -1, axis=0)``)."""
+    return np.concatenate((a[1:], a[:1]))
+
+
 def _edges(contours: Sequence[np.ndarray]) -> np.ndarray:
     """(m, 4) segments ``y1, z1, y2, z2`` of closed contours."""
     parts = []
     for c in contours:
         c = np.asarray(c, dtype=np.float64)
         if len(c) >= 2:
-            parts.append(np.column_stack([c, np.roll(c, -1, axis=0)]))
+            parts.append(np.column_stack([c, _next(c)]))
     return np.concatenate(parts) if parts else np.empty((0, 4))
 
 
@@ -181,7 +186,7 @@ def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
             if len(c) < 3:
                 continue
             y, z = c[:, 0], c[:, 1]
-            full = 0.5 * float(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1)))
+            full = 0.5 * float(np.dot(y, _next(z)) - np.dot(z, _next(y)))
             if full > 0:  # an outer contour
                 parts.append((float(y.min()), float(y.max()), float(z.min()), c, full))
         owner = np.full(len(idx), -1)
@@ -207,7 +212,7 @@ def _clipped_area(c: np.ndarray) -> float:
     """Signed area of one closed contour clipped to ``z <= 0`` (Sutherland-Hodgman)."""
     if len(c) < 3:
         return 0.0
-    p1, p2 = c, np.roll(c, -1, axis=0)
+    p1, p2 = c, _next(c)
     in1, in2 = p1[:, 1] <= 0.0, p2[:, 1] <= 0.0
     if not in1.any():
         return 0.0
@@ -221,7 +226,7 @@ def _clipped_area(c: np.ndarray) -> float:
     keep[0::2], keep[1::2] = in1, cross
     q = pts[keep]
     y, z = q[:, 0], q[:, 1]
-    return 0.5 * float(np.dot(y, np.roll(z, -1)) - np.dot(z, np.roll(y, -1)))
+    return 0.5 * float(np.dot(y, _next(z)) - np.dot(z, _next(y)))
 
 
 def contour_half_widths(
