@@ -4,6 +4,7 @@ against brute forces."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
@@ -83,3 +84,30 @@ def test_wagners_c_meets_its_condition_to_rounding(rises, share):
     slope = (wagner_integral(g, ds, hi + 1e-6 * extent) - target) / (1e-6 * extent)
     if slope > 1e-6 * top / extent:
         assert abs(c - 0.5 * (lo + hi)) <= 1e-12 * extent
+
+
+@pytest.mark.parametrize("deadrise_deg", [15.0, 25.0, 35.0])
+@pytest.mark.parametrize("wall", [1.0, 2.0, 5.0])
+def test_wagners_c_on_a_v_with_a_step(deadrise_deg, wall):
+    # a V with a step (a strake): the condition is S-shaped in c, where plain Newton steps
+    # go back and forth between two pieces; the root agrees with 100 halvings
+    k = contour.SAMPLES
+    worst = 0.0
+    for j in range(2, 60, 3):
+        rise = np.full(k - 1, np.tan(np.radians(deadrise_deg)))
+        rise[j] += wall
+        g = np.concatenate([[0.0], np.cumsum(rise)])
+        extent = k - 1.0
+        top = wagner_integral(g, 1.0, extent)
+        for share in np.linspace(0.05, 0.95, 19):
+            target = share * top
+            c = contour._wagner_root(
+                g[None, None, :], np.ones((1, 1)), np.full((1, 1), extent),
+                np.full((1, 1), target), np.zeros((1, 1), dtype=bool),
+            )[0, 0]  # fmt: skip
+            lo, hi = 0.0, extent
+            for _ in range(100):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if wagner_integral(g, 1.0, mid) < target else (lo, mid)
+            worst = max(worst, abs(c - 0.5 * (lo + hi)) / extent)
+    assert worst <= 1e-12

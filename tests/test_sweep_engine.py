@@ -81,17 +81,19 @@ def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):
     # leaves it unset, and Dask's settings and this process's environment as they were
     import os
 
+    pytest.importorskip("distributed")
     import dask
 
     from hullslice.sweeps import engine
 
-    pytest.importorskip("distributed")
     before = dict(dask.config.get("distributed.nanny.pre-spawn-environ"))
     monkeypatch.setenv("MALLOC_TRIM_THRESHOLD_", "65536")  # as an earlier cluster leaves it
     with engine.session(None, 2, 30.0, True) as client:
         seen = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
         threads = client.run(lambda: os.environ.get("OMP_NUM_THREADS"))
-    assert list(seen.values()) == [None, None]
+        client.restart()  # workers started again (as after a crash) go without it too
+        again = client.run(lambda: os.environ.get("MALLOC_TRIM_THRESHOLD_"))
+    assert list(seen.values()) == [None, None] and list(again.values()) == [None, None]
     assert set(threads.values()) == {str(before["OMP_NUM_THREADS"])}
     assert dict(dask.config.get("distributed.nanny.pre-spawn-environ")) == before
     assert os.environ["MALLOC_TRIM_THRESHOLD_"] == "65536"

@@ -162,8 +162,11 @@ def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
     """
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
-    if len(xs) > 1:  # np.unique's values, without its bookkeeping
-        xs = xs[np.concatenate([[True], xs[1:] != xs[:-1]])]
+    if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
+        new = xs[1:] != xs[:-1]
+        if np.isnan(xs[-1]):
+            new &= ~np.isnan(xs[:-1])
+        xs = xs[np.concatenate([[True], new])]
     segments = _Segments(a, b)
     z = segments.lowest(xs)
     mid = 0.5 * (xs[1:] + xs[:-1])

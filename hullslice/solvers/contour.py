@@ -60,8 +60,8 @@ SAMPLES = 96
 #: A side is a wedge when its height at half the calm-water half-width is within this
 #: share of half the penetration.
 WEDGE_TOLERANCE = 0.1
-#: Most Newton steps (each inside a bracket kept by bisection) for Wagner's ``c``.
-MAX_ROOT_STEPS = 64
+#: Most steps (Newton's, or halvings of the bracket) for Wagner's ``c``.
+MAX_ROOT_STEPS = 110
 #: Wagner's ``c`` is solved to this share of the side's extent (or to rounding).
 ROOT_TOLERANCE = 1e-15
 #: Gauss-Legendre nodes over ``t`` in ``(0, pi/2)`` for Wagner's condition.
@@ -104,14 +104,13 @@ def _lowest(
     lo, hi = np.minimum(y1, y2), np.maximum(y1, y2)
     keep = hi > lo
     if keep.any() and len(y):
-        eg = np.zeros(len(edges)) if edge_group is None else edge_group.astype(np.float64)
-        yg = np.zeros(len(y)) if y_group is None else y_group.astype(np.float64)
-        key = yg + 1j * y
-        order = np.argsort(key, kind="stable")
-        keys = key[order]
+        eg = np.zeros(len(edges)) if edge_group is None else edge_group
+        yg = np.zeros(len(y)) if y_group is None else y_group
+        order = np.argsort(_key(yg, y), kind="stable")
+        keys = _key(yg, y)[order]
         y1, z1, y2, z2, lo, hi, eg = (v[keep] for v in (y1, z1, y2, z2, lo, hi, eg))
-        i0 = np.searchsorted(keys, eg + 1j * lo, side="left")
-        count = np.searchsorted(keys, eg + 1j * hi, side="right") - i0  # i0 .. i0 + count - 1
+        i0 = np.searchsorted(keys, _key(eg, lo), side="left")
+        count = np.searchsorted(keys, _key(eg, hi), side="right") - i0  # i0 .. i0 + count - 1
         if count.sum():
             seg = np.repeat(np.arange(len(count)), count)
             line = order[np.arange(len(seg)) - np.repeat(np.cumsum(count) - count, count) + i0[seg]]
@@ -119,6 +118,15 @@ def _lowest(
                 z = z1[seg] + (y[line] - y1[seg]) * (z2[seg] - z1[seg]) / (y2[seg] - y1[seg])
             np.minimum.at(out, line, z)
     return np.where(np.isfinite(out), out, np.nan)
+
+
+def _key(group: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """``group + i y``: complex numbers sort by their real part, then their imaginary one
+    (set apart, not multiplied: ``1j * inf`` is ``nan + inf j``)."""
+    key = np.empty(len(y), dtype=np.complex128)
+    key.real = group
+    key.imag = y
+    return key
 
 
 def _heights(sections, p: np.ndarray, reach: np.ndarray) -> np.ndarray:
@@ -364,33 +372,44 @@ def _wagner_root(
     quadrature of :data:`_W`) reaches ``target``, for each side: ``g`` ((..., K) rising
     heights sampled every ``ds``) is piecewise linear, and so is the integral in ``c``.
 
-    Newton's steps inside a bracket that bisection keeps: a step lands on the root as soon
-    as it starts on the root's linear piece, so a few steps solve it to rounding where 48
-    halvings of the bracket did before. Sides in ``past`` are left at any value.
+    Newton's steps inside a bracket (as Numerical Recipes' ``rtsafe``): a step lands on
+    the root as soon as it starts on the root's linear piece, so a few steps solve it to
+    rounding where 48 halvings of the bracket did before. Every point tried becomes an end
+    of the bracket; a Newton step is taken only strictly inside it and only when it is at
+    most half the step before the last, else the bracket is halved. An S-shaped condition
+    (a V with a step), which sends plain Newton back and forth, is then bisected. Sides in
+    ``past`` are left at any value.
     """
     k = g.shape[-1]
-    flat = g.reshape(-1, k)
-    base = (np.arange(flat.shape[0]) * k).reshape(g.shape[:-1])[..., None]
+    flat = g.reshape(-1, k).ravel()
+    base = (np.arange(g.reshape(-1, k).shape[0]) * k).reshape(g.shape[:-1])[..., None]
     step = np.where(ds > 0, ds, 1.0)[..., None]
+    tol = ROOT_TOLERANCE * extent
     lo = np.zeros_like(extent)
     hi = np.where(past, 0.0, extent)
     c = 0.5 * (lo + hi)
+    dx_old = dx = hi - lo  # the steps before the last and the last
+    done = past | (hi - lo <= tol)
     for _ in range(MAX_ROOT_STEPS):
         x = np.where(ds[..., None] > 0, c[..., None] * _SIN / step, 0.0)
         i0 = np.clip(np.floor(x).astype(np.int64), 0, k - 2)
-        a = flat.ravel()[base + i0]
-        b = flat.ravel()[base + i0 + 1]
+        a = flat[base + i0]
+        b = flat[base + i0 + 1]
         frac = x - i0
         f = (a * (1.0 - frac) + b * frac) @ _W - target
         slope = ((b - a) / step) @ (_SIN * _W)
-        lo = np.where(f < 0, c, lo)
-        hi = np.where(f < 0, hi, c)
+        lo = np.where(done | (f >= 0), lo, c)
+        hi = np.where(done | (f < 0), hi, c)
         with np.errstate(invalid="ignore", divide="ignore"):
-            newton = c - f / slope
-        inside = (slope > 0) & (newton >= lo) & (newton <= hi)
-        nxt = np.where(f == 0, c, np.where(inside, newton, 0.5 * (lo + hi)))
-        done = np.abs(nxt - c) <= ROOT_TOLERANCE * extent
-        c = nxt
+            newton = f / slope  # the Newton step back from c
+        inside = (slope > 0) & (c - newton > lo) & (c - newton < hi)
+        shrinking = np.abs(2.0 * newton) <= np.abs(dx_old)
+        use = inside & shrinking
+        dx_old, dx = dx, np.where(use, newton, c - 0.5 * (lo + hi))
+        # c is the root to rounding where Newton's step back is negligible
+        settled = (f == 0) | ((slope > 0) & (np.abs(newton) <= tol)) | (hi - lo <= tol)
+        c = np.where(done | settled, c, c - dx)
+        done = done | settled
         if done.all():
             break
     return c

@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable, Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import contextmanager, nullcontext
 from typing import Any
 
 from ..errors import InputError, MissingDependencyError
@@ -108,27 +108,43 @@ def _client(client, workers: int | None, timeout: float):
 
 def local_client(workers: int):
     """A Dask client of a cluster of ``workers`` processes on this machine, one thread each,
-    made as a sweep makes its own (:data:`UNSET_WORKER_ENVIRON` unset in the workers)."""
+    made as a sweep makes its own (:data:`UNSET_WORKER_ENVIRON` unset in the workers; a
+    worker started again later, after a crash, inherits this process's environment: see
+    :func:`worker_environ`, which a sweep holds for as long as its cluster runs)."""
     require("distributed")
-    import dask
     from distributed import Client, LocalCluster
 
-    # None unsets a variable in Dask's settings; the workers inherit this process's
-    # environment too, where an earlier cluster of this process may have left it
+    with worker_environ():
+        cluster = LocalCluster(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=50,
+        )
+        try:
+            return Client(cluster)
+        except BaseException:
+            cluster.close()
+            raise
+
+
+@contextmanager
+def worker_environ() -> Iterator[None]:
+    """While inside, Dask workers started by this process go without
+    :data:`UNSET_WORKER_ENVIRON`: unset in Dask's settings (read by each nanny as it is made)
+    and in this process's environment (which every worker inherits, and where an earlier
+    cluster of this process may have left it); both are as they were on leaving."""
+    require("distributed")
+    import dask
+
     unset = {f"distributed.nanny.pre-spawn-environ.{key}": None for key in UNSET_WORKER_ENVIRON}
     saved = {key: os.environ.pop(key) for key in UNSET_WORKER_ENVIRON if key in os.environ}
     try:
-        with dask.config.set(unset):  # read by the nannies as they are made
-            cluster = LocalCluster(
-                n_workers=workers,
-                threads_per_worker=1,
-                processes=True,
-                dashboard_address=None,
-                silence_logs=50,
-            )
+        with dask.config.set(unset):
+            yield
     finally:
         os.environ.update(saved)
-    return Client(cluster)
 
 
 def _value(x):
@@ -231,15 +247,17 @@ def session(client, workers: int | None, timeout: float, needed: bool) -> Iterat
     if not needed or (client is None and workers == 1):
         yield None
         return
-    dask_client, owned = _client(client, workers, timeout)
-    try:
-        yield dask_client
-    finally:
-        if owned:
-            cluster = getattr(dask_client, "cluster", None)
-            dask_client.close()
-            if cluster is not None:
-                cluster.close()
+    local = client is None  # a cluster of this machine, started here
+    with worker_environ() if local else nullcontext():  # also for workers started again
+        dask_client, owned = _client(client, workers, timeout)
+        try:
+            yield dask_client
+        finally:
+            if owned:
+                cluster = getattr(dask_client, "cluster", None)
+                dask_client.close()
+                if cluster is not None:
+                    cluster.close()
 
 
 def run_cases(
