@@ -19,6 +19,7 @@ import os
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import cast
 
 import numpy as np
 
@@ -301,7 +302,8 @@ class MassProperties:
         given = [k for k, v in (("mass", mass), ("mass_distribution", mass_distribution),
                                 ("cg", cg), ("inertia", inertia)) if v is not None]  # fmt: skip
         if mass_properties is None:
-            return cls(mass, mass_distribution, cg, inertia)  # type: ignore[arg-type]
+            # the field holds the array __post_init__ makes of the sequence given
+            return cls(mass, mass_distribution, cast("np.ndarray | None", cg), inertia)
         if given:
             raise InputError(
                 f"mass_properties and {', '.join(given)} both give the mass properties: give "
