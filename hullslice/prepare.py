@@ -26,7 +26,7 @@ from .axes import axis_matrix
 from .constants import LENGTH_UNITS
 from .errors import InputError, MeshRepairWarning
 from .parts import Body, find_bodies, keep_faces, parse_keep
-from .topology import unique_rows
+from .topology import drop_unused_vertices, unique_rows
 
 __all__ = ["REPAIRS", "Prepared", "check_scale", "prepare_arrays"]
 
@@ -182,11 +182,7 @@ def prepare_arrays(
             )
             text += f"; dropped {shown}"
         notes.append(text)
-        f = f[mask]
-        used = np.zeros(len(v), dtype=bool)
-        used[f.ravel()] = True
-        remap = np.cumsum(used) - 1
-        v, f = v[used], remap[f]
+        v, f = drop_unused_vertices(v, f[mask])
     for b in described:
         b["kept"] = b["number"] in kept
     for note in notes:

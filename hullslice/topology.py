@@ -15,6 +15,7 @@ __all__ = [
     "MAX_MERGE_PAIRS",
     "check_finite",
     "drop_repeated_faces",
+    "drop_unused_vertices",
     "edge_use",
     "flipped",
     "group",
@@ -132,6 +133,17 @@ def drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:
     first = np.full(len(unique), len(f))
     np.minimum.at(first, inverse, np.arange(len(f)))
     return f[np.sort(first)], len(f) - len(unique)
+
+
+def drop_unused_vertices(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices some face uses, and the faces renumbered to them (as given when all
+    are used)."""
+    used = np.zeros(len(v), dtype=bool)
+    used[f.ravel()] = True
+    if used.all():
+        return v, f
+    remap = np.cumsum(used) - 1
+    return v[used], remap[f]
 
 
 def signed_volume(v: np.ndarray, f: np.ndarray) -> float:

@@ -31,7 +31,7 @@ import numpy as np
 from ..constants import TOL
 from ..errors import MeshError
 from ..parts import face_labels, open_faces
-from ..topology import drop_repeated_faces, edge_use, unique_rows
+from ..topology import drop_repeated_faces, drop_unused_vertices, edge_use, unique_rows
 
 __all__ = ["CloseReport", "close_mesh"]
 
@@ -198,7 +198,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     n_open, _ = _open_count(f)
     if n_open == 0 and not stitched:
         return v, f, None
-    v, f = _compact(v, f)
+    v, f = drop_unused_vertices(v, f)
     n0, labels0 = face_labels(v, f)
     before_closed = _closed_shell_volume(v, f, labels0, n0)
     open_shell = np.bincount(labels0, weights=open_faces(f), minlength=n0) > 0
@@ -218,7 +218,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     if open_shell.any():
         pymeshfix = _meshfix()
     for s in np.flatnonzero(open_shell):
-        sv, sf = _compact(v, f[order[bounds[s] : bounds[s + 1]]])
+        sv, sf = drop_unused_vertices(v, f[order[bounds[s] : bounds[s + 1]]])
         tm = pymeshfix.PyTMesh()
         tm.set_quiet(1)
         tm.load_array(np.ascontiguousarray(sv), np.ascontiguousarray(sf, dtype=np.int32))
@@ -251,7 +251,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
             f"mesh {name!r}: repair close left nothing that encloses a volume ({n} shells, "
             f"{dropped} could not be closed): the surface is not a body; remesh it"
         )
-    v, f = _compact(np.vstack(pieces_v), np.vstack(pieces_f))
+    v, f = drop_unused_vertices(np.vstack(pieces_v), np.vstack(pieces_f))
     report = CloseReport(
         holes=holes,
         open_edges=n_open,
@@ -265,16 +265,6 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
         seconds=time.perf_counter() - start,
     )
     return v, f, report
-
-
-def _compact(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Drop the vertices no face uses."""
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    if used.all():
-        return v, f
-    remap = np.cumsum(used) - 1
-    return v[used], remap[f]
 
 
 def _volume(v: np.ndarray, f: np.ndarray) -> float:

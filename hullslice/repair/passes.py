@@ -29,6 +29,7 @@ from ..integrity import check_sections_match_volume
 from ..topology import (
     check_finite,
     drop_repeated_faces,
+    drop_unused_vertices,
     edge_use,
     flipped,
     merge_close,
@@ -96,12 +97,7 @@ class Pass:
 def _drop_unused_vertices(s: MeshState) -> None:
     """Drops the vertices no face uses (they carry no geometry, so later counts mean
     something); reports nothing."""
-    v, f = s.vertices, s.faces
-    used = np.zeros(len(v), dtype=bool)
-    used[f.ravel()] = True
-    if not used.all():
-        remap = np.cumsum(used) - 1
-        s.vertices, s.faces = v[used], remap[f]
+    s.vertices, s.faces = drop_unused_vertices(s.vertices, s.faces)
 
 
 def _check_extent(s: MeshState) -> None:
