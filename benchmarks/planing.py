@@ -68,11 +68,9 @@ def hull(topsides: float = 3.0) -> hs.Hull:
     """The prism: a V bottom of the deadrise up to its chines, vertical topsides to
     ``topsides`` m above the keel, a flat transom at ``x = 0``."""
     b = BOAT
-    half = b["beam"] / 2
-    chine = half * math.tan(math.radians(b["beta"]))
-    sec = np.array([[-half, topsides], [-half, chine], [0.0, 0.0], [half, chine], [half, topsides]])
-    x = np.linspace(0.0, b["length"], 3)
-    v, f = shapes.prism_from_sections(x, np.broadcast_to(sec, (3, 5, 2)))
+    chine = b["beam"] / 2 * math.tan(math.radians(b["beta"]))
+    v, f = shapes.wedge_prism(b["length"], b["beam"], b["beta"], stations=3, sides=topsides - chine)
+    v[:, 2] += chine  # the keel at z = 0
     mass = b["weight"] / b["g"]
     return hs.Hull.from_arrays(v, f, mass=mass, cg=(b["lcg"], b["beam"] / 7))
 

@@ -105,6 +105,7 @@ def wedge_prism(
     beam: float = 0.2,
     deadrise_deg: float = 30.0,
     stations: int = 11,
+    sides: float = 0.0,
 ):
     """A prism of uniform wedge section: a 2D wedge extended along ``x``.
 
@@ -113,23 +114,30 @@ def wedge_prism(
     length : float
         Length in m (default 1.0).
     beam : float
-        Width of the flat deck in m (default 0.2).
+        Width at the chines in m (default 0.2).
     deadrise_deg : float
         Deadrise angle in degrees (default 30).
     stations : int
         Number of stations along the length (default 11).
+    sides : float
+        Height in m of vertical sides above the chines (default 0: a flat deck at the
+        chines). With sides the chines are knuckles, as on the drop-test wedge of Zhao,
+        Faltinsen & Aarsnes (1996).
 
     Returns
     -------
     vertices, faces
-        See :func:`prism_from_sections`; the deck is at ``z = 0``, the keel at
-        ``z = -(beam / 2) tan(deadrise)``.
+        See :func:`prism_from_sections`; the chines are at ``z = 0``, the keel at
+        ``z = -(beam / 2) tan(deadrise)``, the deck at ``z = sides``.
     """
     half = beam / 2
     h = half * np.tan(np.radians(deadrise_deg))
     x = np.linspace(0.0, length, int(stations))
-    sec = np.array([[-half, 0.0], [0.0, -h], [half, 0.0]])
-    return prism_from_sections(x, np.broadcast_to(sec, (len(x), 3, 2)))
+    if sides > 0.0:
+        sec = np.array([[-half, sides], [-half, 0.0], [0.0, -h], [half, 0.0], [half, sides]])
+    else:
+        sec = np.array([[-half, 0.0], [0.0, -h], [half, 0.0]])
+    return prism_from_sections(x, np.broadcast_to(sec, (len(x), len(sec), 2)))
 
 
 #: Proportions of a generic narrow-body transport fuselage (about an A320's), full scale.

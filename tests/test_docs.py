@@ -46,6 +46,7 @@ SLOW = (
     "python examples/sweep_envelope.py",
     "hullslice simulate meshes/fuselage_full.obj",
     "python examples/ditching.py",
+    "python examples/drop_test.py",
 )
 #: Commands that read what an earlier command wrote: that one runs first.
 NEEDS = {
