@@ -282,11 +282,20 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
 
 def _silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     v, f = hull.vertices, hull.faces
-    ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
+    e1, e2 = v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]
+    ny = e1[:, 2] * e2[:, 0] - e1[:, 0] * e2[:, 2]  # the normals' y components
+    # both ends of an outline edge touch a face facing port (or edge-on) and one facing
+    # starboard (or edge-on): only the edges between such vertices are matched
+    port, stbd = np.zeros(len(v), dtype=bool), np.zeros(len(v), dtype=bool)
+    port[f[ny >= 0.0].ravel()] = True
+    stbd[f[ny <= 0.0].ravel()] = True
+    both = port & stbd
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    use = np.flatnonzero(both[directed[:, 0]] & both[directed[:, 1]])
+    directed = directed[use]
     lo, hi = directed.min(axis=1), directed.max(axis=1)
     order = np.argsort(lo.astype(np.int64) * len(v) + hi)
-    face = np.repeat(np.arange(len(f)), 3)[order]
+    face = (use // 3)[order]
     # a closed manifold uses each edge twice: the two uses are neighbours once sorted
     side = (np.sign(ny[face[0::2]]) * np.sign(ny[face[1::2]])) <= 0
     ends = directed[order[0::2][side]]

@@ -99,3 +99,55 @@ def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
     np.testing.assert_allclose(line.z, want, rtol=0.0, atol=1e-12)
     ends_x = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
     assert set(ends_x.tolist()) <= set(line.x.tolist())
+
+
+def outline_edges_brute_force(hull) -> set:
+    """Every edge whose two faces do not both face port or both starboard (a normal's y
+    component of one sign, or zero), as a set of sorted vertex pairs."""
+    v, f = hull.vertices, hull.faces
+    ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
+    faces_of: dict[tuple[int, int], list[int]] = {}
+    for i, tri in enumerate(f.tolist()):
+        for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+            faces_of.setdefault((min(a, b), max(a, b)), []).append(i)
+    out = set()
+    for (a, b), (f1, f2) in faces_of.items():
+        if np.sign(ny[f1]) * np.sign(ny[f2]) <= 0:
+            out.add(
+                (tuple(v[a]), tuple(v[b]))
+                if tuple(v[a]) < tuple(v[b])
+                else (tuple(v[b]), tuple(v[a]))
+            )
+    return out
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        "fuselage_model.obj",
+        "paper_prism.stl",
+        "box",  # faces edge-on to the side view (top, bottom, ends): ny = 0
+        "tilted sphere",
+    ],
+)
+def test_the_outline_edges_are_every_edge_between_port_and_starboard_faces(body):
+    from hullslice.geometry import silhouette_edges
+
+    from .conftest import ROOT
+
+    if body == "box":
+        mesh = trimesh.creation.box((1.0, 0.4, 0.3))
+    elif body == "tilted sphere":
+        mesh = trimesh.creation.icosphere(3)
+        mesh.apply_transform(trimesh.transformations.rotation_matrix(0.3, (1.0, 0.2, 0.5)))
+    if body in ("box", "tilted sphere"):
+        hull = hs.Hull.from_arrays(mesh.vertices, mesh.faces)
+    else:
+        hull = hs.load_hull(ROOT / "meshes" / body)
+    a, b = silhouette_edges(hull)
+    got = {
+        (tuple(p), tuple(q)) if tuple(p) < tuple(q) else (tuple(q), tuple(p))
+        for p, q in zip(a, b, strict=True)
+    }
+    assert len(got) == len(a) > 0
+    assert got == outline_edges_brute_force(hull)
