@@ -45,7 +45,7 @@ def assemble(
     props: Mapping[str, np.ndarray],
     polys: Sequence[Polygons],
     deadrise: str,
-    scale: np.ndarray | None = None,
+    lift: np.ndarray | None = None,
     keel: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> Sections:
     """:class:`Sections` from per-station positions and per-entry properties.
@@ -68,20 +68,15 @@ def assemble(
         Each station's contours in the cutter's coordinates (see :meth:`Frame.cut`).
     deadrise : str
         The deadrise estimator used.
-    scale : (s,) float, optional
-        Factor on the penetration and half-beams of each station's entries.
+    lift : (s,) float, optional
+        Height by which each station's contours are moved, m: a station whose properties
+        were taken with the water at ``level - lift`` (another station's section moved to
+        where this one's keel is).
     keel : ((s,) float, (s,) float), optional
         The keel line's height and slope at the stations when already known.
     """
     st = props["station"]
     keel_z, slope = fr.keel.at(rel) if keel is None else keel
-    if scale is None:
-        penetration, half_beam = props["penetration"], props["half_beam"]
-        port, stbd = props["half_beam_port"], props["half_beam_stbd"]
-    else:
-        r = scale[st]
-        penetration, half_beam = props["penetration"] * r, props["half_beam"] * r
-        port, stbd = props["half_beam_port"] * r, props["half_beam_stbd"] * r
     z_cg = -level
     shift = (fr.origin[0], fr.origin[1] + z_cg)
     m_station = station_mass(hull, fr, props["area"], rel)
@@ -89,10 +84,10 @@ def assemble(
         station=st,
         x=(rel + fr.cg[0])[st],
         dx=dx[st],
-        penetration=penetration,
-        half_beam=half_beam,
-        half_beam_port=port,
-        half_beam_stbd=stbd,
+        penetration=props["penetration"],
+        half_beam=props["half_beam"],
+        half_beam_port=props["half_beam_port"],
+        half_beam_stbd=props["half_beam_stbd"],
         deadrise=props["deadrise"],
         deadrise_port=props["deadrise_port"],
         deadrise_stbd=props["deadrise_stbd"],
@@ -103,7 +98,7 @@ def assemble(
         keel_z=(keel_z + z_cg)[st],
         y_keel=props["y_keel"],
         part_half_beam=props["part_half_beam"],
-        polygons=ShiftedPolygons(polys, shift, fr.scale),
+        polygons=ShiftedPolygons(polys, shift, fr.scale, lift),
         deadrise_method=deadrise,
         draft=pose.draft,
         pitch=pose.pitch,

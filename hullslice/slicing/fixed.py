@@ -159,10 +159,12 @@ def fixed_sections(
     tolerance (m); ``cache=False`` cuts the stations afresh.
 
     Interior slices use their mid-station's section. A slice only partly wetted counts its
-    wetted length and stands at that part's middle, with the section of its own
-    mid-station (or, when that is dry, of its wetted neighbour's) made similar to the
-    section there: penetration and half-beams scaled by the keel line's depth ratio, the
-    deadrise kept. Its force then grows from zero as the water reaches it.
+    wetted length and stands at that part's middle, where the keel line gives its
+    penetration; its section is that of its own mid-station (or, when that is dry, of its
+    wetted neighbour's) moved up or down to that penetration: the section's own contour,
+    wetted as deep as the slice's middle is (a prismatic hull between neighbouring
+    stations). Its force then grows from zero as the water reaches it, and a round bottom
+    keeps its own shape.
     """
     xa = float(fr.keel.x[0])
     d, mids = fr.fixed_stations(n)
@@ -203,25 +205,12 @@ def fixed_sections(
     wet_mid[props["station"][props["penetration"] > 0]] = True
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
-    source = k.copy()
-    # a partial slice whose own mid-station is dry borrows its wetted neighbour's section;
-    # so does one whose mid-station is wetted less than half as deep as the slice's own
-    # middle: scaling a barely wetted section up by the depth ratio would stretch the few
-    # facets at its keel into a flat bottom
     keel = fr.keel.at(x)
-    pen_mid = np.zeros(n)
-    np.maximum.at(pen_mid, props["station"], props["penetration"])
+    # a partial slice whose own mid-station is dry takes its wetted neighbour's section
     inward = np.where(k == k.min(), 1, -1)
     neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
-    weak = wet_mid[k] & (2.0 * pen_mid[k] < level - keel[0]) & (pen_mid[neighbour] > pen_mid[k])
-    borrow = ~full & (~wet_mid[k] | weak)
-    source[borrow] = neighbour[borrow]
+    source = np.where(~full & ~wet_mid[k], neighbour, k)
     fresh = ~full & ~wet_mid[source]
-    ratio = np.ones(len(x))
-    part = ~full & ~fresh
-    if part.any():
-        kz_src = np.interp(mids[source[part]], fr.keel.x, fr.keel.z)
-        ratio[part] = (level - keel[0][part]) / (level - kz_src)
     # entries of the chosen sources, one slice after another (entries sorted by station)
     first = np.searchsorted(props["station"], source, side="left")
     count = np.searchsorted(props["station"], source, side="right") - first
@@ -231,6 +220,14 @@ def fixed_sections(
     sel["station"] = slot
     sel["area"] = props["area"][source - w0]
     slice_polys = [polys[src - c0] for src in source]
+    lift = np.zeros(len(x))
+    moved = np.flatnonzero(~full & ~fresh)
+    if len(moved):  # a partial slice: its source wetted as deep as the slice's middle is
+        lift[moved] = keel[0][moved] - outline.zmin[source[moved] - c0]
+        sel = _with_moved(
+            kept if cache else None, outline, sel, moved=moved, source=source - c0,
+            levels=level - lift[moved], tol=tol, deadrise=deadrise,
+        )  # fmt: skip
     if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
         sel, slice_polys = _with_fresh(
             fr, sel, slice_polys, fresh=fresh, x=x, level=level, tol=tol, deadrise=deadrise
@@ -246,7 +243,7 @@ def fixed_sections(
         props=sel,
         polys=slice_polys,
         deadrise=deadrise,
-        scale=ratio,
+        lift=lift,
         keel=keel,
     )
 
@@ -256,6 +253,59 @@ def outline_of(fr: Frame, rel: np.ndarray, tol: float) -> tuple[Outline, list[Po
     afresh."""
     polys = fr.cut(rel)
     return Outline.of(polys, tol, fr.origin, fr.scale), polys
+
+
+def _with_moved(
+    kept: FixedCut | None,
+    outline: Outline,
+    sel: dict[str, np.ndarray],
+    *,
+    moved: np.ndarray,
+    source: np.ndarray,
+    levels: np.ndarray,
+    tol: float,
+    deadrise: str,
+) -> dict[str, np.ndarray]:
+    """Replace the entries of the slices ``moved`` by their ``source`` stations' (indices
+    into ``outline``) with the water at ``levels`` (m, one per moved slice)."""
+    new = [
+        _station_at(kept, outline, int(source[i]), float(lv), tol, deadrise)
+        for i, lv in zip(moved, levels, strict=True)
+    ]
+    slot = np.concatenate([np.full(len(p["station"]), j) for j, p in enumerate(new)])
+    return _replace(sel, moved, {key: np.concatenate([p[key] for p in new]) for key in sel}, slot)
+
+
+def _station_at(
+    kept: FixedCut | None, outline: Outline, k: int, level: float, tol: float, deadrise: str
+) -> dict[str, np.ndarray]:
+    """The wetted properties of the kept ``outline``'s station ``k`` with the water at
+    ``level`` (m): from the pitch's waterline table where it serves, else evaluated."""
+    table = None if kept is None else kept.tables.get(deadrise)
+    props = None
+    if table is not None and table.outline is outline:
+        props = table.at(level, k, k + 1)
+    if props is None:
+        props = wetted_properties(outline.window(k, k + 1), level, tol, deadrise)
+    return props
+
+
+def _replace(
+    sel: dict[str, np.ndarray], idx: np.ndarray, new: dict[str, np.ndarray], slot: np.ndarray
+) -> dict[str, np.ndarray]:
+    """``sel`` with the entries of slices ``idx`` replaced by ``new`` (whose entries belong
+    to ``idx[slot]``), sorted by slice; the slices' areas are kept."""
+    keep = ~np.isin(sel["station"], idx)
+    out = {}
+    for key in sel:
+        if key == "area":
+            out["area"] = sel["area"]
+        elif key == "station":
+            out["station"] = np.concatenate([sel["station"][keep], idx[slot]])
+        else:
+            out[key] = np.concatenate([sel[key][keep], new[key]])
+    order = np.argsort(out["station"], kind="stable")
+    return {key: (val if key == "area" else val[order]) for key, val in out.items()}
 
 
 def _with_fresh(
@@ -274,19 +324,11 @@ def _with_fresh(
     idx = np.flatnonzero(fresh)
     outline, polys = outline_of(fr, x[idx], tol)
     new = wetted_properties(outline, level, tol, deadrise)
-    keep = ~np.isin(sel["station"], idx)
-    out = {}
-    for key in sel:
-        if key == "area":
-            area = sel["area"].copy()
-            area[idx] = new["area"]
-            out["area"] = area
-        elif key == "station":
-            out["station"] = np.concatenate([sel["station"][keep], idx[new["station"]]])
-        else:
-            out[key] = np.concatenate([sel[key][keep], new[key]])
-    order = np.argsort(out["station"], kind="stable")
-    out = {key: (val if key == "area" else val[order]) for key, val in out.items()}
+    out = _replace(sel, idx, {k: v for k, v in new.items() if k not in ("area", "station")},
+                   new["station"])  # fmt: skip
+    area = out["area"].copy()
+    area[idx] = new["area"]
+    out["area"] = area
     for j, i in enumerate(idx):
         slice_polys[i] = polys[j]
     return out, slice_polys

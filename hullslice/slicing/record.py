@@ -29,14 +29,21 @@ class ShiftedPolygons(Sequence):
         Offset added to every point, m.
     scale : float
         Every point is divided by it before the shift.
+    lift : (s,) float, optional
+        A further height added to each station's points, m.
     """
 
     def __init__(
-        self, polygons: Sequence[Polygons], shift: tuple[float, float], scale: float = 1.0
+        self,
+        polygons: Sequence[Polygons],
+        shift: tuple[float, float],
+        scale: float = 1.0,
+        lift: np.ndarray | None = None,
     ) -> None:
         self._polygons = polygons
         self._shift = np.asarray(shift, dtype=np.float64)
         self._scale = float(scale)
+        self._lift = None if lift is None or not np.any(lift) else np.asarray(lift, dtype=float)
 
     def __len__(self) -> int:
         return len(self._polygons)
@@ -44,7 +51,10 @@ class ShiftedPolygons(Sequence):
     def __getitem__(self, i):
         if isinstance(i, slice):
             return [self[j] for j in range(*i.indices(len(self)))]
-        return tuple(np.asarray(c) / self._scale + self._shift for c in self._polygons[i])
+        shift = self._shift
+        if self._lift is not None:
+            shift = shift + np.array([0.0, self._lift[i]])
+        return tuple(np.asarray(c) / self._scale + shift for c in self._polygons[i])
 
 
 @dataclass(frozen=True, eq=False)

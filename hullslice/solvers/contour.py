@@ -25,8 +25,7 @@ line, sampled at :data:`SAMPLES` points from the keel to a little past where Wag
 ``c`` can reach). A section whose contour is within :data:`WEDGE_TOLERANCE` of a straight
 side at half its calm-water half-width and out to where the wetted half-width reaches
 (``gamma`` times it) is a wedge: ``auto`` uses the closed form there, and on a flat bottom
-(no keel). A partial slice at an end of the wetted part that carries its neighbour's
-section (the fixed slicing) is read from that section made similar to its own depth.
+(no keel).
 
 The submerged area (for a buoyancy force) is the area of the station's polygons below the
 water ``z = 0``, by the shoelace formula of the polygons clipped to that half-plane.
@@ -141,9 +140,8 @@ def _heights(sections, p: np.ndarray, reach: np.ndarray) -> np.ndarray:
     edges = np.concatenate(per_station) if len(per_station) else np.empty((0, 4))
     yk = np.asarray(sections.y_keel, dtype=np.float64)
     lowest = _lowest(edges, yk, np.repeat(np.arange(len(stations)), sizes), st_index)
-    # a slice at an end of the wetted part may carry its neighbour's section made similar
-    # to its own depth (the fixed slicing): its contour is that section scaled by the depth
-    # ratio about the waterline above the keel
+    # the contour scaled about the waterline so that its depth below the water at the keel
+    # is the entry's penetration (they agree to the coordinate tolerance)
     with np.errstate(divide="ignore", invalid="ignore"):
         ratio = np.where((lowest < 0) & (p > 0), p / -lowest, 1.0)
     side = np.concatenate([reach[0][:, None] * unit, -reach[1][:, None] * unit], axis=1)
