@@ -25,6 +25,9 @@ __all__ = ["Richardson", "richardson"]
 
 #: Safety factor of the GCI for three or more solutions (Roache).
 SAFETY_FACTOR = 1.25
+#: Differences between solutions up to this fraction of their size are rounding: a body
+#: the method computes exactly at any slice count (a prism of constant section) converged.
+ROUNDING = 1e-10
 
 
 @dataclass(frozen=True)
@@ -45,8 +48,9 @@ class Richardson:
         Solutions used, fine to coarse.
     behaviour : str
         ``"monotonic"``, ``"oscillatory"`` (the differences change sign), ``"converged"``
-        (the two finest solutions are equal) or ``"divergent"`` (the differences do not
-        shrink; ``extrapolated`` and ``order`` are NaN and ``gci`` is infinite).
+        (the two finest solutions are equal to rounding, :data:`ROUNDING`) or
+        ``"divergent"`` (the differences do not shrink; ``extrapolated`` and ``order`` are
+        NaN and ``gci`` is infinite).
     """
 
     extrapolated: float
@@ -90,9 +94,10 @@ def richardson(counts: Sequence[int], values: Sequence[float]) -> Richardson:
     (n1, f1), (n2, f2), (n3, f3) = pairs[:3]
     r21, r32 = n1 / n2, n2 / n3
     e21, e32 = f2 - f1, f3 - f2
-    if e21 == 0.0:
+    noise = ROUNDING * max(abs(f1), abs(f2), abs(f3))
+    if abs(e21) <= noise:
         return Richardson(f1, math.inf, 0.0, (n1, n2, n3), (f1, f2, f3), "converged")
-    if e32 == 0.0:
+    if abs(e32) <= noise:
         raise InputError(
             f"the solutions for {n2} and {n3} slices are equal but the one for {n1} differs: "
             "no convergence order can be observed; use finer slice counts"

@@ -7,6 +7,7 @@ import math
 import pytest
 
 import hullslice as hs
+from hullslice import shapes
 
 
 @pytest.mark.parametrize("p", [1.0, 2.0, 3.5])
@@ -54,3 +55,21 @@ def test_too_few_or_repeated_counts():
         hs.richardson([16, 32], [1.0, 2.0])
     with pytest.raises(hs.InputError, match="repeat"):
         hs.richardson([16, 16, 32], [1.0, 1.0, 2.0])
+
+
+def test_solutions_equal_to_rounding_are_converged():
+    # a prism of constant wedge section is exact at any slice count: its forces differ in
+    # the last digits only (1.3e-12 here), which is rounding, not an order of convergence
+    v, f = shapes.wedge_prism(length=1.0, beam=0.3, deadrise_deg=20.0, stations=11)
+    hull = hs.Hull.from_arrays(v, f)
+    study = hs.convergence(hull, 0.02, -1.0, solver="wagner", acceleration=0.0)
+    rich = study.richardson
+    assert rich.behaviour == "converged" and rich.gci == 0.0
+    assert rich.extrapolated == study.forces[-1]
+    # Wagner's closed form per metre, rho pi gamma^2 V^2 p / tan^2(beta), times 1 m
+    closed = 1000.0 * math.pi * (math.pi / 2) ** 2 * 0.02 / math.tan(math.radians(20.0)) ** 2
+    assert rich.extrapolated == pytest.approx(closed, rel=1e-9)
+    # differences above rounding are still an order of convergence
+    f1 = 100.0
+    noisy = hs.richardson((64, 32, 16), (f1, f1 + 1e-7, f1 + 5e-7))
+    assert noisy.behaviour == "monotonic" and noisy.order == pytest.approx(2.0, rel=1e-6)
