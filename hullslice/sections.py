@@ -178,7 +178,7 @@ def sections_at(
     """
     fr = frame(hull, pose.pitch)
     level = fr.lowest + pose.draft  # the water surface, relative to the cg
-    extent = fr.keel.below(level)
+    extent = fr.keel.bottom(level)
     tol = TOL.coordinate * hull.size
     if slicing == "fixed" and stations is None:
         return fixed_sections(

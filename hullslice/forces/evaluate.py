@@ -15,6 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..errors import HullsliceError, SolverError
+from ..kernel.keel import END_FACE_SLOPE
 from ..limits import no_mass
 from ..safety import failure
 from ..sections import Sections
@@ -24,6 +25,7 @@ from ..state import Fluid
 
 __all__ = [
     "CHINE_REASON",
+    "FACE_REASON",
     "FLAT_REASON",
     "MASSLESS_REASON",
     "MIN_DEADRISE",
@@ -36,6 +38,19 @@ MASSLESS_REASON = "no mass per metre at this station (the mass distribution puts
 #: Smallest deadrise a solver is given, rad: a flat bottom is computed as this, flagged.
 MIN_DEADRISE = float(np.radians(1.0))
 FLAT_REASON = "deadrise below 1 deg (a flat bottom): computed at 1 deg, outside the wedge theory"
+FACE_REASON = (
+    "keel on an end face or a step's face (steeper than 75 deg): not a section of the "
+    "bottom, no force"
+)
+
+
+def _on_faces(sections: Sections, wet: np.ndarray) -> np.ndarray:
+    """Wetted entries whose keel is on an end face (a transom, a blunt bow) or the face of
+    a step: the keel line there is steeper than :data:`~hullslice.kernel.keel.END_FACE_SLOPE`.
+    A pitched transom's face dips under the water aft of the keel's corner, and the planes
+    through it cut flat-bottomed sections that are no slender body's: the 2D theory does
+    not describe them, and they get no force."""
+    return wet & (np.abs(sections.keel_slope) > END_FACE_SLOPE)
 
 
 def _readonly_velocity(velocity, n: int) -> np.ndarray:
@@ -133,7 +148,8 @@ def evaluate(
     # a wetted section that carries no mass (between a distribution's point masses, or
     # beyond its line) is in no free fall: it gets no force, flagged
     massless = wet & (sections.mass_per_metre <= 0.0)
-    wet = wet & ~massless
+    faces = _on_faces(sections, wet)
+    wet = wet & ~massless & ~faces
     sections, flat = _flat_clamped(sections, wet)
     loads = None
     every = bool(wet.all()) and n > 0
@@ -147,7 +163,11 @@ def evaluate(
     if massless.any():
         valid[massless] = False
         reason[massless] = MASSLESS_REASON
-    _flag(valid, reason, ((flat, FLAT_REASON), (sections.chine_wetted, CHINE_REASON)))
+    if faces.any():
+        valid[faces] = False
+        reason[faces] = FACE_REASON
+    chine = sections.chine_wetted & ~faces
+    _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
     return SectionLoads(force, valid, reason, diagnostics)
 
 
@@ -168,7 +188,8 @@ def evaluate_added_mass(
     """
     n = len(sections)
     velocity = _readonly_velocity(velocity, n)
-    wet = sections.wetted
+    faces = _on_faces(sections, sections.wetted)
+    wet = sections.wetted & ~faces
     sections, flat = _flat_clamped(sections, wet)
     every = bool(wet.all()) and n > 0
     out = None
@@ -181,12 +202,15 @@ def evaluate_added_mass(
     arrays, diagnostics = _spread(out, names, wet, every)
     m_a, rate, extra = arrays["added_mass"], arrays["rate"], arrays["extra"]
     valid, reason = arrays["valid"], arrays["reason"]
-    chine = sections.chine_wetted
+    chine = sections.chine_wetted & ~faces
     if getattr(solver, "models_separation", False):
         chine = np.zeros(n, dtype=bool)
     contour = diagnostics.get("contour")
     if contour is not None:  # read from its own contour: not limited by a wedge's deadrise
         flat = flat & ~(contour > 0)
+    if faces.any():
+        valid[faces] = False
+        reason[faces] = FACE_REASON
     _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"])
 

@@ -36,15 +36,11 @@ class KeelLine:
 
     x: np.ndarray
     z: np.ndarray
-    #: Middles and slopes of the bottom's facets (see :meth:`at`).
-    _facets: tuple[np.ndarray, np.ndarray] = field(init=False, repr=False)
-    #: The bottom's extent ``(x0, x1)`` and the end faces' facet middles and slopes.
-    _end_faces: tuple[tuple[float, float], tuple] = field(init=False, repr=False)
+    #: The facets' slopes by run (see :meth:`at`): see :class:`_Runs`.
+    _runs: _Runs = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        facets, ends = _facets_of(self.x, self.z)
-        object.__setattr__(self, "_facets", facets)  # frozen: set once here
-        object.__setattr__(self, "_end_faces", ends)
+        object.__setattr__(self, "_runs", _Runs.of(self.x, self.z))  # frozen: set once here
 
     def at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Keel height and slope ``dZ_k/dX`` at relative stations ``x``.
@@ -54,56 +50,48 @@ class KeelLine:
         slope change of 0.01 is 0.6 m/s). The slope is therefore taken continuous: each
         facet's slope stands at the facet's middle, linearly in between. It is exact on a
         straight keel, and a kink blends over the two facets beside it only, however thin
-        the slices. An end face (a transom, a blunt bow or tail: facets at an end of the
-        keel line steeper than :data:`END_FACE_SLOPE`) keeps its own slope over its own
-        extent and does not blend into the bottom's.
+        the slices. Facets steeper than :data:`END_FACE_SLOPE` are not bottom: an end face
+        (a transom, a blunt bow or tail) or the face of a step. They keep their own slopes
+        over their own extent, and the bottom's slope on either side does not blend into
+        theirs (it is held from its last facet's middle to the steep face); nor does it
+        blend across a gap between parts one behind the other.
         """
         x = np.asarray(x, dtype=np.float64)
         z = np.interp(x, self.x, self.z)
-        mid, slopes = self._facets
-        slope = np.interp(x, mid, slopes)
-        (x0, x1), faces = self._end_faces
-        for (lo, hi), (fmid, fslopes) in zip(
-            ((self.x[0], x0), (x1, self.x[-1])), faces, strict=True
-        ):
-            inside = (x >= lo) & (x < hi) if hi > lo else None
-            if inside is not None and inside.any():
-                slope = np.where(inside, np.interp(x, fmid, fslopes), slope)
-        return z, slope
+        return z, self._runs.slope(x, self.x)
 
     def curvature(self, x: np.ndarray) -> np.ndarray:
         """The keel line's ``d^2 Z_k / dX^2`` at relative stations ``x``, 1/m.
 
-        The derivative of the continuous slope of :meth:`at`: constant between two facet
-        middles, zero beyond the first and last (where the slope is held constant).
+        The derivative of the continuous slope of :meth:`at` within the facets' run: constant
+        between two facet middles, zero where the slope is held (beyond a run's first and
+        last facet middles); a jump of slope onto a steep face is not curvature.
         """
-        x = np.asarray(x, dtype=np.float64)
-        mid, slopes = self._facets
-        if len(mid) < 2:
-            return np.zeros(x.shape)
-        k = np.diff(slopes) / np.diff(mid)
-        i = np.searchsorted(mid, x, side="right") - 1
-        inside = (i >= 0) & (i < len(k))
-        return np.where(inside, k[np.clip(i, 0, len(k) - 1)], 0.0)
+        return self._runs.curvature(np.asarray(x, dtype=np.float64), self.x)
 
     def mean_curvature(self, x: np.ndarray, dx: np.ndarray) -> np.ndarray:
         """The keel line's curvature averaged over slices of thickness ``dx`` centred on
-        ``x``: ``(s(x + dx/2) - s(x - dx/2)) / dx`` with the slope ``s`` of :meth:`at`, 1/m.
+        ``x``: ``(s(x + dx/2) - s(x - dx/2)) / dx`` with the slope ``s`` of :meth:`at`, 1/m,
+        less any jump of slope between runs (a step's or an end face's edge) in between.
 
         A mesh's keel line zigzags about the true one by the mesh's resolution, and its
         local curvature is noisy with it; over a slice the noise averages out, as it does
         for the force. Where ``dx`` is zero, the local :meth:`curvature`.
         """
         x = np.asarray(x, dtype=np.float64)
-        dx = np.broadcast_to(np.asarray(dx, dtype=np.float64), x.shape)
-        mid, slopes = self._facets
-        if len(mid) < 2:
+        dx = np.asarray(dx, dtype=np.float64)
+        if dx.shape != x.shape:
+            dx = np.broadcast_to(dx, x.shape)
+        runs = self._runs
+        if len(runs.mid) < 2:
             return np.zeros(x.shape)
-        ds = np.interp(x + dx / 2, mid, slopes) - np.interp(x - dx / 2, mid, slopes)
+        ds = runs.change(x - dx / 2, x + dx / 2, self.x)
         thin = dx <= 0.0
+        if not thin.any():
+            return ds / dx
         with np.errstate(divide="ignore", invalid="ignore"):
             out = ds / np.where(thin, 1.0, dx)
-        return np.where(thin, self.curvature(x), out) if thin.any() else out
+        return np.where(thin, self.curvature(x), out)
 
     def below(self, level: float) -> tuple[float, float] | None:
         """The ``x`` range where the keel is below ``level`` (relative), or None."""
@@ -127,30 +115,114 @@ class KeelLine:
         hi = crossing(last) if last < len(z) - 1 else float(x[-1])
         return min(lo, float(x[first])), max(hi, float(x[last]))
 
+    def bottom(self, level: float) -> tuple[float, float] | None:
+        """The ``x`` range where the keel is below ``level`` (relative), without an end face
+        that the water crosses at an end of it: a pitched transom's face dips under the
+        water aft of the keel's corner, over ``draft tan(pitch)``, and the slices of the
+        2D+t method cover the bottom, not that face (a face wholly under the water stays).
+        The range of :meth:`below` when it holds nothing but such a face; None when the
+        keel is nowhere below the level."""
+        extent = self.below(level)
+        if extent is None:
+            return None
+        lo, hi = extent
+        x, steep = self.x, self._runs.steep
+        i = int(np.clip(np.searchsorted(x, lo, side="right") - 1, 0, len(steep) - 1))
+        if x[i] < lo:  # the water crosses facet i: past the steep facets from there
+            while steep[i] and x[i + 1] < hi:
+                lo, i = float(x[i + 1]), i + 1
+        j = int(np.clip(np.searchsorted(x, hi, side="left") - 1, 0, len(steep) - 1))
+        if hi < x[j + 1]:
+            while steep[j] and x[j] > lo:
+                hi, j = float(x[j]), j - 1
+        return (lo, hi) if hi > lo else extent
 
-def _facets_of(x: np.ndarray, z: np.ndarray) -> tuple[tuple, tuple]:
-    """Middles and slopes of the bottom's facets: the keel line without its end faces
-    (its first or last facets steeper than :data:`END_FACE_SLOPE`: a transom, a blunt
-    bow or tail), whose slopes do not blend into the bottom's; and the bottom's extent
-    ``(x0, x1)`` with the end faces' facet middles and slopes before and after it."""
-    mid, slopes = 0.5 * (x[1:] + x[:-1]), np.diff(z) / np.diff(x)
-    idx = np.flatnonzero(np.isfinite(slopes))  # not the facets into a gap between parts
-    if not len(idx):
-        empty = (np.empty(0), np.empty(0))
-        return (mid[:1], np.zeros(1)), ((float(x[0]), float(x[-1])), (empty, empty))
-    mid, slopes = mid[idx], slopes[idx]
-    steep = np.abs(slopes) > END_FACE_SLOPE
-    lo, hi = 0, len(slopes)
-    while lo < hi - 1 and steep[lo]:
-        lo += 1
-    while hi - 1 > lo and steep[hi - 1]:
-        hi -= 1
-    facets = (mid[lo:hi], slopes[lo:hi])
-    ends = (
-        (float(x[idx[lo]]), float(x[idx[hi - 1] + 1])),
-        ((mid[:lo], slopes[:lo]), (mid[hi:], slopes[hi:])),
-    )
-    return facets, ends
+
+@dataclass(frozen=True, eq=False)
+class _Runs:
+    """A keel line's facets in runs: consecutive bottom facets, consecutive facets steeper
+    than :data:`END_FACE_SLOPE` (an end face, a step's face), and gaps between parts (no
+    finite slope). A slope blends between the facet middles of its own run only.
+
+    Attributes
+    ----------
+    mid, slopes : (f,) float
+        Middles and slopes of the facets with a finite slope, in order.
+    lo, hi : (k - 1,) float
+        For each facet of the keel line, the first and last facet middle of its run (a gap's
+        facet: of the run before it, or after it at the start).
+    offset : (k - 1,) float
+        For each facet, the sum of the jumps of slope between the runs up to its own: the
+        slope plus it is continuous along the keel line.
+    steep : (k - 1,) bool
+        The facets steeper than :data:`END_FACE_SLOPE`.
+    """
+
+    mid: np.ndarray
+    slopes: np.ndarray
+    lo: np.ndarray
+    hi: np.ndarray
+    offset: np.ndarray
+    steep: np.ndarray
+
+    @classmethod
+    def of(cls, x: np.ndarray, z: np.ndarray) -> _Runs:
+        n = len(x) - 1
+        with np.errstate(invalid="ignore", divide="ignore"):
+            mid, slopes = 0.5 * (x[1:] + x[:-1]), np.diff(z) / np.diff(x)
+        finite = np.isfinite(slopes)
+        if not finite.any():  # no facet with a slope: held at zero
+            zero = np.zeros(max(n, 1))
+            flat = np.zeros(max(n, 1), dtype=bool)
+            return cls(mid[:1] if n else np.zeros(1), np.zeros(1), zero, zero, zero, flat)
+        kind = np.where(finite, (np.abs(slopes) > END_FACE_SLOPE).astype(np.int64), 2)
+        run = np.cumsum(np.concatenate([[True], kind[1:] != kind[:-1]])) - 1
+        # the finite facets' runs, and each facet's finite facet to take its run from (a
+        # gap's: the last finite facet before it, or the first after it)
+        fin = np.flatnonzero(finite)
+        frun = run[fin]
+        before = np.searchsorted(fin, np.arange(n), side="right") - 1
+        ref = np.where(finite, np.arange(n), fin[np.maximum(before, 0)])
+        ref = np.where(before < 0, fin[0], ref)
+        pos = np.searchsorted(fin, ref)  # the reference facet's index among the finite ones
+        first = np.searchsorted(frun, frun, side="left")
+        last = np.searchsorted(frun, frun, side="right") - 1
+        fmid, fslopes = mid[fin], slopes[fin]
+        # the jump of slope where a run starts, from the last slope of the run before
+        starts = np.flatnonzero(np.concatenate([[False], frun[1:] != frun[:-1]]))
+        jump = np.zeros(len(fin))
+        jump[starts] = fslopes[starts - 1] - fslopes[starts]
+        offset = np.cumsum(jump)
+        return cls(fmid, fslopes, fmid[first[pos]], fmid[last[pos]], offset[pos], kind == 1)
+
+    def _facet(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
+        """The facet of the keel line (break points ``xs``) holding each ``x``."""
+        return np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(self.lo) - 1)
+
+    def slope(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
+        """The continuous slope at ``x`` (the keel line's break points ``xs``)."""
+        i = self._facet(x, xs)
+        return np.interp(np.clip(x, self.lo[i], self.hi[i]), self.mid, self.slopes)
+
+    def change(self, a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+        """The slope's change from ``a`` to ``b`` without the jumps between runs."""
+        ia, ib = self._facet(a, xs), self._facet(b, xs)
+        sa = np.interp(np.clip(a, self.lo[ia], self.hi[ia]), self.mid, self.slopes)
+        sb = np.interp(np.clip(b, self.lo[ib], self.hi[ib]), self.mid, self.slopes)
+        same = self.offset[ia] == self.offset[ib]
+        if same.all():
+            return sb - sa
+        return np.where(same, sb - sa, (sb + self.offset[ib]) - (sa + self.offset[ia]))
+
+    def curvature(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
+        """The slope's derivative at ``x`` within its run (zero where held)."""
+        if len(self.mid) < 2:
+            return np.zeros(x.shape)
+        i = self._facet(x, xs)
+        k = np.diff(self.slopes) / np.diff(self.mid)
+        j = np.searchsorted(self.mid, x, side="right") - 1
+        inside = (x > self.lo[i]) & (x < self.hi[i]) & (j >= 0) & (j < len(k))
+        return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
 
 
 def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:

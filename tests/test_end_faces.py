@@ -1,0 +1,103 @@
+"""Transoms and steps: the keel line's faces steeper than 75 degrees in the side view.
+
+A pitched transom dips under the water aft of the keel's corner, and the planes through
+its face cut flat-bottomed sections that are no slender body's; a step's face does the
+same in the middle of a bottom, and the bottom's slope must not blend across it. The
+references are closed forms (Wagner's flux integrated over a tapered keel) and the
+invariance of the result to how finely the same body is meshed and sliced.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.geometry import KeelLine
+
+
+@pytest.mark.parametrize("slicing", ["wetted", "fixed"])
+def test_a_pitched_wedge_dropped_vertically_gets_wagners_tapered_keel_force(slicing):
+    # a 20 deg wedge prism (transoms at both ends) pitched 5 deg nose up, 0.02 m deep,
+    # sinking at 1 m/s with no forward speed, g = 0. Each plane's section is a wedge whose
+    # deadrise, in the plane, has tan(beta') = tan(beta) / cos(theta), its depth falling
+    # linearly from the transom's corner: Wagner's flux integrated over the wetted keel,
+    # d / tan(theta) long, is rho pi gamma^2 V^2 cos^2(theta) d^2 / (2 tan^2(beta) tan(theta)).
+    # The face of the transom under the water aft of the corner is no section of the bottom.
+    v, f = shapes.wedge_prism(length=1.0, beam=0.3, deadrise_deg=20.0, stations=11)
+    hull = hs.Hull.from_arrays(v, f)
+    th, d, speed, beta = math.radians(5.0), 0.02, 1.0, math.radians(20.0)
+    closed = (
+        1000.0 * math.pi * (math.pi / 2) ** 2 * speed**2 * math.cos(th) ** 2 * d**2
+        / (2.0 * math.tan(beta) ** 2 * math.tan(th))
+    )  # fmt: skip
+    for slices in (16, 256, 4096):
+        r = hs.compute_force(
+            hull, hs.Pose(d, th), hs.Motion(-speed), solver="wagner", slices=slices,
+            slicing=slicing, acceleration=0.0, fluid=hs.Fluid(g=0.0),
+        )  # fmt: skip
+        # the fixed slicing's stations do not fall on the tapered keel's ends: 4e-4
+        assert r.total == pytest.approx(closed, rel=1e-6 if slicing == "wetted" else 4e-4)
+        # the force normal to a keel sloping at -tan(theta): a drag of F tan(theta) aft
+        assert r.total_x == pytest.approx(-r.total * math.tan(th), rel=1e-9)
+
+
+def stepped_float(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """A 1 m float of 25 deg deadrise, 0.3 m beam, with a 3 cm step at x = 0.5 m (the
+    forebody deeper), lofted through stations ``x``."""
+
+    def section(keel: float) -> list[tuple[float, float]]:
+        chine = keel + 0.15 * math.tan(math.radians(25.0))
+        return [(0.0, keel), (0.15, chine), (0.15, 0.25), (-0.15, 0.25), (-0.15, chine)]
+
+    return shapes.prism_from_sections(
+        x, np.array([section(k) for k in np.where(x < 0.5, 0.03, 0.0)])
+    )
+
+
+def test_a_step_gives_the_same_force_however_the_float_is_meshed_and_sliced():
+    # the same body in 36 faces and in 1,016: the bottom's slope blended across the step's
+    # face gave the sections ahead of it a slope of -8.8 (0.105 is true) on the coarse mesh,
+    # and a keel curvature of 263 1/m on the fine one: 556 N and 324 N
+    coarse = hs.Hull.from_arrays(*stepped_float(np.array([0.0, 0.4999, 0.5, 1.0])))
+    x = np.concatenate([np.linspace(0.0, 0.4999, 51), np.linspace(0.5, 1.0, 51)])
+    fine = hs.Hull.from_arrays(*stepped_float(x))
+    assert coarse.volume == pytest.approx(fine.volume, rel=1e-12)
+    pose, motion = hs.Pose(draft=0.03, pitch=math.radians(6.0)), hs.Motion(-1.0, 10.0)
+    forces = []
+    for hull in (coarse, fine):
+        for slices in (16, 64, 128):
+            r = hs.compute_force(
+                hull, pose, motion, slices=slices, solver="wagner", acceleration=0.0
+            )
+            forces.append((r.total, r.total_x))
+            # the bottom's slope is the pitch's, tan(6 deg), up to the step's face; a
+            # section on the face (where a plane falls there) is dry, or gets no force and
+            # is flagged
+            face = np.abs(r.sections.keel_slope) > 1.0
+            np.testing.assert_allclose(r.sections.keel_slope[~face], math.tan(pose.pitch))
+            assert np.all(r.loads.force_per_metre[face] == 0.0)
+            assert not (r.valid & r.sections.wetted)[face].any()
+    np.testing.assert_allclose(forces, [forces[0]] * len(forces), rtol=1e-9)
+
+
+def test_the_slope_does_not_blend_across_a_step_and_its_jump_is_not_curvature():
+    # a bottom at slope 0.1, a face steeper than 75 deg (slope -20) at x = 1, then a bottom
+    # at slope 0.1 again: the bottoms keep 0.1 up to the face, the face its own slope, and
+    # the curvature averaged over any slice is zero (straight runs; the jumps are edges)
+    x = np.array([0.0, 0.5, 1.0, 1.01, 1.51, 2.01])
+    z = np.array([0.0, 0.05, 0.1, -0.1, -0.05, 0.0])
+    keel = KeelLine(x, z)
+    at = np.array([0.2, 0.74, 0.99, 1.005, 1.02, 1.9])
+    _, slope = keel.at(at)
+    np.testing.assert_allclose(slope, [0.1, 0.1, 0.1, -20.0, 0.1, 0.1], rtol=1e-12)
+    centres = np.linspace(0.05, 1.95, 39)
+    np.testing.assert_allclose(keel.mean_curvature(centres, 0.1), 0.0, atol=1e-9)
+    np.testing.assert_allclose(keel.curvature(at), 0.0, atol=1e-12)
+    # without the face, a kink blends over the facets beside it as before
+    bend = KeelLine(np.array([0.0, 1.0, 2.0]), np.array([0.0, 0.1, 0.3]))
+    assert bend.at(np.array([1.0]))[1][0] == pytest.approx(0.15, rel=1e-12)
+    assert bend.mean_curvature(np.array([1.0]), np.array([1.0]))[0] == pytest.approx(0.1, rel=1e-12)
