@@ -20,8 +20,8 @@ import numpy as np
 from .axes import axis_matrix, unit_scale
 from .caching import Cache
 from .errors import MeshError, MeshRepairWarning
-from .limits import no_mass
-from .mass import MassDistribution, MassProperties, check_density
+from .limits import check_density, no_mass
+from .mass import MassDistribution, MassProperties, fit_to_body
 from .paths import printable
 from .prepare import prepare_arrays
 from .readers import MAX_FILE_BYTES as MAX_FILE_BYTES
@@ -111,7 +111,12 @@ class Hull:
     def _set_mass(self, props: MassProperties) -> None:
         self.mass_properties = props
         self.mass = props.mass
-        self.mass_distribution = props.distribution
+        # checked against the body, point masses without a length spread along it
+        self.mass_distribution = (
+            None
+            if props.distribution is None
+            else fit_to_body(props.distribution, self.bounds, self.centroid[2], self.name)
+        )
         self._cg_given = props.cg
         self._inertia_given = props.inertia
         if self.mass is not None and props.distribution is None:
