@@ -111,11 +111,9 @@ class Hull:
     def _set_mass(self, props: MassProperties) -> None:
         self.mass_properties = props
         self.mass = props.mass
-        # checked against the body, point masses without a length spread along it
-        self.mass_distribution = (
-            None
-            if props.distribution is None
-            else fit_to_body(props.distribution, self.bounds, self.centroid[2], self.name)
+        dist = props.distribution  # checked against the body, and spread along it
+        self.mass_distribution = dist and fit_to_body(
+            dist, self.bounds, self.centroid[2], self.name
         )
         self._cg_given = props.cg
         self._inertia_given = props.inertia
