@@ -20,8 +20,8 @@ import numpy as np
 from .axes import axis_matrix, unit_scale
 from .caching import Cache
 from .errors import MeshError, MeshRepairWarning
-from .limits import no_mass
-from .mass import MassDistribution, MassProperties, check_density
+from .limits import check_density, no_mass
+from .mass import MassDistribution, MassProperties, fit_to_body
 from .paths import printable
 from .prepare import prepare_arrays
 from .readers import MAX_FILE_BYTES as MAX_FILE_BYTES
@@ -111,7 +111,10 @@ class Hull:
     def _set_mass(self, props: MassProperties) -> None:
         self.mass_properties = props
         self.mass = props.mass
-        self.mass_distribution = props.distribution
+        dist = props.distribution  # checked against the body, and spread along it
+        self.mass_distribution = dist and fit_to_body(
+            dist, self.bounds, self.centroid[2], self.name
+        )
         self._cg_given = props.cg
         self._inertia_given = props.inertia
         if self.mass is not None and props.distribution is None:

@@ -2,15 +2,20 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 import trimesh
 
 import hullslice as hs
 from hullslice import shapes
+from hullslice.cli import main
 from hullslice.mass import MassDistribution, read_mass_distribution
 
 from .conftest import MESHES
+
+PRISM = str(MESHES / "paper_prism.stl")
 
 
 @pytest.fixture(scope="module")
@@ -132,11 +137,13 @@ def test_uniform_prism_centroid_and_inertia_closed_form():
     assert hull.cg == pytest.approx([1.0, 0.0, 0.5])
 
 
-def test_pitched_distribution_puts_each_mass_at_its_own_height(wedge_hull):
+def test_pitched_distribution_puts_each_mass_at_its_own_height():
     # masses at different heights: on earth planes of a pitched body, the sections' mass
     # must sit where the masses are, so its centroid along X is the centre of gravity's X
+    # (a wedge with 0.5 m high sides, so that the masses lie in the body)
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0, sides=0.5)
     pts = np.array([[0.2, -0.05, 4.0, 0.1], [0.7, 0.4, 6.0, 0.2]])
-    hull = wedge_hull.with_mass(mass_distribution=MassDistribution(points=pts))
+    hull = hs.Hull.from_arrays(v, f, mass_distribution=MassDistribution(points=pts))
     theta = np.radians(10.0)
     height = hs.sections._height_at(hull, theta)
     s = hs.cut(hull, hs.Pose(height, theta), 2000)
@@ -204,3 +211,113 @@ def test_the_mass_properties_survive_a_pickle(wedge_hull):
     assert back.mass_properties.mass == 10.0
     assert back.mass_properties.cg.tolist() == [0.0, 0.01, 0.05]
     assert back.cg.tolist() == hull.cg.tolist()
+
+
+# -- point masses follow the body, and the distribution is checked against it ----------------
+
+
+def _carried(hull: hs.Hull, slices: int, pitch_deg: float = 0.0) -> float:
+    """The mass the sections of the whole body under water carry, kg."""
+    pitch = np.radians(pitch_deg)
+    s = hs.cut(hull, hs.Pose(hs.sections._height_at(hull, pitch), pitch), slices)
+    return float((s.mass_per_metre * s.dx).sum())
+
+
+def test_a_point_mass_without_a_length_is_spread_over_a_tenth_of_the_body(tmp_path):
+    # 1 kg in the middle of the 0.35 m prism: spread over 0.035 m, all of it on the body
+    # (over 1 m whatever the body, the sections carried 0.35 kg)
+    path = tmp_path / "pm.csv"
+    path.write_text("x,z,mass\n0.175,-0.05,1.0\n")
+    hull = hs.load_hull(PRISM, mass_distribution=read_mass_distribution(path))
+    for slices in (7, 16, 32, 64):
+        for pitch in (0.0, 6.0):
+            assert _carried(hull, slices, pitch) == pytest.approx(1.0, rel=0.005)
+    lo, hi = hull.mass_distribution.spreads()
+    assert [lo[0], hi[0]] == pytest.approx([0.1575, 0.1925], abs=1e-6)
+    assert hull.mass_per_metre_at(np.array([0.17, 0.19, 0.2])) == pytest.approx(
+        [1 / 0.035, 1 / 0.035, 0.0], rel=1e-5
+    )
+    # the pitch inertia of a 1 kg rod 0.035 m long about its middle (1/12 kg m^2 before)
+    assert hull.pitch_inertia == pytest.approx(0.035**2 / 12, rel=1e-5)
+
+
+def test_a_point_mass_on_a_small_body_stays_on_it():
+    # a 1 cm wedge with 1 g at its middle: spread over 1 mm (over 1 m, 1 % was on the body,
+    # and the pitch inertia was 8.3e-5 kg m^2)
+    v, f = shapes.wedge_prism(length=0.01, beam=0.002, deadrise_deg=30.0)
+    z = -0.0003
+    hull = hs.Hull.from_arrays(v, f, mass_distribution=MassDistribution(points=[[0.005, z, 1e-3]]))
+    assert _carried(hull, 16) == pytest.approx(1e-3, rel=0.005)
+    assert hull.pitch_inertia == pytest.approx(1e-3 * 0.001**2 / 12, rel=1e-6)
+
+
+def test_point_masses_at_the_ends_and_thin_ones_are_carried_whole(wedge_hull):
+    # at the body's very ends the spread is narrowed to stay on the body; a given length
+    # thinner than the slices is still carried whole (before: by the stations inside it)
+    pts = [[0.0, -0.02, 2.0, np.nan], [1.0, -0.02, 3.0, np.nan], [0.43, -0.02, 5.0, 0.004]]
+    hull = wedge_hull.with_mass(mass_distribution=MassDistribution(points=pts))
+    lo, hi = hull.mass_distribution.spreads()
+    assert lo == pytest.approx([0.0, 0.99975, 0.428]) and hi == pytest.approx([2.5e-4, 1, 0.432])
+    for slices in (5, 16, 33):
+        assert _carried(hull, slices) == pytest.approx(10.0, rel=0.005)
+        assert _carried(hull, slices, 8.0) == pytest.approx(10.0, rel=0.005)
+
+
+def test_a_point_mass_without_a_length_needs_a_body():
+    dist = MassDistribution(points=[[0.5, 0.0, 2.0]])
+    assert dist.total == 2.0 and dist.cg(0.0) == pytest.approx([0.5, 0.0])
+    with pytest.raises(hs.InputError, match="give the distribution to a hull"):
+        dist.at(np.array([0.5]))
+    assert dist.on_body(0.0, 2.0).at(np.array([0.5])) == pytest.approx([10.0])
+
+
+@pytest.mark.parametrize(
+    ("rows", "message"),
+    [
+        # 2 kg of 2.35 kg beyond the 0.35 m prism's ends
+        ("x,mass_per_metre\n-1,1\n1.35,1\n", "2 kg of the mass distribution's 2.35 kg (85.1 %)"),
+        ("x,mass_per_metre\n10,1\n11,1\n", "1 kg of the mass distribution's 1 kg (100 %)"),
+        ("x,z,mass\n0.1,-0.05,1\n0.5,-0.05,1\n", "1 kg of the mass distribution's 2 kg (50 %)"),
+        ("x,z,mass,length\n0.33,-0.05,1,0.1\n", "0.3 kg of the mass distribution's 1 kg (30 %)"),
+    ],
+)
+def test_mass_beyond_the_body_is_refused(capsys, tmp_path, rows, message):
+    path = tmp_path / "m.csv"
+    path.write_text(rows)
+    code = main(["force", PRISM, "--mass-distribution", str(path), "--draft", "0.0383",
+                 "--velocity=-3.4943", "--slices", "16"])  # fmt: skip
+    out, err = capsys.readouterr()
+    assert code != 0 and out == "" and len(err.strip().splitlines()) == 1
+    assert message in err and "lies beyond the body's ends, x = 0 to 0.35 m (the rows at" in err
+    assert "give the distribution in the body frame" in err and "Traceback" not in err
+    with pytest.raises(hs.InputError, match="lies beyond the body's ends"):
+        hs.load_hull(PRISM, mass_distribution=read_mass_distribution(path))
+
+
+def test_a_tiny_share_beyond_the_ends_is_warned_of(capsys, tmp_path):
+    # a row 0.1 mm past the bow: 1e-4 kg of 0.3501 kg (0.0286 %), warned of
+    path = tmp_path / "m.csv"
+    path.write_text("x,mass_per_metre\n0,1\n0.3501,1\n")
+    with pytest.warns(hs.HullsliceWarning, match=r"\(0.0286 %\) lies beyond .* x = 0.3501 m"):
+        hull = hs.load_hull(PRISM, mass_distribution=read_mass_distribution(path))
+    assert _carried(hull, 64) == pytest.approx(0.35, rel=1e-3)
+    code = main(["info", PRISM, "--mass-distribution", str(path)])
+    _out, err = capsys.readouterr()
+    assert code == 0 and "warning:" in err and "the sections do not carry that share" in err
+    # rounding past the ends (the prism ends at 0.34999999 m) is not mentioned
+    path.write_text("x,mass_per_metre\n0,1\n0.35,1\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        hull = hs.load_hull(PRISM, mass_distribution=read_mass_distribution(path))
+    assert _carried(hull, 64) == pytest.approx(0.35, rel=0.005)
+
+
+def test_a_centre_of_gravity_outside_the_body_is_refused(capsys, tmp_path):
+    # 1 kg 5 cm above the prism's deck (z = 0)
+    path = tmp_path / "m.csv"
+    path.write_text("x,z,mass\n0.175,0.05,1\n")
+    code = main(["info", PRISM, "--mass-distribution", str(path)])
+    _out, err = capsys.readouterr()
+    assert code != 0 and len(err.strip().splitlines()) == 1
+    assert "centre of gravity (x, z) = (0.175, 0.05) m lies outside the body" in err
+    assert "z = -0.1 to 0 m" in err

@@ -20,16 +20,19 @@ from .record import Sections, ShiftedPolygons
 __all__ = ["assemble", "station_mass"]
 
 
-def station_mass(hull: Hull, fr: Frame, area: np.ndarray, rel: np.ndarray) -> np.ndarray:
+def station_mass(
+    hull: Hull, fr: Frame, area: np.ndarray, rel: np.ndarray, dx: np.ndarray | None = None
+) -> np.ndarray:
     """Mass per metre (kg/m) of the stations at ``rel`` (m, relative ``X``) with section
-    ``area`` (m^2); NaN without a hull mass."""
+    ``area`` (m^2) and slices ``dx`` thick (m; a point mass then counts whole on the slices
+    it spans); NaN without a hull mass."""
     if hull.mass is None:
         return np.full(len(rel), np.nan)
     if hull.mass_distribution is None:
         return hull.mass / hull.volume * area
     # the distribution's parts, each at its own height, crossed by the tilted planes
     return hull.mass_distribution.on_planes(
-        rel, fr.pitch, (fr.cg[0], fr.cg[2]), float(hull.centroid[2])
+        rel, fr.pitch, (fr.cg[0], fr.cg[2]), float(hull.centroid[2]), dx
     )
 
 
@@ -79,7 +82,7 @@ def assemble(
     keel_z, slope = fr.keel.at(rel) if keel is None else keel
     z_cg = -level
     shift = (fr.origin[0], fr.origin[1] + z_cg)
-    m_station = station_mass(hull, fr, props["area"], rel)
+    m_station = station_mass(hull, fr, props["area"], rel, dx)
     return Sections(
         station=st,
         x=(rel + fr.cg[0])[st],
