@@ -283,13 +283,13 @@ def read_only(tmp_path, monkeypatch):
 
     monkeypatch.setattr(atomic.tempfile, "mkstemp", mkstemp)
     ran: list[str] = []
-    from hullslice.cli import cmd_report, common
+    from hullslice.cli import cmd_report, outputs
 
     def no_work(*args, **kw):
         ran.append("execute")
         raise AssertionError("the work ran before the outputs were checked")
 
-    monkeypatch.setattr(common, "execute", no_work)
+    monkeypatch.setattr(outputs, "execute", no_work)
     monkeypatch.setattr(cmd_report, "execute", no_work)
     monkeypatch.chdir(tmp_path)
     return ro, ran
