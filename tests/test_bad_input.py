@@ -1870,7 +1870,8 @@ def test_a_failure_after_the_work_leaves_no_file(tmp_path, capsys, monkeypatch):
     _, stderr = capsys.readouterr()
     assert code == 3
     assert (
-        stderr.strip() == f"hullslice: error: cannot write {str(target)!r}: No space left on device"
+        stderr.strip() == f"hullslice: error: cannot write {str(target)!r} (--output): No space "
+        "left on device; free some space, or give a path on another disk"
     )
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
 

@@ -256,3 +256,232 @@ def test_info_gives_the_span_of_a_flat_largest_area(capsys):
     assert (data["max_area_x_from"], data["max_area_x_to"]) == pytest.approx((0.05, 0.95))
     _, out, _ = run(capsys, "info", PRISM, "--stations", "8")
     assert "largest 0.0094852 m^2 at x = 0.021875 m" in out
+
+
+# -- 8. output files: checked before the work, written all or none ------------------------------
+
+FORCE = ["force", WEDGE, "--mass", "10", "--draft", "0.01", "--velocity=-4", "--slices", "8"]
+
+
+@pytest.fixture
+def read_only(tmp_path, monkeypatch):
+    """A folder ``ro`` in which no file can be made (as for a read-only folder, whoever
+    runs, root included), and a record of whether any computation ran."""
+    import errno
+    import os
+
+    from hullslice import atomic
+
+    ro = tmp_path / "ro"
+    ro.mkdir()
+    real = atomic.tempfile.mkstemp
+
+    def mkstemp(*args, dir=None, **kw):
+        if dir is not None and os.path.realpath(dir) == os.path.realpath(ro):
+            raise PermissionError(errno.EACCES, "Permission denied", str(ro / "x.tmp"))
+        return real(*args, dir=dir, **kw)
+
+    monkeypatch.setattr(atomic.tempfile, "mkstemp", mkstemp)
+    ran: list[str] = []
+    from hullslice.cli import cmd_report, outputs
+
+    def no_work(*args, **kw):
+        ran.append("execute")
+        raise AssertionError("the work ran before the outputs were checked")
+
+    monkeypatch.setattr(outputs, "execute", no_work)
+    monkeypatch.setattr(cmd_report, "execute", no_work)
+    monkeypatch.chdir(tmp_path)
+    return ro, ran
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        [*FORCE, "-o", "ro/out.csv", "--plot", "p.png", "--save-case", "c.toml"],
+        ["simulate", WEDGE, *FALL, "-o", "ro/out.csv", "--plot", "p.png"],
+        [*FORCE, "-o", "out.csv", "--plot", "ro/p.png", "--save-case", "c.toml"],
+        [*FORCE, "--save-case", "ro/c.toml", "--plot", "p.png"],
+        ["info", WEDGE, "--write-mesh", "ro/w.stl", "-o", "out.txt"],
+    ],
+    ids=["force-o", "simulate-o", "force-plot", "force-save-case", "info-write-mesh"],
+)
+def test_an_unwritable_output_is_refused_before_the_work(capsys, tmp_path, read_only, argv):
+    ro, ran = read_only
+    code, _, err = run(capsys, *argv)
+    assert code == 3, err
+    assert err.count("\n") == 1 and "Traceback" not in err
+    bad = next(a for a in argv if a.startswith("ro/"))
+    assert f"cannot write {bad!r}" in err
+    assert "Permission denied; give a path in a folder you can write to" in err
+    assert ".hullslice-" not in err  # the user's path, never a temporary file
+    assert ran == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ro"]
+    assert list(ro.iterdir()) == []
+
+
+def test_run_refuses_an_unwritable_output_before_the_work(capsys, tmp_path, read_only):
+    case = tmp_path / "case.toml"
+    case.write_text(
+        f'command = "force"\nmesh = {json.dumps(WEDGE)}\nmass = 10.0\ndraft = 0.01\n'
+        "velocity = -4.0\nslices = [8]\n",
+        encoding="utf-8",
+    )
+    code, _, err = run(capsys, "run", str(case), "-o", "ro/x.csv", "--plot", "q.png")
+    assert code == 3 and "cannot write 'ro/x.csv' (--output): Permission denied" in err
+    assert read_only[1] == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml", "ro"]
+
+
+def test_report_refuses_an_unwritable_folder_before_the_work(capsys, tmp_path, read_only):
+    case = tmp_path / "case.toml"
+    case.write_text(
+        f'command = "force"\nmesh = {json.dumps(WEDGE)}\nmass = 10.0\ndraft = 0.01\n'
+        "velocity = -4.0\nslices = [8]\n",
+        encoding="utf-8",
+    )
+    code, _, err = run(capsys, "report", str(case), "-o", "ro/rep")
+    assert code == 3 and err.count("\n") == 1
+    assert "cannot write 'ro/rep' (--output): Permission denied" in err
+    assert ".hullslice-" not in err and read_only[1] == []
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="/proc takes no new files")
+def test_an_output_in_a_folder_that_takes_no_files_names_the_users_path(capsys, tmp_path):
+    code, _, err = run(capsys, *FORCE, "--plot", "/proc/p.png", "-o", str(tmp_path / "x.csv"))
+    assert code == 3 and err.count("\n") == 1
+    assert err.startswith("hullslice: error: cannot write '/proc/p.png' (--plot): ")
+    assert "the folder '/proc' takes no new files" in err and ".hullslice-" not in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_write_atomic_names_the_target_not_its_temporary(tmp_path):
+    from hullslice.atomic import write_atomic
+
+    target = tmp_path / "no" / "x.csv"
+    with pytest.raises(OSError) as info:
+        write_atomic(target, "a")
+    assert info.value.filename == str(target)
+    if sys.platform.startswith("linux"):
+        with pytest.raises(OSError) as info:
+            write_atomic("/proc/x.csv", "a")
+        assert info.value.filename == "/proc/x.csv"
+
+
+def test_the_outputs_of_a_command_are_written_all_or_none(capsys, tmp_path, monkeypatch):
+    """A file that cannot be put in place (after every other one is complete) takes the
+    others with it: those new are removed, those replaced are put back as they were."""
+    import os
+
+    from hullslice import atomic
+
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "c.toml").write_text("old case\n", encoding="utf-8")
+    real = atomic.os.replace
+
+    def replace(src, dst, *args, **kw):
+        if os.path.basename(dst) == "out.csv":
+            raise OSError(28, "No space left on device")
+        return real(src, dst, *args, **kw)
+
+    monkeypatch.setattr(atomic.os, "replace", replace)
+    argv = [*FORCE, "--plot", "p.png", "--save-case", "c.toml", "-o", "out.csv"]
+    code, out, err = run(capsys, *argv)
+    assert code == 3 and out == ""
+    assert err.strip() == (
+        "hullslice: error: cannot write 'out.csv' (--output): No space left on device; free "
+        "some space, or give a path on another disk"
+    )
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.toml"]  # no temporary left
+    assert (tmp_path / "c.toml").read_text(encoding="utf-8") == "old case\n"
+    monkeypatch.setattr(atomic.os, "replace", real)
+    code, _, err = run(capsys, *argv)
+    assert code == 0
+    assert err.splitlines() == ["wrote p.png", "wrote c.toml", "wrote out.csv"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.toml", "out.csv", "p.png"]
+
+
+def test_a_failure_while_drawing_writes_no_other_output(capsys, tmp_path, monkeypatch):
+    from hullslice.errors import InputError
+    from hullslice.plots import _common
+
+    def save(*args, **kw):
+        raise InputError("the figure cannot be drawn")
+
+    monkeypatch.setattr(_common, "save", save)
+    monkeypatch.setattr("hullslice.plots.save", save)
+    monkeypatch.chdir(tmp_path)
+    code, _, err = run(capsys, *FORCE, "--save-case", "c.toml", "-o", "o.csv", "--plot", "p.png")
+    assert code == 3 and "the figure cannot be drawn" in err
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_together_puts_every_file_in_place_or_none(tmp_path):
+    from hullslice.atomic import together, write_atomic
+
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    a.write_text("old", encoding="utf-8")
+    with pytest.raises(KeyboardInterrupt), together():
+        write_atomic(a, "new")
+        write_atomic(b, "new")
+        assert a.read_text(encoding="utf-8") == "old" and not b.exists()
+        raise KeyboardInterrupt
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt"]
+    assert a.read_text(encoding="utf-8") == "old"
+    with together():
+        write_atomic(a, "new")
+        write_atomic(b, "new")
+    assert a.read_text(encoding="utf-8") == b.read_text(encoding="utf-8") == "new"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt", "b.txt"]
+
+
+@pytest.mark.parametrize(
+    ("argv", "option", "what"),
+    [
+        ([*FORCE, "-o", ""], "-o/--output", "file"),
+        ([*FORCE, "--plot", ""], "--plot", "file"),
+        ([*FORCE, "--save-case", ""], "--save-case", "file"),
+        (["info", WEDGE, "--write-mesh", ""], "--write-mesh", "file"),
+        (["run", "case.toml", "-o", ""], "-o/--output", "file"),
+        (["run", "case.toml", "--plot", ""], "--plot", "file"),
+        (["report", "case.toml", "-o", ""], "-o/--output", "folder"),
+        (["sweep", "case.toml", "-o", ""], "-o/--output", "file"),
+    ],
+)
+def test_an_empty_output_path_is_refused_naming_the_option(capsys, tmp_path, argv, option, what):
+    code, out, err = run(capsys, *argv)
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1
+    assert f"argument {option}: an empty path; give a {what} name" in err
+
+
+@pytest.mark.parametrize(
+    ("outputs", "message"),
+    [
+        (["-o", "x.png", "--plot", "./x.png"], "cannot write './x.png' (--plot): --output writes"),
+        (["--plot", "x.png", "--save-case", "sub/../x.png"], "(--save-case): --plot writes"),
+        (["-o", "f.txt/out.csv"], "a part of the path 'f.txt' is a file, not a folder"),
+    ],
+)
+def test_outputs_that_clash_are_refused_before_the_work(capsys, tmp_path, monkeypatch, outputs,
+                                                        message):  # fmt: skip
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "sub").mkdir()
+    (tmp_path / "f.txt").write_text("keep", encoding="utf-8")
+    code, _, err = run(capsys, *FORCE, *outputs)
+    assert code == 3 and err.count("\n") == 1 and message in err, err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["f.txt", "sub"]
+
+
+def test_a_sweep_refuses_a_case_beyond_the_pitch_limit_before_it_runs(capsys, tmp_path):
+    pytest.importorskip("xarray")
+    case = tmp_path / "case.toml"
+    case.write_text(
+        f"mesh = {json.dumps(WEDGE)}\nmass = 10.0\nvelocity = -4.0\nt_end = 0.01\n"
+        "dt = 0.001\nslices = 8\n\n[sweep]\npitch = [5.0, 85.0]\n",
+        encoding="utf-8",
+    )
+    code, out, err = run(capsys, "sweep", str(case), "--workers", "1", "-o", "x.nc")
+    assert code == 3 and out == "" and err.count("\n") == 1
+    assert "[sweep] case pitch=85: pitch 85 deg is too steep for a 2D+t model" in err
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]

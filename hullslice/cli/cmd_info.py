@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import argparse
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -16,9 +15,11 @@ from .common import (
     Outcome,
     add_mesh_options,
     add_output_options,
+    check_output,
     check_path,
     compute,
     finish,
+    out_path,
     positive_int,
 )
 
@@ -61,6 +62,7 @@ def add_parser(sub) -> None:
     add_output_options(p, plot="the sectional area curve")
     p.add_argument(
         "--write-mesh",
+        type=out_path(),
         metavar="OUT.stl",
         help="also write the mesh as checked and repaired (after --units, axes, --scale, "
         "--keep, --keep-box), in metres and the body frame (x forward, z up): binary STL, "
@@ -78,8 +80,9 @@ def run(args: argparse.Namespace) -> int:
 
 
 def check_mesh_output(out: str, study: Study, save_case: str | None = None) -> None:
-    """Refuse a ``--write-mesh`` path before any work: a folder, a missing folder, one of
-    the inputs, another output of the run, or a format hullslice does not write."""
+    """Refuse a ``--write-mesh`` path before any work: a folder, a missing or read-only
+    folder, one of the inputs, another output of the run (:func:`check_output`), or a
+    format hullslice does not write."""
     from ..errors import InputError
     from ..readers.write import WRITERS
 
@@ -90,26 +93,18 @@ def check_mesh_output(out: str, study: Study, save_case: str | None = None) -> N
             f"cannot write {printable(out)!r} (--write-mesh): a mesh is written as "
             f"{', '.join(WRITERS)} by the file's extension; name it .stl or .obj"
         )
-    for option, other in (
-        ("--output", study.output),
-        ("--plot", study.plot),
-        ("--save-case", save_case),
-    ):
-        if other and Path(other).resolve() == Path(out).resolve():
-            raise InputError(
-                f"cannot write {printable(out)!r} (--write-mesh): {option} writes the same "
-                "file; give another file"
-            )
+    check_output(study, save_case, out)
 
 
 def run_study(study: Study, save_case: str | None = None, write_mesh: str | None = None) -> int:
     """Execute ``study`` and give its outputs; ``save_case`` also writes its case file,
-    ``write_mesh`` the checked and repaired mesh (m, body frame)."""
-    result = compute(study, save_case)
+    ``write_mesh`` the checked and repaired mesh (m, body frame), all or none."""
+    result = compute(study, save_case, write_mesh=write_mesh)
+    extra = []
     if write_mesh:
-        result.hull.save(write_mesh)
-        print(f"wrote {write_mesh}", file=sys.stderr)
-    return finish(study, outcome(result), save_case)
+        mesh_path = write_mesh
+        extra.append(("--write-mesh", mesh_path, lambda: result.hull.save(mesh_path)))
+    return finish(study, outcome(result), save_case, extra)
 
 
 def outcome(result: StudyResult) -> Outcome:

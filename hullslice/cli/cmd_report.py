@@ -11,13 +11,14 @@ import tempfile
 from pathlib import Path
 
 from .._version import __version__
-from ..atomic import _umask, remove_stale, temp_prefix, write_atomic
+from ..atomic import _umask, check_writable, remove_stale, temp_prefix, write_atomic
 from ..case import SCHEMA, load_case, write_case
 from ..errors import InputError
 from ..paths import markdown_fence, markdown_text, printable, run_inputs
 from ..study import Study, execute
 from ..textout import csv_text, json_text
 from . import cmd_info
+from .common import out_path, write_error
 from .studies import command_module
 
 
@@ -31,7 +32,14 @@ def add_parser(sub) -> None:
         "be repeated. The folder is written completely or not at all.",
     )
     p.add_argument("case", metavar="CASE.toml", help="the case file")
-    p.add_argument("-o", "--output", metavar="DIR", required=True, help="the report folder")
+    p.add_argument(
+        "-o",
+        "--output",
+        type=out_path("folder"),
+        metavar="DIR",
+        required=True,
+        help="the report folder",
+    )
     p.add_argument("--html", action="store_true", help="write report.html (default: report.md)")
     p.add_argument(
         "--overwrite",
@@ -53,6 +61,10 @@ def run(args: argparse.Namespace) -> int:
     parent = target.resolve().parent
     if not parent.is_dir():
         raise InputError(f"the folder {str(parent)!r} does not exist; create it first")
+    try:  # a folder made and removed beside the target: the same rights as the report's
+        check_writable(parent / target.name)
+    except OSError as exc:
+        raise write_error(args.output, "--output", exc) from None
     case = load_case(args.case)
     _refuse_inputs_inside(target, args.case, case)
     study = Study.from_case(case, checked=True)

@@ -7,9 +7,10 @@ import sys
 import time
 from pathlib import Path
 
+from ..atomic import check_writable
 from ..errors import InputError
 from ..paths import check_not_an_input
-from .common import check_path, positive_int
+from .common import check_path, out_path, positive_int, write_error
 
 #: Shown by a terminal table of cases: result, heading, unit, format.
 TABLE = (
@@ -41,6 +42,7 @@ def add_parser(sub) -> None:
     p.add_argument(
         "-o",
         "--output",
+        type=out_path(),
         metavar="PATH",
         help="write the dataset to PATH.nc (netCDF), PATH.zarr (Zarr) or PATH.parquet (one "
         "row per case), completely or not at all; finished cases are kept in PATH.partial/ "
@@ -138,7 +140,12 @@ def run(args: argparse.Namespace) -> int:
                 f"cannot write {args.output!r} (--output): it is a folder that is not a Zarr "
                 "store; give another name"
             )
-        if not store:
+        if store:  # written beside the store and moved into place, as its partial folder
+            try:
+                check_writable(args.output + ".partial")
+            except OSError as exc:
+                raise write_error(args.output, "--output", exc) from None
+        else:
             check_path(args.output, args, "--output")
         if args.keep_histories and ext == ".parquet":
             raise InputError(
@@ -175,7 +182,7 @@ def run(args: argparse.Namespace) -> int:
         try:
             write_dataset(ds, args.output)
         except OSError as exc:
-            raise InputError(f"cannot write {args.output!r}: {exc.strerror or exc}") from None
+            raise write_error(args.output, "--output", exc) from None
         if partial is not None:
             sweeps.remove_partial(partial)
         print(

@@ -4,26 +4,30 @@ from __future__ import annotations
 
 import argparse
 import json
-import sys
-from collections.abc import Callable
-from dataclasses import dataclass, field
-from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
-from ..atomic import write_atomic
 from ..constants import LENGTH_UNITS, RHO_WATER, G
-from ..errors import InputError
-from ..paths import check_not_an_input, printable, run_inputs
 from ..safety import non_finite
 from ..solvers.registry import DEFAULT_SOLVER
-from ..study import Study, StudyResult, execute
-from ..textout import csv_text, json_text
+from ..study import Study
+
+# the commands' output helpers, given here with the option helpers
+from .outputs import (  # noqa: F401
+    FIGURE_FORMATS,
+    Extra,
+    Outcome,
+    check_distinct,
+    check_output,
+    check_path,
+    compute,
+    emit,
+    finish,
+    out_path,
+    write_error,
+    write_together,
+)
 
 FORMATS = ("table", "json", "csv")
-
-#: Extensions of the figure files ``--plot`` draws.
-FIGURE_FORMATS = (".png", ".svg", ".pdf")
 
 
 class UsageError(Exception):
@@ -322,135 +326,21 @@ def add_output_options(p: argparse.ArgumentParser, plot: str = "") -> None:
     g.add_argument(
         "-o",
         "--output",
+        type=out_path(),
         metavar="PATH",
         help="write to this file instead of the terminal (written completely or not at all)",
     )
     if plot:
         g.add_argument(
             "--plot",
+            type=out_path(),
             metavar="PATH.png",
             help=f"also draw {plot} to this image (PNG, SVG or PDF by the extension; needs "
             "matplotlib: pip install 'hullslice[plot]')",
         )
     g.add_argument(
         "--save-case",
+        type=out_path(),
         metavar="PATH.toml",
         help="also write the case this command amounts to, for 'hullslice run' to repeat it",
     )
-
-
-@dataclass
-class Outcome:
-    """What a command produced, in every form it can be given.
-
-    Attributes
-    ----------
-    table : str
-        The terminal view.
-    data : dict
-        The JSON view.
-    csv_columns : list of str
-        Columns of the CSV view.
-    csv_rows : list of dict
-        Rows of the CSV view.
-    figures : dict of str to callable
-        Figure builders by name; the first is the one ``--plot`` draws.
-    """
-
-    table: str
-    data: dict
-    csv_columns: list[str]
-    csv_rows: list[dict]
-    figures: dict[str, Callable] = field(default_factory=dict)
-
-    def text(self, fmt: str) -> str:
-        if fmt == "json":
-            return json_text(self.data)
-        if fmt == "csv":
-            return csv_text(self.csv_columns, self.csv_rows)
-        return self.table
-
-
-def compute(study: Study, save_case: str | None = None, progress=None) -> StudyResult:
-    """Check the outputs can be written (before any work), then execute the study."""
-    check_output(study, save_case)
-    return execute(study, progress=progress)
-
-
-def finish(study: Study, outcome: Outcome, save_case: str | None = None) -> int:
-    """Give a study's outcome: the text in its format, the figure and the case file."""
-    if study.plot:
-        check_path(study.plot, study, "--plot")
-        if not outcome.figures:
-            raise InputError(f"hullslice {study.command} draws no figure; leave out --plot")
-        from ..plots import save
-
-        figure = next(iter(outcome.figures.values()))()
-        save(figure, study.plot)
-        print(f"wrote {study.plot}", file=sys.stderr)
-    if save_case:
-        from ..case import write_case
-
-        check_path(save_case, study, "--save-case")
-        write_case(study.to_case(), save_case)
-        print(f"wrote {save_case}", file=sys.stderr)
-    emit(study, outcome.text(study.format or "table"))
-    return 0
-
-
-def check_output(study: Study, save_case: str | None = None) -> None:
-    """Refuse an ``--output``, ``--plot`` or ``--save-case`` that cannot be written, before
-    any work is done."""
-    for option, path in (("--output", study.output), ("--plot", study.plot)):
-        if path:
-            check_path(path, study, option)
-    if save_case:
-        check_path(save_case, study, "--save-case")
-
-
-def _inputs(source: Any) -> list[tuple[str, Path]]:
-    """The input files of a study, or of a parsed command line."""
-    if isinstance(source, Study):
-        source = SimpleNamespace(
-            mesh=source.mesh,
-            case=source.case_file,
-            kinematics=source.kinematics,
-            mass_distribution=source.mass_distribution,
-            solver_option=source.solver_options,
-        )
-    return run_inputs(source)
-
-
-def check_path(out: str, source: Any, option: str = "--output") -> None:
-    """Refuse an output path that is a folder, in a missing folder, or one of the inputs
-    of ``source`` (a study, or a parsed command line)."""
-    target = Path(out)
-    if target.is_dir():
-        raise InputError(f"cannot write {out!r} ({option}): it is a folder; give a file name in it")
-    if not (target.parent if str(target.parent) else Path(".")).is_dir():
-        raise InputError(
-            f"cannot write {out!r} ({option}): the folder {str(target.parent)!r} does not "
-            "exist; create it first"
-        )
-    if option == "--plot" and target.suffix.lower() not in FIGURE_FORMATS:
-        raise InputError(
-            f"cannot write {printable(out)!r} (--plot): a figure is drawn as "
-            f"{', '.join(f[1:].upper() for f in FIGURE_FORMATS)} by the file's extension; "
-            "name it .png"
-        )
-    check_not_an_input(out, _inputs(source), option)
-
-
-def emit(target: Any, text: str) -> None:
-    """Print a command's output, or write it to the ``output`` of ``target`` (a study)."""
-    output = getattr(target, "output", None)
-    if output:
-        if isinstance(target, Study):
-            check_output(target)
-        try:
-            write_atomic(output, text)
-        except OSError as exc:
-            raise InputError(f"cannot write {output!r}: {exc.strerror or exc}") from None
-        print(f"wrote {output}", file=sys.stderr)
-    else:
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")

@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from ..case import COMMAND_KEYS, SCHEMA, case_command, read_case_file, validate_case
-from ..errors import CaseError
+from ..errors import CaseError, InputError
 from ..paths import printable
 
 #: Keys that shape the mesh: one mesh per sweep, so a sweep does not vary them.
@@ -329,11 +329,14 @@ def make_plan(
                 f"case does not give: add {c.key} = [x, z] to the case (the part not swept is "
                 f"kept), or sweep {' and '.join(others)} as well"
             )
-    for i, over in enumerate(cases):  # every case is a valid case file
+    from .run import study_of
+
+    for i, over in enumerate(cases):  # every case is a valid case file, and a valid study
         merged = _raw(apply(checked, over))
         try:
-            validate_case(merged)
-        except CaseError as exc:
+            # the limits a single run enforces (the pitch, ...), before anything runs
+            study_of(validate_case(merged))
+        except InputError as exc:
             msg = str(exc).removeprefix("case: ")
             raise CaseError(f"{where}[sweep] case {plan.label(i)}: {msg}") from None
     return plan
