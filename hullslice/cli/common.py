@@ -167,8 +167,9 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
         "--mass-distribution",
         metavar="CSV",
         help="mass along the body instead of a uniform density: CSV with columns "
-        "x,mass_per_metre (m, kg/m) or point masses x,z,mass[,length] (m, kg), body frame in "
-        "metres after --units and axes",
+        "x,mass_per_metre (m, kg/m) or point masses x,z,mass[,length] (m, kg, m; length "
+        "default a tenth of the body's length), body frame in metres after --units and axes; "
+        "it must lie on the body",
     )
     m.add_argument(
         "--cg",
