@@ -20,12 +20,13 @@ import numpy as np
 from .axes import axis_matrix, unit_scale
 from .caching import Cache
 from .errors import MeshError, MeshRepairWarning
-from .limits import no_mass
+from .limits import check_precision, no_mass
 from .mass import MassDistribution, MassProperties, check_density
 from .paths import printable
 from .prepare import prepare_arrays
 from .readers import MAX_FILE_BYTES as MAX_FILE_BYTES
-from .readers import SUPPORTED_FORMATS, read_mesh, source_name
+from .readers import SUPPORTED_FORMATS, read_mesh, read_mesh_file, source_name
+from .readers.conventions import resolve_conventions
 from .repair.passes import check_and_repair
 from .topology import (
     check_finite,
@@ -368,11 +369,10 @@ class Hull:
         )
 
 
-#: Cached attributes that depend on the geometry only (kept by Hull.with_mass).
+#: Cached attributes that depend on the geometry only (kept by Hull.with_mass); and what
+#: a pickled hull holds (see Hull.__getstate__).
 _GEOMETRY = ("_vertices", "_faces", "_manifold", "name", "source", "bounds", "size", "volume",
              "centroid", "edges")  # fmt: skip
-
-#: What a pickled hull holds (see Hull.__getstate__).
 _PICKLED = ("_vertices", "_faces", "name", "source", "mass", "mass_distribution", "_cg_given",
             "_inertia_given")  # fmt: skip
 
@@ -380,9 +380,9 @@ _PICKLED = ("_vertices", "_faces", "name", "source", "mass", "mass_distribution"
 def load_hull(
     path: str | os.PathLike | IO[bytes],
     *,
-    units: str = "m",
-    forward: str = "+x",
-    up: str = "+z",
+    units: str | None = None,
+    forward: str | None = None,
+    up: str | None = None,
     mass: float | None = None,
     mass_distribution: MassDistribution | None = None,
     cg: Sequence[float] | None = None,
@@ -404,12 +404,10 @@ def load_hull(
         The mesh file, or a file open in binary mode; the extension of its name (``.stl``,
         ``.obj``, ``.tri``; ``.ply``, ``.off``, ``.glb``, ``.gltf``, ``.3mf``, ``.msh`` with
         the extra ``hullslice[formats]``) gives the format unless ``format`` does.
-    units : str
-        Length unit of the file's coordinates: ``m, cm, mm, in, ft`` (default ``m``).
-    forward : str
-        Mesh axis pointing forward along the body (default ``+x``).
-    up : str
-        Mesh axis pointing up (default ``+z``).
+    units, forward, up : str, optional
+        Length unit of the file's coordinates (``m, cm, mm, in, ft``), mesh axes pointing
+        forward and up. Default: what the file declares, with a warning naming it (a 3MF's
+        ``unit``, glTF's ``+y`` up), else ``m``, ``+x``, ``+z``.
     mass : float, optional
         Body mass in kg.
     mass_distribution : MassDistribution, optional
@@ -454,12 +452,17 @@ def load_hull(
         The file is missing, empty, not a mesh, or not a closed 2-manifold body.
     InputError
         A bad option (unknown unit or axis, non-positive mass, scale or length, a body
-        number the mesh does not have, a box that keeps nothing), or a file object whose
-        format nothing gives.
+        number the mesh does not have, a box that keeps nothing), a file object without a
+        format, or a float32 file too far from the origin (:func:`~.limits.check_precision`).
     """
     file_name = source_name(path)
     name = Path(file_name).stem if file_name else "hull"
-    v, f = read_mesh(path, format)
+    v, f, declared = read_mesh_file(path, format)
+    units, forward, up = resolve_conventions(
+        declared, name, units=units, forward=forward, up=up, length=length
+    )
+    unit = units if scale is None and length is None else "file units"
+    check_precision(v, f, name, float32=declared.float32, unit=unit)
     prep = prepare_arrays(
         v, f, name, units=units, scale=scale, length=length, forward=forward, up=up,
         repair=repair, keep=keep,
