@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 
 from .constants import MAX_SLICES, MAX_STEPS
-from .errors import HullsliceWarning, InputError
+from .errors import HullsliceWarning, InputError, MeshError
 
 __all__ = [
     "MAX_CASE_BYTES",
@@ -131,7 +131,7 @@ def check_precision(
 
     Raises
     ------
-    InputError
+    MeshError
         A float32 file whose rounding exceeds :data:`MAX_ROUNDING` of the body's size: the
         message names the offset, the size, the precision and the fix.
     """
@@ -169,7 +169,7 @@ def check_precision(
             f"digits), its coordinates there step by {step:.3g} {unit}, {ratio:.2g} of its size"
         )
         if ratio > MAX_ROUNDING:
-            raise InputError(
+            raise MeshError(
                 f"{where}, more than the {MAX_ROUNDING:g} that keeps the volume and force "
                 f"within about 0.1 %: {fix}"
             )

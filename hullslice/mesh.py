@@ -449,11 +449,11 @@ def load_hull(
     Raises
     ------
     MeshError
-        The file is missing, empty, not a mesh, or not a closed 2-manifold body.
+        The file is missing, empty, not a mesh, not a closed 2-manifold body, or float32 too
+        far from the origin for its size (:func:`~hullslice.limits.check_precision`).
     InputError
-        A bad option (unknown unit or axis, non-positive mass, scale or length, a body
-        number the mesh does not have, a box that keeps nothing), a file object without a
-        format, or a float32 file too far from the origin (:func:`~.limits.check_precision`).
+        A bad option (unknown unit or axis, non-positive mass, scale or length, a body number
+        the mesh does not have, a box that keeps nothing), or a file object without a format.
     """
     file_name = source_name(path)
     name = Path(file_name).stem if file_name else "hull"

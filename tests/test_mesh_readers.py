@@ -132,7 +132,7 @@ def test_a_binary_stl_is_read_as_the_float32_it_stores():
 def test_a_float32_file_far_out_for_its_size_is_refused_with_the_figures(tmp_path):
     # 1e5 m out, a 1 m wedge's float32 coordinates step by 7.8 mm: its force was 15 % off
     path = _binary_stl(tmp_path / "far.stl", *_prism(1e5))
-    with pytest.raises(hs.InputError) as err:
+    with pytest.raises(hs.MeshError) as err:
         hs.load_hull(path)
     text = str(err.value)
     for part in ("lies 1e+05 m from the origin", "(1.02 m)", "float32", "step by 0.00781 m",
@@ -143,7 +143,7 @@ def test_a_float32_file_far_out_for_its_size_is_refused_with_the_figures(tmp_pat
 def test_a_centimetre_body_a_kilometre_out_is_refused(tmp_path):
     # it lost 7 % of its volume on loading
     path = _binary_stl(tmp_path / "cm.stl", *_prism(1000.0, scale=0.01))
-    with pytest.raises(hs.InputError, match=r"0\.006 of its size"):
+    with pytest.raises(hs.MeshError, match=r"0\.006 of its size"):
         hs.load_hull(path)
 
 
