@@ -140,7 +140,7 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
     )
     g.add_argument(
         "--forward",
-        default="+x",
+        default=None,
         metavar="AXIS",
         help="mesh axis pointing forward along the body: x, y, z, or with a sign as "
         "--forward=-x (default: +x, or what the file declares)",
