@@ -125,9 +125,9 @@ SCHEMA: dict[str, Key] = {
         Key("command", "text", "", "what to compute: sections, force, simulate or info",
             check=_one_of(("sections", "force", "simulate", "info"))),
         Key("mesh", "path", "", "the hull mesh, STL or OBJ, relative to the case file"),
-        Key("units", "text", "", "length unit of the mesh", "m", _one_of(LENGTH_UNITS)),
-        Key("forward", "text", "", "mesh axis pointing forward", "+x", _axis),
-        Key("up", "text", "", "mesh axis pointing up", "+z", _axis),
+        Key("units", "text", "", "length unit of the mesh", None, _one_of(LENGTH_UNITS)),
+        Key("forward", "text", "", "mesh axis pointing forward", None, _axis),
+        Key("up", "text", "", "mesh axis pointing up", None, _axis),
         Key("scale", "number", "m per file unit", "scale of the mesh (not with length)",
             check=_positive),
         Key("length", "number", "m", "the body's length along forward, sets the scale",
@@ -356,9 +356,10 @@ def validate_case(
             f"{where}key 'dt' ({out['dt']:g} s) is longer than the run, 't_end' "
             f"({out['t_end']:g} s): shorten it"
         )
-    if out["forward"].lstrip("+-") == out["up"].lstrip("+-"):
+    forward, up = out.get("forward", "+x"), out.get("up", "+z")
+    if forward.lstrip("+-") == up.lstrip("+-"):
         raise CaseError(
-            f"{where}keys 'forward' ({out['forward']!r}) and 'up' ({out['up']!r}) are the same "
+            f"{where}keys 'forward' ({forward!r}) and 'up' ({up!r}) are the same "
             "axis: choose two different mesh axes"
         )
     return out

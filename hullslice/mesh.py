@@ -20,12 +20,13 @@ import numpy as np
 from .axes import axis_matrix, unit_scale
 from .caching import Cache
 from .errors import MeshError, MeshRepairWarning
-from .limits import check_density, no_mass
+from .limits import check_density, check_precision, no_mass
 from .mass import MassDistribution, MassProperties, fit_to_body
 from .paths import printable
 from .prepare import prepare_arrays
 from .readers import MAX_FILE_BYTES as MAX_FILE_BYTES
-from .readers import SUPPORTED_FORMATS, read_mesh, source_name
+from .readers import SUPPORTED_FORMATS, read_mesh, read_mesh_file, source_name
+from .readers.conventions import resolve_conventions
 from .repair.passes import check_and_repair
 from .topology import (
     check_finite,
@@ -101,20 +102,16 @@ class Hull:
         src["repairs"] = tuple(src.get("repairs", ())) + tuple(repairs)
         self.source = src
         self.cache = Cache()  # what the layers above compute about this body
-        self._set_mass(
-            MassProperties.from_keywords(
-                mass_properties, mass=mass, mass_distribution=mass_distribution, cg=cg,
-                inertia=inertia,
-            )
-        )  # fmt: skip
+        self._set_mass(MassProperties.from_keywords(
+            mass_properties, mass=mass, mass_distribution=mass_distribution, cg=cg,
+            inertia=inertia))  # fmt: skip
 
     def _set_mass(self, props: MassProperties) -> None:
         self.mass_properties = props
         self.mass = props.mass
         dist = props.distribution  # checked against the body, and spread along it
-        self.mass_distribution = dist and fit_to_body(
-            dist, self.bounds, self.centroid[2], self.name
-        )
+        self.mass_distribution = dist and fit_to_body(dist, self.bounds, self.centroid[2],
+                                                      self.name)  # fmt: skip
         self._cg_given = props.cg
         self._inertia_given = props.inertia
         if self.mass is not None and props.distribution is None:
@@ -371,11 +368,10 @@ class Hull:
         )
 
 
-#: Cached attributes that depend on the geometry only (kept by Hull.with_mass).
+#: Cached attributes that depend on the geometry only (kept by Hull.with_mass); and what
+#: a pickled hull holds (see Hull.__getstate__).
 _GEOMETRY = ("_vertices", "_faces", "_manifold", "name", "source", "bounds", "size", "volume",
              "centroid", "edges")  # fmt: skip
-
-#: What a pickled hull holds (see Hull.__getstate__).
 _PICKLED = ("_vertices", "_faces", "name", "source", "mass", "mass_distribution", "_cg_given",
             "_inertia_given")  # fmt: skip
 
@@ -383,9 +379,9 @@ _PICKLED = ("_vertices", "_faces", "name", "source", "mass", "mass_distribution"
 def load_hull(
     path: str | os.PathLike | IO[bytes],
     *,
-    units: str = "m",
-    forward: str = "+x",
-    up: str = "+z",
+    units: str | None = None,
+    forward: str | None = None,
+    up: str | None = None,
     mass: float | None = None,
     mass_distribution: MassDistribution | None = None,
     cg: Sequence[float] | None = None,
@@ -407,12 +403,10 @@ def load_hull(
         The mesh file, or a file open in binary mode; the extension of its name (``.stl``,
         ``.obj``, ``.tri``; ``.ply``, ``.off``, ``.glb``, ``.gltf``, ``.3mf``, ``.msh`` with
         the extra ``hullslice[formats]``) gives the format unless ``format`` does.
-    units : str
-        Length unit of the file's coordinates: ``m, cm, mm, in, ft`` (default ``m``).
-    forward : str
-        Mesh axis pointing forward along the body (default ``+x``).
-    up : str
-        Mesh axis pointing up (default ``+z``).
+    units, forward, up : str, optional
+        Length unit of the file's coordinates (``m, cm, mm, in, ft``), mesh axes pointing
+        forward and up. Default: what the file declares, with a warning naming it (a 3MF's
+        ``unit``, glTF's ``+y`` up), else ``m``, ``+x``, ``+z``.
     mass : float, optional
         Body mass in kg.
     mass_distribution : MassDistribution, optional
@@ -454,15 +448,19 @@ def load_hull(
     Raises
     ------
     MeshError
-        The file is missing, empty, not a mesh, or not a closed 2-manifold body.
+        The file is missing, empty, not a mesh, not a closed 2-manifold body, or float32 too
+        far from the origin for its size (:func:`~hullslice.limits.check_precision`).
     InputError
-        A bad option (unknown unit or axis, non-positive mass, scale or length, a body
-        number the mesh does not have, a box that keeps nothing), or a file object whose
-        format nothing gives.
+        A bad option (unknown unit or axis, non-positive mass, scale or length, a body number
+        the mesh does not have, a box that keeps nothing), or a file object without a format.
     """
     file_name = source_name(path)
     name = Path(file_name).stem if file_name else "hull"
-    v, f = read_mesh(path, format)
+    v, f, declared = read_mesh_file(path, format)
+    units, forward, up = resolve_conventions(declared, name, units=units, forward=forward,
+                                             up=up, length=length)  # fmt: skip
+    unit = units if scale is None and length is None else "file units"
+    check_precision(v, f, name, float32=declared.float32, unit=unit)
     prep = prepare_arrays(
         v, f, name, units=units, scale=scale, length=length, forward=forward, up=up,
         repair=repair, keep=keep,

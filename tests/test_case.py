@@ -54,7 +54,9 @@ def test_a_full_case_is_read_with_its_types_and_defaults(tmp_path):
     assert case["slicing"] == "fixed"
     # defaults of the keys that have one
     assert case["rho"] == hs.RHO_WATER and case["g"] == hs.G
-    assert (case["forward"], case["up"], case["deadrise"]) == ("+x", "+z", "wedge")
+    assert case["deadrise"] == "wedge"
+    # the mesh's axes, like its unit, default to what the file declares (else +x, +z)
+    assert "forward" not in case and "up" not in case
     assert case["solver"] == "extended-von-karman"
     assert set(case) <= set(SCHEMA)
 

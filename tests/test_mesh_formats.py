@@ -4,6 +4,7 @@ and say so when missing; the checked and repaired mesh is written back out."""
 
 from __future__ import annotations
 
+import contextlib
 import io
 import sys
 import zipfile
@@ -12,8 +13,15 @@ import numpy as np
 import pytest
 
 import hullslice as hs
+from hullslice.axes import axis_matrix
 from hullslice.cli import main
-from hullslice.errors import InputError, MeshError, MissingDependencyError
+from hullslice.errors import (
+    InputError,
+    MeshError,
+    MissingDependencyError,
+    OrientationWarning,
+    UnitsWarning,
+)
 from hullslice.shapes import wedge_prism
 
 from .conftest import MESHES
@@ -30,7 +38,8 @@ def wedge() -> hs.Hull:
 
 def _write(hull: hs.Hull, path) -> None:
     """``hull`` in the format of ``path``'s extension: hullslice's writer for STL, OBJ and
-    TRI, trimesh for PLY, OFF, GLB, glTF and 3MF, meshio for Gmsh."""
+    TRI, trimesh for PLY, OFF, GLB, glTF and 3MF, meshio for Gmsh; a glTF +Y up and a 3MF
+    in the millimetres trimesh declares, as their specifications say."""
     ext = path.suffix[1:]
     if ext in ("stl", "obj", "tri"):
         hull.save(path)
@@ -42,7 +51,12 @@ def _write(hull: hs.Hull, path) -> None:
     else:
         if ext == "3mf":
             pytest.importorskip("lxml")
-        tm = trimesh.Trimesh(hull.vertices, hull.faces, process=False)
+        v = hull.vertices
+        if ext in ("glb", "gltf"):  # glTF is +Y up: the body's z up is the file's +y
+            v = v @ axis_matrix("+x", "+y")
+        elif ext == "3mf":  # trimesh declares millimetres
+            v = v * 1000.0
+        tm = trimesh.Trimesh(v, hull.faces, process=False)
         out = tm.export(file_type=ext, **({"digits": 17} if ext == "off" else {}))
         if ext == "gltf":
             tm_files = tm.export(file_type="gltf", embed_buffers=True)
@@ -52,12 +66,20 @@ def _write(hull: hs.Hull, path) -> None:
 
 FORMATS = ["stl", "obj", "tri", "ply", "off", "glb", "gltf", "3mf", "msh"]
 
+#: The note a format's declared convention gives on loading (glTF's +Y up, a 3MF's unit).
+NOTES = {"glb": OrientationWarning, "gltf": OrientationWarning, "3mf": UnitsWarning}
+
+
+def _noted(ext: str):
+    return pytest.warns(NOTES[ext]) if ext in NOTES else contextlib.nullcontext()
+
 
 @pytest.mark.parametrize("ext", FORMATS)
 def test_every_format_loads_the_same_body(wedge, tmp_path, ext):
     path = tmp_path / f"wedge.{ext}"
     _write(wedge, path)
-    hull = hs.load_hull(path)
+    with _noted(ext):
+        hull = hs.load_hull(path)
     assert hull.volume == pytest.approx(wedge.volume, rel=1e-9)
     assert hull.centroid == pytest.approx(wedge.centroid, rel=1e-9, abs=1e-12)
     assert len(hull.faces) == len(wedge.faces)
@@ -69,9 +91,23 @@ def test_the_saved_mesh_reads_back_as_the_loaded_one(wedge, tmp_path, ext):
     if ext == "3mf":
         pytest.importorskip("lxml")
     path = wedge.save(tmp_path / f"out.{ext}")
-    back = hs.load_hull(path)
+    with _noted(ext):
+        back = hs.load_hull(path)
+    if ext == "glb":  # turned +Y up and back: the same triangles, the vertices in another order
+        assert _triangles(back) == _triangles(wedge)
+        return
     np.testing.assert_array_equal(back.vertices, wedge.vertices)
     np.testing.assert_array_equal(back.faces, wedge.faces)
+
+
+def _triangles(hull: hs.Hull) -> list[tuple[float, ...]]:
+    """The hull's triangles as corner coordinates, each from its least corner (keeping its
+    orientation), sorted: equal for the same surface whatever the vertex order."""
+    out = []
+    for tri in hull.vertices[hull.faces].tolist():
+        k = min(range(3), key=lambda i: tri[i])
+        out.append(tuple(c for corner in tri[k:] + tri[:k] for c in corner))
+    return sorted(out)
 
 
 @pytest.mark.parametrize("ext", ["obj", "tri"])
@@ -419,3 +455,130 @@ def test_info_write_mesh_refusals(tmp_path, capsys, target, message):
     assert err.count("\n") == 1 and message in err and "(--write-mesh)" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == before
     assert mesh.read_bytes() == WEDGE.read_bytes()
+
+
+# -- the conventions a file declares: a 3MF's unit, glTF's +Y up ------------------------------
+
+
+def _3mf(path, unit: str | None, scale: float = 1.0):
+    """The paper prism as a 3MF whose model declares ``unit`` (None: no unit attribute),
+    its coordinates the prism's in metres times ``scale``."""
+    pytest.importorskip("lxml")
+    prism = hs.load_hull(MESHES / "paper_prism.stl")
+    data = trimesh.Trimesh(prism.vertices * scale, prism.faces, process=False).export(
+        file_type="3mf"
+    )
+    declared = b"" if unit is None else f' unit="{unit}"'.encode()
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(data)) as zin, zipfile.ZipFile(out, "w") as zout:
+        for item in zin.infolist():
+            content = zin.read(item.filename)
+            if item.filename.endswith(".model"):
+                content = content.replace(b' unit="millimeter"', declared)
+            zout.writestr(item, content)
+    path.write_bytes(out.getvalue())
+    return path
+
+
+PRISM_LENGTH = 0.35  # m
+
+
+@pytest.mark.parametrize(
+    ("unit", "metres_per_unit"),
+    [("inch", 0.0254), ("centimeter", 0.01), ("meter", 1.0), ("millimeter", 1e-3),
+     (None, 1e-3), ("micron", 1e-6)],
+)  # fmt: skip
+def test_a_3mf_is_read_in_the_unit_it_declares(tmp_path, unit, metres_per_unit):
+    # the file holds 0.35 units along x: 0.35 of its unit
+    path = _3mf(tmp_path / "p.3mf", unit)
+    with pytest.warns(UnitsWarning, match=f"declares its unit '{unit or 'millimeter'}'"):
+        hull = hs.load_hull(path)
+    assert hull.extents[0] == pytest.approx(PRISM_LENGTH * metres_per_unit, rel=1e-6)
+    assert hull.source["units"] == {"inch": "in", "centimeter": "cm", "meter": "m"}.get(unit, "mm")
+
+
+def test_units_given_win_over_the_3mf_unit(tmp_path):
+    path = _3mf(tmp_path / "p.3mf", "inch")
+    with pytest.warns(UnitsWarning, match="declares its unit 'inch'; read in m as given"):
+        hull = hs.load_hull(path, units="m")
+    assert hull.extents[0] == pytest.approx(PRISM_LENGTH, rel=1e-6)
+
+
+def test_a_length_sets_the_size_of_a_3mf_without_a_unit_note(tmp_path):
+    hull = hs.load_hull(_3mf(tmp_path / "p.3mf", "inch"), length=3.5)  # warnings are errors
+    assert hull.extents[0] == pytest.approx(3.5, rel=1e-12)
+
+
+def test_the_cli_reads_a_3mf_in_its_unit_and_says_so(tmp_path, capsys):
+    path = _3mf(tmp_path / "p.3mf", "centimeter", scale=100.0)  # 35 cm
+    assert main(["info", str(path)]) == 0
+    out, err = capsys.readouterr()
+    assert "declares its unit 'centimeter': read in cm (give --units to override)" in err
+    assert "units cm" in out and "length 0.35 m" in out
+    assert main(["info", str(path), "--units", "mm"]) == 0
+    out, err = capsys.readouterr()
+    assert "read in mm as given" in err and "length 0.035 m" in out
+
+
+@pytest.mark.parametrize(("units", "declared", "factor"), [("m", b"meter", 1.0),
+                                                           ("mm", b"millimeter", 1e3)])  # fmt: skip
+def test_a_written_3mf_declares_the_unit_it_is_written_in(wedge, tmp_path, units, declared, factor):
+    pytest.importorskip("lxml")
+    path = wedge.save(tmp_path / "w.3mf", units=units)
+    with zipfile.ZipFile(path) as z:
+        model = next(z.read(n) for n in z.namelist() if n.endswith(".model"))
+    assert b' unit="' + declared + b'"' in model
+    other = trimesh.load(path, force="mesh")  # another reader sees the same size
+    assert other.units == declared.decode()
+    assert other.extents == pytest.approx(wedge.extents * factor, rel=1e-6)
+    with pytest.warns(UnitsWarning):
+        back = hs.load_hull(path)
+    assert back.volume == pytest.approx(wedge.volume, rel=1e-6)
+
+
+def test_the_cli_writes_a_3mf_in_metres_and_says_so_in_the_file(tmp_path, capsys):
+    pytest.importorskip("lxml")
+    out = tmp_path / "out.3mf"
+    assert main(["info", str(MESHES / "paper_prism.stl"), "--write-mesh", str(out)]) == 0
+    assert trimesh.load(out, force="mesh").units == "meter"
+
+
+def test_a_glb_is_read_y_up(tmp_path):
+    prism = hs.load_hull(MESHES / "paper_prism.stl")
+    path = tmp_path / "p.glb"
+    v = prism.vertices @ axis_matrix("+x", "+y")  # the prism as glTF has it: +Y up
+    path.write_bytes(trimesh.Trimesh(v, prism.faces, process=False).export(file_type="glb"))
+    with pytest.warns(OrientationWarning, match=r"declares up \+y \(glTF is \+Y up\)"):
+        hull = hs.load_hull(path)
+    assert hull.extents == pytest.approx(
+        prism.extents, rel=1e-6
+    )  # 0.35 x 0.2 x 0.1, not on its side
+    assert hull.source["up"] == "+y" and hull.source["forward"] == "+x"
+    assert _wagner(hull) == pytest.approx(_wagner(prism), rel=1e-6)
+    on_its_side = hs.load_hull(path, up="+z")  # given: it wins, without a note
+    assert on_its_side.extents[1] == pytest.approx(0.1, rel=1e-6)
+    assert _wagner(on_its_side) < 0.5 * _wagner(prism)  # as it was read before
+
+
+def _wagner(hull: hs.Hull) -> float:
+    return hs.compute_force(
+        hull, 0.0383, -3.4943, slices=32, solver="wagner", acceleration=0.0
+    ).total
+
+
+def test_a_forward_along_the_glb_up_axis_needs_the_up_too(tmp_path, wedge):
+    path = wedge.save(tmp_path / "w.glb")
+    with pytest.raises(InputError, match=r"forward axis 'y' is the axis the file declares up"):
+        hs.load_hull(path, forward="y")
+    hull = hs.load_hull(path, forward="y", up="x")  # both given: as for any format
+    assert hull.volume == pytest.approx(wedge.volume, rel=1e-6)
+
+
+def test_a_written_glb_is_y_up(wedge, tmp_path):
+    path = wedge.save(tmp_path / "w.glb")
+    other = trimesh.load(path, force="mesh")  # as another glTF reader sees it
+    lo, hi = other.bounds
+    # the body's z (height) is the file's +Y, its y (beam, to port) the file's -Z
+    assert hi[1] - lo[1] == pytest.approx(wedge.extents[2], rel=1e-6)
+    assert hi[2] - lo[2] == pytest.approx(wedge.extents[1], rel=1e-6)
+    assert lo[1] == pytest.approx(wedge.bounds[0][2], rel=1e-6, abs=1e-9)

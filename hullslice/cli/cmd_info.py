@@ -119,9 +119,9 @@ def outcome(result: StudyResult) -> Outcome:
         "mesh": str(study.mesh),
         "name": hull.name,
         "file_bytes": path.stat().st_size,
-        "units": study.units,
-        "forward": study.forward,
-        "up": study.up,
+        "units": hull.source["units"],
+        "forward": hull.source["forward"],
+        "up": hull.source["up"],
         "faces": len(hull.faces),
         "vertices": len(hull.vertices),
         "closed": True,
@@ -155,7 +155,9 @@ def outcome(result: StudyResult) -> Outcome:
         csv_columns=["x", "area"],
         csv_rows=rows,
         figures={
-            "views": lambda: plots.plot_views(hull, study.forward, study.up, orient.nose),
+            "views": lambda: plots.plot_views(
+                hull, hull.source["forward"], hull.source["up"], orient.nose
+            ),
             "area_curve": lambda: plots.plot_area_curve(
                 x, area, f"{hull.name}: sectional area curve"
             ),

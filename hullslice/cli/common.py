@@ -136,23 +136,25 @@ def add_mesh_options(p: argparse.ArgumentParser, mass_required: bool = False) ->
     g = p.add_argument_group("mesh options")
     g.add_argument(
         "--units",
-        default="m",
+        default=None,
         type=lower,
         choices=list(LENGTH_UNITS),
-        help="length unit of the mesh file (default: m)",
+        help="length unit of the mesh file (default: the unit the file declares, as a 3MF "
+        "does, else m)",
     )
     g.add_argument(
         "--forward",
-        default="+x",
+        default=None,
         metavar="AXIS",
         help="mesh axis pointing forward along the body: x, y, z, or with a sign as "
-        "--forward=-x (default: +x)",
+        "--forward=-x (default: +x, or what the file declares)",
     )
     g.add_argument(
         "--up",
-        default="+z",
+        default=None,
         metavar="AXIS",
-        help="mesh axis pointing up: x, y, z, or with a sign as --up=-y (default: +z)",
+        help="mesh axis pointing up: x, y, z, or with a sign as --up=-y (default: +z, or what "
+        "the file declares: +y for glTF/GLB)",
     )
     add_shape_options(g)
     m = p.add_argument_group("mass")

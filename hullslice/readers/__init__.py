@@ -14,7 +14,9 @@ line naming what to install. Every format's vertices and faces then go through t
 checks and repairs.
 
 A new format is a module with a function ``read(fh, size) -> (vertices, faces)`` (see
-:class:`~hullslice.readers.base.Reader`) and a row in :data:`READERS`.
+:class:`~hullslice.readers.base.Reader`) and a row in :data:`READERS`; a format that
+declares its unit, axes or precision returns a third item,
+:class:`~hullslice.readers.base.Conventions`, which :func:`read_mesh_file` passes on.
 :func:`~hullslice.readers.write.write_mesh` writes a mesh back out.
 """
 
@@ -22,13 +24,14 @@ from __future__ import annotations
 
 import io
 import os
+from dataclasses import replace
 from pathlib import Path
 from typing import IO, Any
 
 import numpy as np
 
 from ..errors import InputError, MeshError
-from .base import MAX_FILE_BYTES, FormatError, Reader
+from .base import MAX_FILE_BYTES, NO_CONVENTIONS, Conventions, FormatError, Reader
 from .extra import EXTRA_READERS
 from .obj import read_obj
 from .stl import read_stl
@@ -39,9 +42,11 @@ __all__ = [
     "MAX_FILE_BYTES",
     "READERS",
     "SUPPORTED_FORMATS",
+    "Conventions",
     "Reader",
     "format_of",
     "read_mesh",
+    "read_mesh_file",
     "source_name",
 ]
 
@@ -120,6 +125,22 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
         A format of the extra ``hullslice[formats]`` without it installed: the message
         names what to install.
     """
+    v, f, _ = read_mesh_file(source, format)
+    return v, f
+
+
+def read_mesh_file(
+    source: MeshSource, format: str | None = None
+) -> tuple[np.ndarray, np.ndarray, Conventions]:
+    """Read the vertices and faces of a mesh file, and what the file declares about them.
+
+    As :func:`read_mesh`, with a third item: the file's
+    :class:`~hullslice.readers.base.Conventions` (a 3MF's unit, glTF's +Y up, the float32
+    precision of a binary STL or GLB). The vertices are float32 where the file stores
+    single precision (a binary STL), float64 otherwise.
+    """
+    if not _is_file(source) and not str(os.fspath(source)).strip():  # type: ignore[arg-type]
+        raise MeshError("mesh path is empty: give the path of a mesh file")
     label = source_name(source) or "(file object)"
     if not _is_file(source):
         path = Path(source)  # type: ignore[arg-type]
@@ -137,12 +158,12 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
     try:
         if _is_file(source):
             fh, size = _sized(source, label)  # type: ignore[arg-type]
-            v, f = _read(READERS[ext], fh, size, label)
+            v, f, conventions = _read(READERS[ext], fh, size, label)
         else:
             size = Path(source).stat().st_size  # type: ignore[arg-type]
             _check_size(size, label)
             with open(source, "rb") as fh:  # type: ignore[arg-type]
-                v, f = _read(READERS[ext], fh, size, label)
+                v, f, conventions = _read(READERS[ext], fh, size, label)
     except FormatError as exc:
         raise MeshError(f"mesh file {label!r} is not a valid {ext.upper()} file: {exc}") from None
     except OSError as exc:
@@ -155,7 +176,7 @@ def read_mesh(source: MeshSource, format: str | None = None) -> tuple[np.ndarray
         raise MeshError(
             f"mesh file {label!r} holds no triangles: is it a valid {ext.upper()} file?"
         )
-    return v, f
+    return v, f, conventions
 
 
 def _check_size(size: int, label: str) -> None:
@@ -168,13 +189,19 @@ def _check_size(size: int, label: str) -> None:
         )
 
 
-def _read(reader: Reader, fh: IO[bytes], size: int, label: str) -> tuple[np.ndarray, np.ndarray]:
+def _read(
+    reader: Reader, fh: IO[bytes], size: int, label: str
+) -> tuple[np.ndarray, np.ndarray, Conventions]:
     head = fh.read(0)
     if not isinstance(head, bytes):
         raise InputError(
             f"mesh file {label!r} is open in text mode: open it in binary mode, open(path, 'rb')"
         )
-    return reader(fh, size)
+    out = reader(fh, size)
+    conventions = out[2] if len(out) == 3 else NO_CONVENTIONS
+    if out[0].dtype == np.float32:
+        conventions = replace(conventions, float32=True)
+    return out[0], out[1], conventions
 
 
 def _sized(fh: IO[bytes], label: str) -> tuple[IO[bytes], int]:

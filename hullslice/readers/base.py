@@ -4,16 +4,26 @@ A reader is a function ``read(fh, size) -> (vertices, faces)`` of an open binary
 positioned at the start of the mesh and the number of bytes from there to its end; it
 raises :class:`FormatError` with the reason (without the file's name) when the file does
 not follow its format. :func:`hullslice.readers.read_mesh` adds the name and turns the
-reason into a :class:`~hullslice.errors.MeshError`.
+reason into a :class:`~hullslice.errors.MeshError`. A reader of a format that declares its
+conventions (a 3MF its unit, glTF its up axis, a binary file its precision) returns them as
+a third item, :class:`Conventions`.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import IO, Protocol
 
 import numpy as np
 
-__all__ = ["MAX_FILE_BYTES", "MAX_UNPACKED_BYTES", "FormatError", "Reader"]
+__all__ = [
+    "MAX_FILE_BYTES",
+    "MAX_UNPACKED_BYTES",
+    "NO_CONVENTIONS",
+    "Conventions",
+    "FormatError",
+    "Reader",
+]
 
 #: Largest file :func:`~hullslice.load_hull` reads, in bytes (about 4 GiB holds a 80M-face
 #: binary STL).
@@ -25,6 +35,34 @@ MAX_UNPACKED_BYTES = MAX_FILE_BYTES
 
 class FormatError(ValueError):
     """A mesh file does not follow its format (the reason, without the file name)."""
+
+
+@dataclass(frozen=True)
+class Conventions:
+    """What a mesh file declares about its coordinates (None: the format says nothing).
+
+    Attributes
+    ----------
+    units : str, optional
+        The length unit the file declares, a name of
+        :data:`~hullslice.constants.LENGTH_UNITS` (a 3MF's ``unit``; glTF is in metres).
+    unit_name : str, optional
+        The unit as the file names it, for messages (``"millimeter"``).
+    up, forward : str, optional
+        The axes the format declares up and forward (glTF: ``+y`` up).
+    float32 : bool
+        The file stores its coordinates in single precision (binary STL, GLB).
+    """
+
+    units: str | None = None
+    unit_name: str | None = None
+    up: str | None = None
+    forward: str | None = None
+    float32: bool = False
+
+
+#: Nothing declared.
+NO_CONVENTIONS = Conventions()
 
 
 class Reader(Protocol):
@@ -44,6 +82,10 @@ class Reader(Protocol):
     faces : (m, 3) int
         Triangles as indices into ``vertices`` (any index may be out of range: the hull's
         checks report it).
+    conventions : Conventions, optional
+        A third item, from a format that declares its unit, axes or precision.
     """
 
-    def __call__(self, fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]: ...
+    def __call__(
+        self, fh: IO[bytes], size: int
+    ) -> tuple[np.ndarray, np.ndarray] | tuple[np.ndarray, np.ndarray, Conventions]: ...

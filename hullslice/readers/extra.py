@@ -7,6 +7,11 @@ separate files is refused: export it as ``.glb``), and a 3MF archive is refused 
 would unpack to more than :data:`~hullslice.readers.base.MAX_UNPACKED_BYTES`. The vertices
 and faces are returned as in the file, without the library's own merging or repair, so that
 hullslice's checks apply to them as to any other format.
+
+What a format declares comes with them (:class:`~hullslice.readers.base.Conventions`): a
+3MF's ``unit`` (millimetres when it names none, as the 3MF specification says; microns
+are converted to millimetres), and glTF's axes, +Y up by its specification, with
+coordinates stored as float32.
 """
 
 from __future__ import annotations
@@ -21,7 +26,7 @@ from typing import IO, Any
 import numpy as np
 
 from ..errors import MissingDependencyError
-from .base import MAX_UNPACKED_BYTES, FormatError, Reader
+from .base import MAX_UNPACKED_BYTES, NO_CONVENTIONS, Conventions, FormatError, Reader
 
 __all__ = ["EXTRA_READERS", "need", "to_trimesh", "trimesh_arrays"]
 
@@ -91,8 +96,37 @@ def _check_gltf(data: bytes) -> None:
             )
 
 
+#: A 3MF's ``unit`` attribute (its specification's names) to a length unit of hullslice
+#: and the factor to it (microns are converted to millimetres).
+_3MF_UNITS = {
+    "micron": ("mm", 1e-3),
+    "millimeter": ("mm", 1.0),
+    "centimeter": ("cm", 1.0),
+    "meter": ("m", 1.0),
+    "inch": ("in", 1.0),
+    "foot": ("ft", 1.0),
+}
+
+
+def _3mf_unit(mesh: Any) -> tuple[str, str, float]:
+    """The unit a 3MF declares, as trimesh read it: (hullslice unit, the file's name for
+    it, factor from the file's coordinates to that unit)."""
+    meta = getattr(mesh, "metadata", None) or {}
+    name = str(meta.get("units") or getattr(mesh, "units", None) or "millimeter")
+    key = name.strip().lower()
+    key = {"millimeters": "millimeter"}.get(key, key)  # trimesh's name for the default
+    if key not in _3MF_UNITS:
+        raise FormatError(
+            f"its unit {name[:40]!r} is not one of the 3MF units ({', '.join(_3MF_UNITS)})"
+        )
+    unit, factor = _3MF_UNITS[key]
+    return unit, key, factor
+
+
 def _trimesh_reader(ext: str) -> Reader:
-    def read(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
+    def read(
+        fh: IO[bytes], size: int
+    ) -> tuple[np.ndarray, np.ndarray] | tuple[np.ndarray, np.ndarray, Conventions]:
         trimesh = need("trimesh", f"reading {ext.upper()} files")
         for module in _NEEDS[ext][1:]:
             need(module, f"reading {ext.upper()} files")
@@ -107,7 +141,13 @@ def _trimesh_reader(ext: str) -> Reader:
             raise
         except Exception as exc:  # a third-party parser: any failure is the file's
             raise FormatError(f"trimesh cannot read it ({_reason(exc)})") from None
-        return trimesh_arrays(mesh)
+        v, f = trimesh_arrays(mesh)
+        if ext == "3mf":
+            unit, name, factor = _3mf_unit(mesh)
+            return v * factor, f, Conventions(units=unit, unit_name=name)
+        if ext in ("glb", "gltf"):  # glTF: metres, +Y up, float32 positions
+            return v, f, Conventions(up="+y", float32=True)
+        return v, f, NO_CONVENTIONS
 
     read.__doc__ = f"{ext.upper()} through trimesh (the extra hullslice[formats])."
     return read

@@ -3,7 +3,9 @@
 A binary STL is an 80-byte header, a little-endian uint32 triangle count, then 50 bytes per
 triangle (normal, three corners as float32, a 2-byte attribute); its size must be exactly
 ``84 + 50 n`` bytes. Otherwise a file that starts with ``solid`` is read as ASCII, in
-chunks so that memory stays bounded. Every triangle has its own three vertices (a triangle
+chunks so that memory stays bounded. A binary file's vertices are returned as float32, the
+precision it stores (the hull's checks refuse a body too far from the origin for it). Every
+triangle has its own three vertices (a triangle
 soup): the hull's checks merge the copies.
 """
 
@@ -33,7 +35,7 @@ def read_stl(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
     claimed = int.from_bytes(head[80:84], "little") if len(head) == _STL_HEAD else None
     if claimed is not None and size == _STL_HEAD + _STL_RECORD.itemsize * claimed:
         data = np.frombuffer(fh.read(), dtype=_STL_RECORD, count=claimed)
-        v = data["corners"].reshape(-1, 3).astype(np.float64)
+        v = data["corners"].reshape(-1, 3).astype(np.float32)  # as stored: a copy, native order
         return v, np.arange(len(v), dtype=np.int64).reshape(-1, 3)
     binary = (
         f"as a binary STL its header claims {claimed} triangles "

@@ -3,19 +3,24 @@
 
 Every file is written completely or not at all (:func:`hullslice.atomic.write_atomic`).
 OBJ and ``.tri`` hold every coordinate to the last bit (the shortest text that reads back
-as the same float64); a binary STL holds float32, as the format does.
+as the same float64); a binary STL holds float32, as the format does. Each file follows
+its format's conventions: a 3MF declares the unit it is written in (``unit="meter"`` for
+metres), a GLB is +Y up (the body's x forward stays +X, its z up becomes +Y), as their
+specifications say, so that hullslice and other tools read them back the same.
 """
 
 from __future__ import annotations
 
+import io
 import os
+import zipfile
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 
 from ..atomic import write_atomic
-from ..axes import unit_scale
+from ..axes import axis_matrix, unit_scale
 from ..errors import InputError
 from ..paths import printable
 from .extra import to_trimesh
@@ -51,23 +56,47 @@ def _tri(v: np.ndarray, f: np.ndarray, name: str) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _with_trimesh(ext: str) -> Callable[[np.ndarray, np.ndarray, str], bytes | str]:
-    def write(v: np.ndarray, f: np.ndarray, name: str) -> bytes | str:
+#: hullslice's length units by their 3MF names (the ``unit`` a written 3MF declares).
+_3MF_UNIT_NAMES = {"m": "meter", "cm": "centimeter", "mm": "millimeter", "in": "inch",
+                   "ft": "foot"}  # fmt: skip
+
+
+def _declare_3mf_unit(data: bytes, units: str) -> bytes:
+    """The 3MF archive ``data`` (written by trimesh, which always declares millimetres)
+    with its model declaring ``units`` instead."""
+    unit = _3MF_UNIT_NAMES[units]
+    out = io.BytesIO()
+    with zipfile.ZipFile(io.BytesIO(data)) as zin, zipfile.ZipFile(out, "w") as zout:
+        for item in zin.infolist():
+            content = zin.read(item.filename)
+            if item.filename.lower().endswith(".model"):
+                content = content.replace(b'unit="millimeter"', f'unit="{unit}"'.encode(), 1)
+            zout.writestr(item, content)
+    return out.getvalue()
+
+
+def _with_trimesh(ext: str) -> Callable[..., bytes | str]:
+    def write(v: np.ndarray, f: np.ndarray, name: str, units: str = "m") -> bytes | str:
         from .extra import need
 
         if ext == "3mf":
             need("lxml", "writing 3MF files")
             need("networkx", "writing 3MF files")
+        if ext == "glb":  # glTF is +Y up: mesh = R^T body, R taking a +Y-up mesh to the body
+            v = v @ axis_matrix("+x", "+y")
         options = {"digits": 17} if ext == "off" else {}
         out = to_trimesh(v, f).export(file_type=ext, **options)
-        return out if isinstance(out, (bytes, str)) else bytes(out)
+        out = out if isinstance(out, (bytes, str)) else bytes(out)
+        if ext == "3mf":
+            out = _declare_3mf_unit(out.encode() if isinstance(out, str) else out, units)
+        return out
 
     return write
 
 
 #: The writer of each format, by file extension: ``(vertices, faces, name)`` to the
-#: file's bytes or text.
-WRITERS: dict[str, Callable[[np.ndarray, np.ndarray, str], bytes | str]] = {
+#: file's bytes or text (the 3MF writer also takes the unit written, to declare it).
+WRITERS: dict[str, Callable[..., bytes | str]] = {
     "stl": _stl,
     "obj": _obj,
     "tri": _tri,
@@ -96,7 +125,8 @@ def write_mesh(
         The file to write; its extension gives the format unless ``format`` does.
     format : str, optional
         ``stl`` (binary, float32), ``obj``, ``tri`` (Cart3D), or with the extra
-        ``hullslice[formats]`` ``ply``, ``off``, ``glb``, ``3mf``.
+        ``hullslice[formats]`` ``ply``, ``off``, ``glb`` (+Y up, as glTF is), ``3mf``
+        (declaring ``units``).
     name : str
         The mesh's name, in the file's header where the format has one.
     units : str
@@ -122,7 +152,8 @@ def write_mesh(
         )
     v = np.asarray(vertices, dtype=np.float64) / unit_scale(units)
     f = np.asarray(faces, dtype=np.int64)
-    data = WRITERS[ext](v, f, name)
+    key = str(units).strip().lower()
+    data = WRITERS[ext](v, f, name, key) if ext == "3mf" else WRITERS[ext](v, f, name)
     try:
         return write_atomic(path, data)
     except OSError as exc:

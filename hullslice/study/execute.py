@@ -193,13 +193,14 @@ def mesh_options(source: Study | Mapping[str, Any]) -> dict[str, Any]:
 def _info(study: Study) -> InfoResult:
     # the bodies are listed whatever is kept ("all" keeps all and lists them)
     hull = load(study, keep=study.keep or "all")
-    orient = orientation(hull, study.forward, study.up)
+    forward = hull.source["forward"]  # as read: given, or the file's declared axes
+    orient = orientation(hull, forward, hull.source["up"])
     if not orient.forward_is_longest:
         e = orient.mesh_extents
         warnings.warn(
             f"mesh {hull.name!r} is longest along its {orient.longest} axis "
-            f"({e[orient.longest]:.6g} m) but --forward is {study.forward} "
-            f"({e[study.forward.strip().lstrip('+-').lower()]:.6g} m): if the body's length "
+            f"({e[orient.longest]:.6g} m) but --forward is {forward} "
+            f"({e[forward.strip().lstrip('+-').lower()]:.6g} m): if the body's length "
             f"is along {orient.longest}, give --forward {orient.longest} (or "
             f"-{orient.longest})",
             OrientationWarning,

@@ -64,8 +64,9 @@ class Study:
         The hull mesh file (a format of :data:`hullslice.readers.SUPPORTED_FORMATS`).
     title : str, optional
         A name for the study, for reports.
-    units, forward, up : str
-        Length unit of the mesh file and its forward and up axes (``+x``, ``-y``, ...).
+    units, forward, up : str, optional
+        Length unit of the mesh file and its forward and up axes (``+x``, ``-y``, ...);
+        None: what the file declares, else ``m``, ``+x``, ``+z``.
     scale : float, optional
         Metres per unit of the file (not with ``length``).
     length : float, optional
@@ -136,9 +137,9 @@ class Study:
     command: str
     mesh: str
     title: str | None = None
-    units: str = "m"
-    forward: str = "+x"
-    up: str = "+z"
+    units: str | None = None
+    forward: str | None = None
+    up: str | None = None
     scale: float | None = None
     length: float | None = None
     repair: str | None = None
