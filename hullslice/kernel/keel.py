@@ -58,7 +58,7 @@ class KeelLine:
         """
         x = np.asarray(x, dtype=np.float64)
         z = np.interp(x, self.x, self.z)
-        return z, self._runs.slope(x, self.x)
+        return z, self._runs.slope(x)
 
     def curvature(self, x: np.ndarray) -> np.ndarray:
         """The keel line's ``d^2 Z_k / dX^2`` at relative stations ``x``, 1/m.
@@ -67,7 +67,7 @@ class KeelLine:
         between two facet middles, zero where the slope is held (beyond a run's first and
         last facet middles); a jump of slope onto a steep face is not curvature.
         """
-        return self._runs.curvature(np.asarray(x, dtype=np.float64), self.x)
+        return self._runs.curvature(np.asarray(x, dtype=np.float64))
 
     def mean_curvature(self, x: np.ndarray, dx: np.ndarray) -> np.ndarray:
         """The keel line's curvature averaged over slices of thickness ``dx`` centred on
@@ -85,7 +85,7 @@ class KeelLine:
         runs = self._runs
         if len(runs.mid) < 2:
             return np.zeros(x.shape)
-        ds = runs.change(x - dx / 2, x + dx / 2, self.x)
+        ds = runs.change(x - dx / 2, x + dx / 2)
         thin = dx <= 0.0
         if not thin.any():
             return ds / dx
@@ -144,25 +144,27 @@ class _Runs:
     than :data:`END_FACE_SLOPE` (an end face, a step's face), and gaps between parts (no
     finite slope). A slope blends between the facet middles of its own run only.
 
+    Kept as the slope with the jumps between runs taken out, ``C = s + offset``: ``C`` is
+    continuous and piecewise linear between the facet middles (constant from a run's last
+    middle to the next run's first), and ``offset`` is constant over a run.
+
     Attributes
     ----------
-    mid, slopes : (f,) float
-        Middles and slopes of the facets with a finite slope, in order.
-    lo, hi : (k - 1,) float
-        For each facet of the keel line, the first and last facet middle of its run (a gap's
-        facet: of the run before it, or after it at the start).
-    offset : (k - 1,) float
-        For each facet, the sum of the jumps of slope between the runs up to its own: the
-        slope plus it is continuous along the keel line.
+    mid, cont : (f,) float
+        Middles of the facets with a finite slope, in order, and ``C`` there.
+    starts : (r,) float
+        Where each run after the first starts (the first break point of its first facet; a
+        gap belongs to the run before it).
+    offsets : (r + 1,) float
+        ``offset`` over each run.
     steep : (k - 1,) bool
         The facets steeper than :data:`END_FACE_SLOPE`.
     """
 
     mid: np.ndarray
-    slopes: np.ndarray
-    lo: np.ndarray
-    hi: np.ndarray
-    offset: np.ndarray
+    cont: np.ndarray
+    starts: np.ndarray
+    offsets: np.ndarray
     steep: np.ndarray
 
     @classmethod
@@ -172,56 +174,46 @@ class _Runs:
             mid, slopes = 0.5 * (x[1:] + x[:-1]), np.diff(z) / np.diff(x)
         finite = np.isfinite(slopes)
         if not finite.any():  # no facet with a slope: held at zero
-            zero = np.zeros(max(n, 1))
-            flat = np.zeros(max(n, 1), dtype=bool)
-            return cls(mid[:1] if n else np.zeros(1), np.zeros(1), zero, zero, zero, flat)
-        kind = np.where(finite, (np.abs(slopes) > END_FACE_SLOPE).astype(np.int64), 2)
-        run = np.cumsum(np.concatenate([[True], kind[1:] != kind[:-1]])) - 1
-        # the finite facets' runs, and each facet's finite facet to take its run from (a
-        # gap's: the last finite facet before it, or the first after it)
+            none = np.empty(0)
+            return cls(mid[:1] if n else np.zeros(1), np.zeros(1), none, np.zeros(1),
+                       np.zeros(max(n, 1), dtype=bool))  # fmt: skip
+        steep = finite & (np.abs(slopes) > END_FACE_SLOPE)
         fin = np.flatnonzero(finite)
-        frun = run[fin]
-        before = np.searchsorted(fin, np.arange(n), side="right") - 1
-        ref = np.where(finite, np.arange(n), fin[np.maximum(before, 0)])
-        ref = np.where(before < 0, fin[0], ref)
-        pos = np.searchsorted(fin, ref)  # the reference facet's index among the finite ones
-        first = np.searchsorted(frun, frun, side="left")
-        last = np.searchsorted(frun, frun, side="right") - 1
         fmid, fslopes = mid[fin], slopes[fin]
-        # the jump of slope where a run starts, from the last slope of the run before
-        starts = np.flatnonzero(np.concatenate([[False], frun[1:] != frun[:-1]]))
-        jump = np.zeros(len(fin))
-        jump[starts] = fslopes[starts - 1] - fslopes[starts]
+        # a run starts at a finite facet whose steepness differs from the finite facet
+        # before it, or that follows a gap
+        new = np.concatenate([[False], (steep[fin][1:] != steep[fin][:-1]) | (np.diff(fin) > 1)])
+        jump = np.where(new, np.concatenate([[0.0], fslopes[:-1] - fslopes[1:]]), 0.0)
         offset = np.cumsum(jump)
-        return cls(fmid, fslopes, fmid[first[pos]], fmid[last[pos]], offset[pos], kind == 1)
+        # a run after a gap starts where the gap does (the gap is held at the slope before)
+        first = fin[new]
+        after_gap = np.diff(fin)[new[1:]] > 1
+        start_facet = np.where(after_gap, fin[np.flatnonzero(new[1:])] + 1, first)
+        starts = x[start_facet]
+        offsets = np.concatenate([[0.0], offset[new]])
+        return cls(fmid, fslopes + offset, starts, offsets, steep)
 
-    def _facet(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
-        """The facet of the keel line (break points ``xs``) holding each ``x``."""
-        return np.clip(np.searchsorted(xs, x, side="right") - 1, 0, len(self.lo) - 1)
+    def _offset(self, x: np.ndarray) -> np.ndarray | float:
+        if not len(self.starts):
+            return 0.0
+        return self.offsets[np.searchsorted(self.starts, x, side="right")]
 
-    def slope(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
-        """The continuous slope at ``x`` (the keel line's break points ``xs``)."""
-        i = self._facet(x, xs)
-        return np.interp(np.clip(x, self.lo[i], self.hi[i]), self.mid, self.slopes)
+    def slope(self, x: np.ndarray) -> np.ndarray:
+        """The continuous slope at ``x``."""
+        cont = np.interp(x, self.mid, self.cont)
+        return cont - self._offset(x) if len(self.starts) else cont
 
-    def change(self, a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    def change(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """The slope's change from ``a`` to ``b`` without the jumps between runs."""
-        ia, ib = self._facet(a, xs), self._facet(b, xs)
-        sa = np.interp(np.clip(a, self.lo[ia], self.hi[ia]), self.mid, self.slopes)
-        sb = np.interp(np.clip(b, self.lo[ib], self.hi[ib]), self.mid, self.slopes)
-        same = self.offset[ia] == self.offset[ib]
-        if same.all():
-            return sb - sa
-        return np.where(same, sb - sa, (sb + self.offset[ib]) - (sa + self.offset[ia]))
+        return np.interp(b, self.mid, self.cont) - np.interp(a, self.mid, self.cont)
 
-    def curvature(self, x: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    def curvature(self, x: np.ndarray) -> np.ndarray:
         """The slope's derivative at ``x`` within its run (zero where held)."""
         if len(self.mid) < 2:
             return np.zeros(x.shape)
-        i = self._facet(x, xs)
-        k = np.diff(self.slopes) / np.diff(self.mid)
+        k = np.diff(self.cont) / np.diff(self.mid)
         j = np.searchsorted(self.mid, x, side="right") - 1
-        inside = (x > self.lo[i]) & (x < self.hi[i]) & (j >= 0) & (j < len(k))
+        inside = (j >= 0) & (j < len(k))
         return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
 
 

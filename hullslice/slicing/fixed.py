@@ -211,23 +211,31 @@ def fixed_sections(
     neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
     source = np.where(~full & ~wet_mid[k], neighbour, k)
     fresh = ~full & ~wet_mid[source]
+    lift = np.zeros(len(x))
+    moved = np.flatnonzero(~full & ~fresh)
+    station = props["station"]
     # entries of the chosen sources, one slice after another (entries sorted by station)
-    first = np.searchsorted(props["station"], source, side="left")
-    count = np.searchsorted(props["station"], source, side="right") - first
+    first = np.searchsorted(station, source, side="left")
+    count = np.searchsorted(station, source, side="right") - first
+    if len(moved):  # a partial slice: its source wetted as deep as the slice's middle is,
+        # its entries appended to the window's
+        lift[moved] = keel[0][moved] - outline.zmin[source[moved] - c0]
+        more = [
+            _station_at(kept if cache else None, outline, int(source[i] - c0),
+                        float(level - lift[i]), tol, deadrise)
+            for i in moved
+        ]  # fmt: skip
+        sizes = [len(m["station"]) for m in more]
+        first[moved] = len(station) + np.cumsum([0, *sizes[:-1]])
+        count[moved] = sizes
+        props = {k: v if k == "area" else np.concatenate([v, *(m[k] for m in more)])
+                 for k, v in props.items()}  # fmt: skip
     take = prefix_index(first, count)
     slot = np.repeat(np.arange(len(source)), count)
     sel = {key: val[take] for key, val in props.items() if key != "area"}
     sel["station"] = slot
     sel["area"] = props["area"][source - w0]
     slice_polys = [polys[src - c0] for src in source]
-    lift = np.zeros(len(x))
-    moved = np.flatnonzero(~full & ~fresh)
-    if len(moved):  # a partial slice: its source wetted as deep as the slice's middle is
-        lift[moved] = keel[0][moved] - outline.zmin[source[moved] - c0]
-        sel = _with_moved(
-            kept if cache else None, outline, sel, moved=moved, source=source - c0,
-            levels=level - lift[moved], tol=tol, deadrise=deadrise,
-        )  # fmt: skip
     if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
         sel, slice_polys = _with_fresh(
             fr, sel, slice_polys, fresh=fresh, x=x, level=level, tol=tol, deadrise=deadrise
@@ -253,27 +261,6 @@ def outline_of(fr: Frame, rel: np.ndarray, tol: float) -> tuple[Outline, list[Po
     afresh."""
     polys = fr.cut(rel)
     return Outline.of(polys, tol, fr.origin, fr.scale), polys
-
-
-def _with_moved(
-    kept: FixedCut | None,
-    outline: Outline,
-    sel: dict[str, np.ndarray],
-    *,
-    moved: np.ndarray,
-    source: np.ndarray,
-    levels: np.ndarray,
-    tol: float,
-    deadrise: str,
-) -> dict[str, np.ndarray]:
-    """Replace the entries of the slices ``moved`` by their ``source`` stations' (indices
-    into ``outline``) with the water at ``levels`` (m, one per moved slice)."""
-    new = [
-        _station_at(kept, outline, int(source[i]), float(lv), tol, deadrise)
-        for i, lv in zip(moved, levels, strict=True)
-    ]
-    slot = np.concatenate([np.full(len(p["station"]), j) for j, p in enumerate(new)])
-    return _replace(sel, moved, {key: np.concatenate([p[key] for p in new]) for key in sel}, slot)
 
 
 def _station_at(
