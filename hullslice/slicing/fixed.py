@@ -160,11 +160,12 @@ def fixed_sections(
 
     Interior slices use their mid-station's section. A slice only partly wetted counts its
     wetted length and stands at that part's middle, where the keel line gives its
-    penetration; its section is that of its own mid-station (or, when that is dry, of its
-    wetted neighbour's) moved up or down to that penetration: the section's own contour,
+    penetration; its section is that of its own mid-station (or, past the body's end, of
+    its neighbour's) moved up or down to that penetration: the section's own contour,
     wetted as deep as the slice's middle is (a prismatic hull between neighbouring
-    stations). Its force then grows from zero as the water reaches it, and a round bottom
-    keeps its own shape.
+    stations), even where the station itself is still dry. Its force then grows from zero
+    as the water reaches it, with no jump as the water passes its mid-station, and a round
+    bottom keeps its own shape.
     """
     xa = float(fr.keel.x[0])
     d, mids = fr.fixed_stations(n)
@@ -206,11 +207,14 @@ def fixed_sections(
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
     keel = fr.keel.at(x)
-    # a partial slice whose own mid-station is dry takes its wetted neighbour's section
+    # a partial slice takes its own mid-station's section, moved down to its depth (it
+    # may be dry at this water), or its neighbour's where its own station has no section
+    # (past the body's end); with no wetted station near it (the first contact) it is cut
+    # where it is
     inward = np.where(k == k.min(), 1, -1)
     neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
-    source = np.where(~full & ~wet_mid[k], neighbour, k)
-    fresh = ~full & ~wet_mid[source]
+    source = np.where(~full & ~np.isfinite(outline.zmin[k - c0]), neighbour, k)
+    fresh = ~full & ~wet_mid[k] & ~wet_mid[neighbour]
     lift = np.zeros(len(x))
     moved = np.flatnonzero(~full & ~fresh)
     station = props["station"]
