@@ -25,6 +25,10 @@ __all__ = ["Richardson", "richardson"]
 
 #: Safety factor of the GCI for three or more solutions (Roache).
 SAFETY_FACTOR = 1.25
+#: An observed order below this is no convergence: the extrapolated limit would lie
+#: ``1 / (r^p - 1)`` times the last difference beyond the finest solution, 2.4 times at
+#: p = 0.5 and r = 2, 48 times at p = 0.03.
+MIN_ORDER = 0.5
 #: Differences between solutions up to this fraction of their size are rounding: a body
 #: the method computes exactly at any slice count (a prism of constant section) converged.
 ROUNDING = 1e-10
@@ -49,8 +53,9 @@ class Richardson:
     behaviour : str
         ``"monotonic"``, ``"oscillatory"`` (the differences change sign), ``"converged"``
         (the two finest solutions are equal to rounding, :data:`ROUNDING`) or
-        ``"divergent"`` (the differences do not shrink; ``extrapolated`` and ``order`` are
-        NaN and ``gci`` is infinite).
+        ``"divergent"`` (the differences do not shrink, or so slowly that the observed order
+        is below :data:`MIN_ORDER`; ``extrapolated`` is NaN, ``order`` NaN or the observed
+        one, and ``gci`` is infinite).
     """
 
     extrapolated: float
@@ -121,6 +126,8 @@ def richardson(counts: Sequence[int], values: Sequence[float]) -> Richardson:
             f"the observed order of convergence over {n1}, {n2}, {n3} slices does not settle "
             "(uneven refinement ratios): give slice counts in a constant ratio, e.g. 16, 32, 64"
         )
+    if p < MIN_ORDER:  # the differences barely shrink: no limit to extrapolate to
+        return Richardson(math.nan, p, math.inf, (n1, n2, n3), (f1, f2, f3), "divergent")
     rp = r21**p
     ext = (rp * f1 - f2) / (rp - 1.0)
     gci = SAFETY_FACTOR * abs((f1 - f2) / f1) / (rp - 1.0) if f1 != 0 else math.inf

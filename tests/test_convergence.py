@@ -48,6 +48,15 @@ def test_oscillatory_and_divergent_sequences_are_labelled():
     div = hs.richardson([16, 32, 64], [1.0, 1.1, 1.3])
     assert div.behaviour == "divergent"
     assert math.isnan(div.extrapolated) and math.isinf(div.gci)
+    # differences shrinking by 2 % per doubling (observed order 0.03): the limit would be
+    # 48 times the last difference away, a number with no meaning
+    slow = hs.richardson([16, 32, 64], [1.0 + 1.02**2 * 0.1, 1.0 + 1.02 * 0.1, 1.0 + 0.1])
+    assert slow.behaviour == "divergent" and math.isnan(slow.extrapolated)
+    assert slow.order == pytest.approx(math.log2(1.02), rel=1e-6) and math.isinf(slow.gci)
+    # an order of 0.5 or more is extrapolated
+    low = hs.richardson([16, 32, 64], [1.0 + 4**0.6 * 0.1, 1.0 + 2**0.6 * 0.1, 1.0 + 0.1])
+    assert low.behaviour == "monotonic" and low.order == pytest.approx(0.6, rel=1e-9)
+    assert low.extrapolated == pytest.approx(1.0, rel=1e-9)
 
 
 def test_too_few_or_repeated_counts():
