@@ -101,3 +101,55 @@ def test_the_slope_does_not_blend_across_a_step_and_its_jump_is_not_curvature():
     bend = KeelLine(np.array([0.0, 1.0, 2.0]), np.array([0.0, 0.1, 0.3]))
     assert bend.at(np.array([1.0]))[1][0] == pytest.approx(0.15, rel=1e-12)
     assert bend.mean_curvature(np.array([1.0]), np.array([1.0]))[0] == pytest.approx(0.1, rel=1e-12)
+
+
+def spindle(offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
+    """A 1 m body of revolution (radius 0.1 m, round ends) lying on z = 0, from x = offset."""
+    x = np.linspace(0.0, 1.0, 41)
+    r = np.maximum(0.1 * np.sqrt(np.clip(1.0 - ((x - 0.5) / 0.5) ** 2, 0.0, None)), 1e-3)
+    t = np.linspace(0.0, 2.0 * np.pi, 48, endpoint=False) - np.pi / 2
+    sec = np.stack([np.cos(t)[None] * r[:, None], 0.1 + np.sin(t)[None] * r[:, None]], axis=2)
+    v, f = shapes.prism_from_sections(x, sec)
+    return v + np.array([offset, 0.0, 0.0]), f
+
+
+@pytest.mark.parametrize("slicing", ["wetted", "fixed"])
+def test_two_bodies_one_behind_the_other_carry_twice_ones_force(slicing):
+    # level, the stations in the 0.3 m gap between them have no section: dry entries with
+    # their keel put at the water (an infinite keel height gave NaN forces, marked valid).
+    # Each body then meets the water as it would alone: twice one body's force
+    (v1, f1), (v2, f2) = spindle(), spindle(1.3)
+    pair = hs.Hull.from_arrays(np.vstack([v1, v2]), np.vstack([f1, f2 + len(v1)]))
+    one = hs.Hull.from_arrays(v1, f1)
+    pose, motion = hs.Pose(draft=0.03), hs.Motion(-3.0)
+    for solver in ("wagner", "zarnick"):
+        r = hs.compute_force(pair, pose, motion, slices=256, solver=solver, slicing=slicing,
+                             acceleration=0.0)  # fmt: skip
+        alone = hs.compute_force(one, pose, motion, slices=256, solver=solver, slicing=slicing,
+                                 acceleration=0.0)  # fmt: skip
+        assert np.isfinite(r.total) and np.isfinite(r.moment)
+        # the gap takes some of the wetted slicing's slices: 256 over 2.3 m, not 1 m
+        assert r.total == pytest.approx(2.0 * alone.total, rel=0.015)
+
+
+def test_a_keel_steeper_than_45_degrees_is_flagged():
+    # a V bottom whose last panel rises 0.14 m to the bow at 60 deg, met at 10 m/s: the
+    # sections there are pressed down at 10 m/s times the slope, beyond a slender body;
+    # computed, flagged, so the validity rule sees them
+    def vsec(keel: float) -> np.ndarray:
+        chine = keel + 0.25 * math.tan(math.radians(20.0))
+        return np.array([[-0.25, 0.4], [-0.25, chine], [0.0, keel], [0.25, chine], [0.25, 0.4]])
+
+    rise = 0.14 / math.tan(math.radians(60.0))
+    x = np.array([0.0, 0.5, 1.0, 2.0 - rise, 2.0])
+    hull = hs.Hull.from_arrays(
+        *shapes.prism_from_sections(x, np.stack([vsec(k) for k in (0, 0, 0, 0, 0.14)]))
+    )
+    pose, motion = hs.Pose(draft=0.03), hs.Motion(-1.0, 10.0)
+    r = hs.compute_force(hull, pose, motion, slices=64, solver="zarnick", acceleration=0.0)
+    steep = r.sections.wetted & (np.abs(r.sections.keel_slope) > 1.0)
+    assert steep.any()
+    assert not r.valid[steep].any() and all(
+        "steeper than 45 deg" in s for s in r.loads.reason[steep]
+    )
+    assert r.valid[r.sections.wetted & ~steep].all()

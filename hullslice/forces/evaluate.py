@@ -29,6 +29,8 @@ __all__ = [
     "FLAT_REASON",
     "MASSLESS_REASON",
     "MIN_DEADRISE",
+    "STEEP_REASON",
+    "STEEP_SLOPE",
     "evaluate",
     "evaluate_added_mass",
 ]
@@ -38,6 +40,12 @@ MASSLESS_REASON = "no mass per metre at this station (the mass distribution puts
 #: Smallest deadrise a solver is given, rad: a flat bottom is computed as this, flagged.
 MIN_DEADRISE = float(np.radians(1.0))
 FLAT_REASON = "deadrise below 1 deg (a flat bottom): computed at 1 deg, outside the wedge theory"
+#: A keel line steeper than this (tan 45 deg) is no slender body's bottom.
+STEEP_SLOPE = 1.0
+STEEP_REASON = (
+    "keel steeper than 45 deg (a blunt bow or tail): outside the slender-body theory, "
+    "computed and flagged"
+)
 FACE_REASON = (
     "keel on an end face or a step's face (steeper than 75 deg): not a section of the "
     "bottom, no force"
@@ -51,6 +59,13 @@ def _on_faces(sections: Sections, wet: np.ndarray) -> np.ndarray:
     through it cut flat-bottomed sections that are no slender body's: the 2D theory does
     not describe them, and they get no force."""
     return wet & (np.abs(sections.keel_slope) > END_FACE_SLOPE)
+
+
+def _steep(sections: Sections, wet: np.ndarray) -> np.ndarray:
+    """Wetted entries whose keel is steeper than 45 deg but not yet a face: a blunt bow or
+    tail met at speed presses its sections down at the forward speed times that slope,
+    which the 2D theory of a slender body does not describe. Computed, flagged."""
+    return wet & (np.abs(sections.keel_slope) > STEEP_SLOPE)
 
 
 def _readonly_velocity(velocity, n: int) -> np.ndarray:
@@ -167,7 +182,11 @@ def evaluate(
         valid[faces] = False
         reason[faces] = FACE_REASON
     chine = sections.chine_wetted & ~faces
-    _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
+    _flag(
+        valid,
+        reason,
+        ((flat, FLAT_REASON), (chine, CHINE_REASON), (_steep(sections, wet), STEEP_REASON)),
+    )
     return SectionLoads(force, valid, reason, diagnostics)
 
 
@@ -211,7 +230,11 @@ def evaluate_added_mass(
     if faces.any():
         valid[faces] = False
         reason[faces] = FACE_REASON
-    _flag(valid, reason, ((flat, FLAT_REASON), (chine, CHINE_REASON)))
+    _flag(
+        valid,
+        reason,
+        ((flat, FLAT_REASON), (chine, CHINE_REASON), (_steep(sections, wet), STEEP_REASON)),
+    )
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"])
 
 

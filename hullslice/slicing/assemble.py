@@ -80,6 +80,9 @@ def assemble(
     """
     st = props["station"]
     keel_z, slope = fr.keel.at(rel) if keel is None else keel
+    # a station in a gap between parts one behind the other has no section: its (dry)
+    # entry's keel is put at the water, not infinitely high (no NaN in its kinematics)
+    keel_z = np.where(np.isfinite(keel_z), keel_z, level)
     z_cg = -level
     shift = (fr.origin[0], fr.origin[1] + z_cg)
     m_station = station_mass(hull, fr, props["area"], rel, dx)

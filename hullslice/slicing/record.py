@@ -91,7 +91,8 @@ class Sections:
     keel_slope : (n,) float
         Slope ``dZ/dX`` of the body's keel line at the station (earth frame).
     keel_z : (n,) float
-        Earth height of the station's lowest point, m.
+        Earth height of the station's lowest point, m (at the water where the station has
+        no section: a gap between parts one behind the other).
     y_keel : (n,) float
         Lateral position ``y`` of the piece's keel, m.
     part_half_beam : (n,) float
