@@ -72,7 +72,12 @@ def _named(exc: OSError, path: str | os.PathLike) -> OSError:
 def _target(path: str | os.PathLike) -> Path:
     """The file a write to ``path`` replaces: a symbolic link is written through."""
     target = Path(path)
-    return Path(os.path.realpath(target)) if target.is_symlink() else target
+    if not target.is_symlink():
+        return target
+    real = Path(os.path.realpath(target))
+    # a link the system resolves itself (/dev/stdout to a pipe: /proc/PID/fd/1 names no
+    # file) is written through as it is
+    return real if real.exists() or not target.exists() else target
 
 
 def _device(target: Path) -> bool:

@@ -485,3 +485,19 @@ def test_a_sweep_refuses_a_case_beyond_the_pitch_limit_before_it_runs(capsys, tm
     assert code == 3 and out == "" and err.count("\n") == 1
     assert "[sweep] case pitch=85: pitch 85 deg is too steep for a 2D+t model" in err
     assert sorted(p.name for p in tmp_path.iterdir()) == ["case.toml"]
+
+
+def test_output_to_dev_stdout_through_a_pipe_is_written(tmp_path):
+    # /dev/stdout links to /proc/self/fd/1, which names no file when the output is a pipe:
+    # the link is written through as a device, not refused as a folder taking no files
+    import subprocess
+
+    mesh = str(MESHES / "paper_prism.stl")
+    run = subprocess.run(
+        [sys.executable, "-m", "hullslice", "force", mesh, "--mass", "1", "--draft", "0.03",
+         "--velocity=-3", "--slices", "8", "-o", "/dev/stdout"],
+        capture_output=True, text=True, cwd=tmp_path, check=False,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr
+    assert "force" in run.stdout and "N at 8 slices" in run.stdout
+    assert list(tmp_path.iterdir()) == []
