@@ -13,7 +13,14 @@ from contextlib import contextmanager
 from dataclasses import dataclass
 from pathlib import Path
 
-__all__ = ["check_writable", "remove_stale", "temp_prefix", "together", "write_atomic"]
+__all__ = [
+    "check_writable",
+    "is_device",
+    "remove_stale",
+    "temp_prefix",
+    "together",
+    "write_atomic",
+]
 
 
 def _umask() -> int:
@@ -83,6 +90,12 @@ def _target(path: str | os.PathLike) -> Path:
 def _device(target: Path) -> bool:
     """Whether ``target`` is a device or a pipe (written to directly, not replaced)."""
     return target.exists() and not target.is_file() and not target.is_dir()
+
+
+def is_device(path: str | os.PathLike) -> bool:
+    """Whether a write to ``path`` goes to a device or a pipe (``/dev/null``, ``/dev/stdout``)
+    directly, not through a temporary file."""
+    return _device(_target(path))
 
 
 def _folder(target: Path) -> Path:

@@ -74,7 +74,7 @@ class MassDistribution:
         section an infinite mass per metre). Without a length (three columns, or NaN) the
         mass follows the body: it is spread over :data:`POINT_SPREAD` of the body's length
         centred on ``x``, narrowed where ``x`` is nearer an end of the body than half of
-        that (at least 1/2000 of the body's length on each side, cut at the body's end).
+        that (at least 1/4000 of the body's length on each side, cut at the body's end).
     body : (float, float), optional
         The body's range of ``x``, m, set by :meth:`on_body` when a hull takes the
         distribution; needed by point masses without a length.

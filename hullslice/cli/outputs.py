@@ -20,7 +20,7 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
-from ..atomic import check_writable, together, write_atomic
+from ..atomic import check_writable, is_device, together, write_atomic
 from ..errors import InputError
 from ..paths import check_not_an_input, printable, run_inputs
 from ..study import Study, StudyResult, execute
@@ -205,16 +205,12 @@ def check_distinct(outputs: Sequence[tuple[str, str]]) -> None:
             same = real == other_real
             if not same and os.path.exists(real) and os.path.exists(other_real):
                 same = os.path.samefile(real, other_real)
-            if same and not _is_device(real):
+            if same and not is_device(path):
                 raise InputError(
                     f"cannot write {printable(path)!r} ({option}): {other_option} writes the "
                     f"same file ({printable(other)!r}); give each output its own file"
                 )
         seen.append((option, path, real))
-
-
-def _is_device(path: str) -> bool:
-    return os.path.exists(path) and not os.path.isfile(path) and not os.path.isdir(path)
 
 
 def _inputs(source: Any) -> list[tuple[str, Path]]:

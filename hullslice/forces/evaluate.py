@@ -178,15 +178,10 @@ def evaluate(
     if massless.any():
         valid[massless] = False
         reason[massless] = MASSLESS_REASON
-    if faces.any():
-        valid[faces] = False
-        reason[faces] = FACE_REASON
     chine = sections.chine_wetted & ~faces
-    _flag(
-        valid,
-        reason,
-        ((flat, FLAT_REASON), (chine, CHINE_REASON), (_steep(sections, wet), STEEP_REASON)),
-    )
+    checks = ((faces, FACE_REASON), (flat, FLAT_REASON), (chine, CHINE_REASON),
+              (_steep(sections, wet), STEEP_REASON))  # fmt: skip
+    _flag(valid, reason, checks)
     return SectionLoads(force, valid, reason, diagnostics)
 
 
@@ -227,14 +222,9 @@ def evaluate_added_mass(
     contour = diagnostics.get("contour")
     if contour is not None:  # read from its own contour: not limited by a wedge's deadrise
         flat = flat & ~(contour > 0)
-    if faces.any():
-        valid[faces] = False
-        reason[faces] = FACE_REASON
-    _flag(
-        valid,
-        reason,
-        ((flat, FLAT_REASON), (chine, CHINE_REASON), (_steep(sections, wet), STEEP_REASON)),
-    )
+    checks = ((faces, FACE_REASON), (flat, FLAT_REASON), (chine, CHINE_REASON),
+              (_steep(sections, wet), STEEP_REASON))  # fmt: skip
+    _flag(valid, reason, checks)
     return AddedMass(m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"])
 
 

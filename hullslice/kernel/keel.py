@@ -200,8 +200,7 @@ class _Runs:
 
     def slope(self, x: np.ndarray) -> np.ndarray:
         """The continuous slope at ``x``."""
-        cont = np.interp(x, self.mid, self.cont)
-        return cont - self._offset(x) if len(self.starts) else cont
+        return np.interp(x, self.mid, self.cont) - self._offset(x)
 
     def change(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """The slope's change from ``a`` to ``b`` without the jumps between runs."""

@@ -23,7 +23,7 @@ from ..atomic import write_atomic
 from ..axes import axis_matrix, unit_scale
 from ..errors import InputError
 from ..paths import printable
-from .extra import to_trimesh
+from .extra import _3MF_UNITS, to_trimesh
 from .stl import _STL_RECORD
 
 __all__ = ["WRITERS", "write_mesh"]
@@ -57,8 +57,7 @@ def _tri(v: np.ndarray, f: np.ndarray, name: str) -> str:
 
 
 #: hullslice's length units by their 3MF names (the ``unit`` a written 3MF declares).
-_3MF_UNIT_NAMES = {"m": "meter", "cm": "centimeter", "mm": "millimeter", "in": "inch",
-                   "ft": "foot"}  # fmt: skip
+_3MF_UNIT_NAMES = {unit: name for name, (unit, factor) in _3MF_UNITS.items() if factor == 1.0}
 
 
 def _declare_3mf_unit(data: bytes, units: str) -> bytes:

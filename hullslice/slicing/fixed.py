@@ -16,6 +16,7 @@ import numpy as np
 
 from ..caching import Entry
 from ..geometry import Frame
+from ..kernel.keel import END_FACE_SLOPE
 from ..kernel.outline import Outline, Polygons, prefix_index
 from ..kernel.waterline_table import TABULATED, WaterlineTable
 from ..kernel.wetted import wetted_properties
@@ -160,8 +161,9 @@ def fixed_sections(
 
     Interior slices use their mid-station's section. A slice only partly wetted counts its
     wetted length and stands at that part's middle, where the keel line gives its
-    penetration; its section is that of its own mid-station (or, past the body's end, of
-    its neighbour's) moved up or down to that penetration: the section's own contour,
+    penetration; its section is that of its own mid-station (or, past the body's end or
+    through a pitched transom's face, of its neighbour's) moved up or down to that
+    penetration: the section's own contour,
     wetted as deep as the slice's middle is (a prismatic hull between neighbouring
     stations), even where the station itself is still dry. Its force then grows from zero
     as the water reaches it, with no jump as the water passes its mid-station, and a round
@@ -208,12 +210,15 @@ def fixed_sections(
     x = np.where(full, mids[k], 0.5 * (lo + hi))
     keel = fr.keel.at(x)
     # a partial slice takes its own mid-station's section, moved down to its depth (it
-    # may be dry at this water), or its neighbour's where its own station has no section
-    # (past the body's end); with no wetted station near it (the first contact) it is cut
-    # where it is
+    # may be dry at this water), or its neighbour's where its own station has no bottom's
+    # section (past the body's end, or through a pitched transom's face); with no wetted
+    # station near it (the first contact) it is cut where it is
     inward = np.where(k == k.min(), 1, -1)
     neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
-    source = np.where(~full & ~np.isfinite(outline.zmin[k - c0]), neighbour, k)
+    own = full | np.isfinite(outline.zmin[k - c0])
+    if not full.all():
+        own[~full] &= np.abs(fr.keel.at(mids[k[~full]])[1]) <= END_FACE_SLOPE
+    source = np.where(own, k, neighbour)
     fresh = ~full & ~wet_mid[k] & ~wet_mid[neighbour]
     lift = np.zeros(len(x))
     moved = np.flatnonzero(~full & ~fresh)
@@ -232,8 +237,8 @@ def fixed_sections(
         sizes = [len(m["station"]) for m in more]
         first[moved] = len(station) + np.cumsum([0, *sizes[:-1]])
         count[moved] = sizes
-        props = {k: v if k == "area" else np.concatenate([v, *(m[k] for m in more)])
-                 for k, v in props.items()}  # fmt: skip
+        props = {key: val if key == "area" else np.concatenate([val, *(m[key] for m in more)])
+                 for key, val in props.items()}  # fmt: skip
     take = prefix_index(first, count)
     slot = np.repeat(np.arange(len(source)), count)
     sel = {key: val[take] for key, val in props.items() if key != "area"}
@@ -281,24 +286,6 @@ def _station_at(
     return props
 
 
-def _replace(
-    sel: dict[str, np.ndarray], idx: np.ndarray, new: dict[str, np.ndarray], slot: np.ndarray
-) -> dict[str, np.ndarray]:
-    """``sel`` with the entries of slices ``idx`` replaced by ``new`` (whose entries belong
-    to ``idx[slot]``), sorted by slice; the slices' areas are kept."""
-    keep = ~np.isin(sel["station"], idx)
-    out = {}
-    for key in sel:
-        if key == "area":
-            out["area"] = sel["area"]
-        elif key == "station":
-            out["station"] = np.concatenate([sel["station"][keep], idx[slot]])
-        else:
-            out[key] = np.concatenate([sel[key][keep], new[key]])
-    order = np.argsort(out["station"], kind="stable")
-    return {key: (val if key == "area" else val[order]) for key, val in out.items()}
-
-
 def _with_fresh(
     fr: Frame,
     sel: dict[str, np.ndarray],
@@ -315,11 +302,19 @@ def _with_fresh(
     idx = np.flatnonzero(fresh)
     outline, polys = outline_of(fr, x[idx], tol)
     new = wetted_properties(outline, level, tol, deadrise)
-    out = _replace(sel, idx, {k: v for k, v in new.items() if k not in ("area", "station")},
-                   new["station"])  # fmt: skip
-    area = out["area"].copy()
-    area[idx] = new["area"]
-    out["area"] = area
+    keep = ~np.isin(sel["station"], idx)
+    out = {}
+    for key in sel:
+        if key == "area":
+            area = sel["area"].copy()
+            area[idx] = new["area"]
+            out["area"] = area
+        elif key == "station":
+            out["station"] = np.concatenate([sel["station"][keep], idx[new["station"]]])
+        else:
+            out[key] = np.concatenate([sel[key][keep], new[key]])
+    order = np.argsort(out["station"], kind="stable")
+    out = {key: (val if key == "area" else val[order]) for key, val in out.items()}
     for j, i in enumerate(idx):
         slice_polys[i] = polys[j]
     return out, slice_polys
