@@ -12,6 +12,8 @@ __all__ = [
     "LENGTH_UNITS",
     "MAX_SLICES",
     "MAX_STEPS",
+    "P_ATM",
+    "P_VAPOUR",
     "RHO_WATER",
     "TOL",
     "G",
@@ -23,6 +25,10 @@ G = 9.81
 
 #: Fresh-water density in kg/m^3 (the paper's characteristic curves were made with it).
 RHO_WATER = 1000.0
+#: Atmospheric pressure at sea level, Pa (ISO 2533 standard atmosphere).
+P_ATM = 101325.0
+#: Vapour pressure of water at 20 deg C, Pa (about 2.34 kPa; the IAPWS formulation).
+P_VAPOUR = 2339.0
 
 #: Length units a mesh may be given in, as metres per unit.
 LENGTH_UNITS: dict[str, float] = {

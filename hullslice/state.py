@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .constants import RHO_WATER, G
+from .constants import P_ATM, P_VAPOUR, RHO_WATER, G
 from .errors import InputError
 from .limits import check_pitch
 
@@ -122,10 +122,24 @@ class Fluid:
         Water density in kg/m^3 (default 1000.0, fresh water as in the paper).
     g : float
         Gravitational acceleration in m/s^2 (default 9.81, the paper's value).
+    p_atm : float
+        Atmospheric pressure on the free surface in Pa (default 101325, sea level).
+    p_vapour : float
+        The water's vapour pressure in Pa (default 2339, at 20 deg C). No gauge pressure
+        on the body falls below ``p_vapour - p_atm`` (:attr:`suction_limit`): the water
+        cavitates first.
     """
 
     rho: float = RHO_WATER
     g: float = G
+    p_atm: float = P_ATM
+    p_vapour: float = P_VAPOUR
+
+    @property
+    def suction_limit(self) -> float:
+        """The largest suction (gauge pressure below zero) the water sustains, Pa:
+        ``p_atm - p_vapour``."""
+        return self.p_atm - self.p_vapour
 
     def __post_init__(self) -> None:
         rho = _finite(self.rho, "water density", "kg/m^3")
@@ -134,5 +148,16 @@ class Fluid:
             raise InputError(f"water density {self.rho!r} kg/m^3 is not positive (try 1000)")
         if g < 0.0:
             raise InputError(f"gravity {self.g!r} m/s^2 is negative (try 9.81)")
+        p_atm = _finite(self.p_atm, "atmospheric pressure", "Pa")
+        p_vap = _finite(self.p_vapour, "vapour pressure", "Pa")
+        if p_atm <= 0.0:
+            raise InputError(f"atmospheric pressure {self.p_atm!r} Pa is not positive (try 101325)")
+        if not 0.0 <= p_vap < p_atm:
+            raise InputError(
+                f"vapour pressure {self.p_vapour!r} Pa is not in [0, the atmospheric pressure "
+                f"{p_atm:g} Pa) (try 2339, water at 20 deg C)"
+            )
         object.__setattr__(self, "rho", rho)
         object.__setattr__(self, "g", g)
+        object.__setattr__(self, "p_atm", p_atm)
+        object.__setattr__(self, "p_vapour", p_vap)

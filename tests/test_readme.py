@@ -11,7 +11,7 @@ from .conftest import ROOT
 
 TEST_COMMAND = (
     'pip install -e ".[test]" -e plugins/von-karman -e plugins/wagner -e plugins/curves '
-    "-e plugins/zarnick && python -m pytest"
+    "-e plugins/zarnick -e plugins/mlm && python -m pytest"
 )
 
 

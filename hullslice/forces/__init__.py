@@ -75,7 +75,7 @@ from .evaluate import (
     evaluate_added_mass,
 )
 from .kinematics import section_kinematics, section_velocity
-from .momentum import MomentumTerms, momentum_terms, solve_accelerations
+from .momentum import MomentumTerms, momentum_terms, solve_accelerations, solve_bounded
 from .result import MIN_SLENDERNESS, ForceResult
 
 __all__ = [
@@ -96,4 +96,5 @@ __all__ = [
     "section_kinematics",
     "section_velocity",
     "solve_accelerations",
+    "solve_bounded",
 ]

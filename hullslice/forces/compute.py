@@ -16,7 +16,7 @@ from ..solvers.registry import get_solver
 from ..state import Acceleration, Fluid, Motion, Pose
 from .evaluate import evaluate
 from .kinematics import section_velocity
-from .momentum import momentum_terms, solve_accelerations
+from .momentum import held_bounded, momentum_terms, solve_bounded
 from .result import ForceResult
 
 __all__ = ["ConvergenceStudy", "compute_force", "convergence", "force_on"]
@@ -109,7 +109,9 @@ def force_on(
                 raise InputError(
                     "a momentum-form solver needs the body's acceleration or its mass (kg)"
                 )
-            acceleration = solve_accelerations(terms, mass, None, fluid.g, (True, False, False))
+            terms, acceleration = solve_bounded(terms, mass, None, fluid.g, (True, False, False))
+        else:
+            terms = held_bounded(terms, acceleration)
         return terms.result(acceleration, solver, fluid, motion, x_cg)
     velocity = section_velocity(sections, motion, x_cg)
     loads = evaluate(solver, sections, velocity, fluid)

@@ -225,7 +225,16 @@ def evaluate_added_mass(
     checks = ((faces, FACE_REASON), (flat, FLAT_REASON), (chine, CHINE_REASON),
               (_steep(sections, wet), STEEP_REASON))  # fmt: skip
     _flag(valid, reason, checks)
-    return AddedMass(m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"])
+    girth = pressure = None
+    if out is not None and out.girth is not None:
+        girth = np.array(out.girth) if every else np.zeros(n)
+        if not every:
+            girth[wet] = out.girth
+    if out is not None and out.pressure is not None:
+        pressure = out.pressure if every else out.pressure.spread(wet)
+    return AddedMass(
+        m_a, rate, valid, reason, extra, diagnostics, arrays["vertical"], girth, pressure
+    )
 
 
 def _check_loads(solver: SolverBase, loads: object, sections: Sections, velocity) -> None:
@@ -251,12 +260,14 @@ def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> No
     if not isinstance(out, AddedMass):
         problem = f"{type(out).__name__}, not hullslice.AddedMass"
     else:
-        for name in ("added_mass", "rate", "extra", "vertical", "valid", "reason"):
-            shape = getattr(out, name).shape
-            if shape != (n,):
-                problem = f"{name} of shape {shape} for {n} sections"
+        for name in ("added_mass", "rate", "extra", "vertical", "valid", "reason", "girth"):
+            arr = getattr(out, name)
+            if arr is not None and arr.shape != (n,):
+                problem = f"{name} of shape {arr.shape} for {n} sections"
                 break
         else:
+            if out.pressure is not None and len(out.pressure) != n:
+                problem = f"pressures for {len(out.pressure)} of {n} sections"
             for k, arr in out.diagnostics.items():
                 if arr.shape != (n,):
                     problem = f"diagnostic {k!r} of shape {arr.shape} for {n} sections"

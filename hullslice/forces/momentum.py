@@ -19,9 +19,16 @@ from ..solvers.base import MOMENTUM, AddedMass, MomentumFormSolver, SectionLoads
 from ..state import Acceleration, Fluid, Motion, Pose
 from .evaluate import evaluate_added_mass
 from .kinematics import section_kinematics, section_velocity
-from .result import ForceResult
+from .result import ForceResult, SectionPressureResult
 
-__all__ = ["MomentumTerms", "momentum_terms", "solve_accelerations"]
+__all__ = [
+    "MomentumTerms",
+    "calm_girth",
+    "held_bounded",
+    "momentum_terms",
+    "solve_accelerations",
+    "solve_bounded",
+]
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,7 +48,13 @@ class MomentumTerms:
         The section acceleration is ``jac @ (dw/dt, dq/dt, du/dt) + bias`` (m/s^2).
     f0 : (n,) float
         Force per metre with the body at rest in acceleration, N/m:
-        ``m_a' v^2 [v < 0] - m_a bias + extra``.
+        ``m_a' v^2 [v < 0] - m_a bias + extra``; on a limited section, the bound.
+    lower : (n,) float
+        The least force per metre the water can give each section, N/m: the suction
+        limit of the fluid (``p_atm - p_vapour``) over the section's wetted girth, negated.
+    limited : (n,) bool
+        Sections whose force is held at ``lower``: the water cannot follow them (it
+        cavitates), so their added mass leaves the equations of motion.
     """
 
     sections: Sections
@@ -50,13 +63,34 @@ class MomentumTerms:
     jac: np.ndarray
     bias: np.ndarray
     f0: np.ndarray
+    lower: np.ndarray
+    limited: np.ndarray
+
+    @property
+    def inertia(self) -> np.ndarray:
+        """(n,) added mass per metre that follows the body's acceleration, kg/m (zero on
+        limited sections)."""
+        return np.where(self.limited, 0.0, self.added.added_mass)
 
     @property
     def matrix(self) -> np.ndarray:
         """(3, 3) added-mass matrix ``sum m_a J J^T dx`` in the order (heave, pitch,
         surge): kg, kg m, kg m^2."""
-        w = self.added.added_mass * self.sections.dx
+        w = self.inertia * self.sections.dx
         return (self.jac * w[:, None]).T @ self.jac
+
+    def force(self, acceleration: Acceleration) -> np.ndarray:
+        """(n,) force per metre normal to the keel line at the body's acceleration, N/m."""
+        return self.f0 - self.inertia * (self.jac @ np.asarray(acceleration.as_array()))
+
+    def with_limited(self, limited: np.ndarray) -> MomentumTerms:
+        """The same terms with the force of the sections ``limited`` held at the bound."""
+        limited = np.asarray(limited, dtype=bool)
+        f0 = np.where(limited, self.lower, self.f0)
+        return MomentumTerms(
+            self.sections, self.velocity, self.added, self.jac, self.bias, f0, self.lower,
+            limited,
+        )  # fmt: skip
 
     @property
     def generalized(self) -> np.ndarray:
@@ -82,20 +116,28 @@ class MomentumTerms:
         acc = np.asarray(acceleration.as_array())
         a_n = self.jac @ acc + self.bias
         m_a = self.added.added_mass
-        force = self.f0 - m_a * (self.jac @ acc)
+        force = self.force(acceleration)
         diagnostics = {
             **self.added.diagnostics,
             "added_mass": m_a,
             "added_mass_rate": self.added.rate,
             "extra_force": cast(np.ndarray, self.added.extra),
             "vertical_force": cast(np.ndarray, self.added.vertical),
+            "suction_bound": self.lower,
+            "suction_limited": self.limited.astype(np.float64),
         }
         loads = SectionLoads(force, self.added.valid, self.added.reason, diagnostics)
         s = self.sections
         pose = Pose(s.draft, s.pitch)
+        pressures = None
+        if self.added.pressure is not None:
+            p = self.added.pressure.pressure(self.velocity, a_n)
+            p = np.maximum(p, -fluid.suction_limit)  # the water cavitates first
+            p = np.where(self.limited[:, None, None], -fluid.suction_limit, p)
+            pressures = SectionPressureResult(self.added.pressure, p)
         return ForceResult(
             s, self.velocity, loads, solver.name, fluid, pose, motion, x_cg, MOMENTUM,
-            acceleration, a_n,
+            acceleration, a_n, pressures,
         )  # fmt: skip
 
 
@@ -108,7 +150,57 @@ def momentum_terms(
     jac, bias = section_kinematics(sections, motion, x_cg, velocity)
     flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
     f0 = flux - added.added_mass * bias + added.extra + added.vertical
-    return MomentumTerms(sections, velocity, added, jac, bias, f0)
+    girth = added.girth if added.girth is not None else calm_girth(sections)
+    lower = -fluid.suction_limit * np.where(sections.wetted, girth, 0.0)
+    terms = MomentumTerms(sections, velocity, added, jac, bias, f0, lower, f0 < lower)
+    return terms.with_limited(terms.limited)
+
+
+def calm_girth(sections: Sections) -> np.ndarray:
+    """(n,) each section's wetted girth as the chords from its keel to the calm water on
+    both sides, m (a wedge's girth exactly; a round section's a little short of it)."""
+    p = np.asarray(sections.penetration, dtype=np.float64)
+    port = np.maximum(np.asarray(sections.half_beam_port, dtype=np.float64), 0.0)
+    stbd = np.maximum(np.asarray(sections.half_beam_stbd, dtype=np.float64), 0.0)
+    return np.hypot(port, p) + np.hypot(stbd, p)
+
+
+#: Most rounds of the suction bound's active set in :func:`solve_bounded`.
+MAX_BOUND_ROUNDS = 20
+
+
+def solve_bounded(
+    terms: MomentumTerms,
+    mass: float,
+    inertia: float | None,
+    gravity: float,
+    free: tuple[bool, bool, bool],
+    fixed: Acceleration | None = None,
+    when: str = "",
+) -> tuple[MomentumTerms, Acceleration]:
+    """The body's accelerations with every section's force at or above its suction bound.
+
+    Sections whose force would fall below the bound (``terms.lower``) at the solved
+    accelerations are held at it and their added mass leaves the equations, and the
+    accelerations are solved again, until no more sections fall below (an active set that
+    only grows, so it ends). Returns the terms with their limited sections and the
+    accelerations; the arguments are those of :func:`solve_accelerations`.
+    """
+    acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when)
+    for _ in range(MAX_BOUND_ROUNDS):
+        below = ~terms.limited & (terms.force(acc) < terms.lower)
+        if not below.any():
+            break
+        terms = terms.with_limited(terms.limited | below)
+        acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when)
+    return terms, acc
+
+
+def held_bounded(terms: MomentumTerms, acceleration: Acceleration) -> MomentumTerms:
+    """The terms at a body acceleration that is given (not solved): the sections whose
+    force falls below its bound there are held at it."""
+    below = ~terms.limited & (terms.force(acceleration) < terms.lower)
+    return terms.with_limited(terms.limited | below) if below.any() else terms
 
 
 def solve_accelerations(

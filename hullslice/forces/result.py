@@ -11,13 +11,38 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..sections import Sections
-from ..solvers.base import FREE_FALL, MOMENTUM, SectionLoads
+from ..solvers.base import FREE_FALL, MOMENTUM, SectionLoads, SectionPressures
 from ..state import Acceleration, Fluid, Motion, Pose
 
-__all__ = ["MIN_SLENDERNESS", "ForceResult"]
+__all__ = ["MIN_SLENDERNESS", "ForceResult", "SectionPressureResult"]
 
 #: Smallest wetted length over wetted beam of a slender body (2D+t's assumption).
 MIN_SLENDERNESS = 2.0
+
+
+@dataclass(frozen=True, eq=False)
+class SectionPressureResult:
+    """The pressure along each section's wetted contour at one state.
+
+    Attributes
+    ----------
+    points : SectionPressures
+        The solver's points (``y`` from the keel and ``z`` above it, m, per section, side
+        and point) and their weights ``dy`` (m).
+    pressure : (n, 2, k) float
+        Gauge pressure at each point, Pa, bounded below by the fluid's suction limit.
+    """
+
+    points: SectionPressures
+    pressure: np.ndarray
+
+    def force_per_metre(self) -> np.ndarray:
+        """(n,) the pressure's integral over both sides, N/m (``sum(weight p)``)."""
+        return (self.points.weight * self.pressure).sum(axis=(1, 2))
+
+    def peak(self) -> np.ndarray:
+        """(n,) the largest pressure on each section, Pa."""
+        return self.pressure.max(axis=(1, 2)) if self.pressure.size else np.zeros(0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -46,6 +71,8 @@ class ForceResult:
         The body's acceleration the force was formed with (momentum form), else None.
     section_acceleration : (n,) float or None
         Each section's penetration acceleration, m/s^2, positive up (momentum form).
+    pressures : SectionPressureResult or None
+        The pressure along each section's wetted contour, where the solver gives it.
     """
 
     sections: Sections
@@ -59,6 +86,7 @@ class ForceResult:
     kind: str = FREE_FALL
     acceleration: Acceleration | None = None
     section_acceleration: np.ndarray | None = None
+    pressures: SectionPressureResult | None = None
 
     @property
     def force(self) -> np.ndarray:

@@ -39,7 +39,7 @@ import numpy as np
 
 from ..constants import MAX_STEPS
 from ..errors import InputError
-from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_accelerations
+from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_bounded
 from ..geometry import frame
 from ..limits import no_mass
 from ..mesh import Hull
@@ -289,7 +289,7 @@ def simulate(
         pose, motion = state_pose(y)
         if model.momentum:  # the added mass on the left, solved at this stage
             terms = model.terms(pose, motion)
-            acc = solve_accelerations(terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s")
+            terms, acc = solve_bounded(terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s")
             r = terms.result(acc, model.solver, model.fluid, motion, float(hull.cg[0]))
             return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), r
         r = model(pose, motion)

@@ -41,6 +41,7 @@ __all__ = [
     "AddedMass",
     "MomentumFormSolver",
     "SectionLoads",
+    "SectionPressures",
     "Solver",
     "SolverBase",
     "join_reasons",
@@ -187,6 +188,74 @@ class Solver(SolverBase):
 
 
 @dataclass(frozen=True, eq=False)
+class SectionPressures:
+    """The pressure along each section's wetted contour, as a momentum-form solver gives it
+    before the body's accelerations are known.
+
+    Every array is (n, 2, k): per section, per side (0: port, ``+y`` from the keel; 1:
+    starboard) and per point. The pressure at a point is
+
+        p = velocity_coefficient v^2 [v < 0] - acceleration_coefficient a      (Pa, gauge)
+
+    with the section's penetration velocity ``v`` (m/s, negative down) and acceleration
+    ``a`` (m/s^2, positive up), and ``sum(weight * p)`` over both sides is the force per
+    metre that the two coefficients give (``rate v^2 - m_a a``).
+
+    Attributes
+    ----------
+    y : distance of the point from the keel, m (outwards on its side).
+    z : height of the point above the keel, m.
+    weight : the point's share of the width ``dy``, m (quadrature weights).
+    velocity_coefficient : Pa per (m/s)^2.
+    acceleration_coefficient : Pa per m/s^2.
+    """
+
+    y: np.ndarray
+    z: np.ndarray
+    weight: np.ndarray
+    velocity_coefficient: np.ndarray
+    acceleration_coefficient: np.ndarray
+
+    FIELDS: ClassVar[tuple[str, ...]] = (
+        "y", "z", "weight", "velocity_coefficient", "acceleration_coefficient",
+    )  # fmt: skip
+
+    def __post_init__(self) -> None:
+        shape = np.shape(self.y)
+        for name in self.FIELDS:
+            a = np.asarray(getattr(self, name), dtype=np.float64)
+            if a.shape != shape or a.ndim != 3 or shape[1:2] != (2,):
+                raise TypeError(
+                    f"SectionPressures.{name} has shape {a.shape}; every field must be "
+                    f"(n, 2, k) like y's {shape}"
+                )
+            a.flags.writeable = False
+            object.__setattr__(self, name, a)
+
+    def __len__(self) -> int:
+        return int(np.shape(self.y)[0])
+
+    def spread(self, wet: np.ndarray) -> SectionPressures:
+        """The same over every section, zero on those not in ``wet`` ((N,) bool)."""
+        n = len(wet)
+        k = np.shape(self.y)[2]
+        out = {}
+        for name in self.FIELDS:
+            full = np.zeros((n, 2, k))
+            full[wet] = getattr(self, name)
+            out[name] = full
+        return SectionPressures(**out)
+
+    def pressure(self, velocity: np.ndarray, acceleration: np.ndarray) -> np.ndarray:
+        """(n, 2, k) pressures in Pa at the sections' penetration velocities (m/s) and
+        accelerations (m/s^2, up)."""
+        v = np.asarray(velocity, dtype=np.float64)[:, None, None]
+        a = np.asarray(acceleration, dtype=np.float64)[:, None, None]
+        vv = np.where(v < 0.0, v * v, 0.0)
+        return self.velocity_coefficient * vv - self.acceleration_coefficient * a
+
+
+@dataclass(frozen=True, eq=False)
 class AddedMass:
     """What a momentum-form solver returns for a set of sections.
 
@@ -210,6 +279,12 @@ class AddedMass:
         Vertical force per metre that does not depend on an acceleration (a hydrostatic
         force: buoyancy), N/m, positive up; unlike ``extra`` it has no horizontal part
         along a sloping keel. Zeros by default.
+    girth : (n,) float or None
+        The wetted girth of each section that carries the pressure, m (both sides), for
+        the bound on suction; None: hullslice takes the contour's chords from the keel to
+        the calm water.
+    pressure : SectionPressures or None
+        The pressure along each section's wetted contour, where the solver models it.
     """
 
     added_mass: np.ndarray
@@ -219,12 +294,18 @@ class AddedMass:
     extra: np.ndarray | None = None
     diagnostics: Mapping[str, np.ndarray] = field(default_factory=dict)
     vertical: np.ndarray | None = None
+    girth: np.ndarray | None = None
+    pressure: SectionPressures | None = None
 
     def __post_init__(self) -> None:
         fields = self.__dict__  # frozen: set once here, read-only arrays
         for name in ("extra", "vertical"):
             if fields[name] is None:
                 fields[name] = np.zeros(np.shape(fields["added_mass"]))
+        if fields["girth"] is not None:
+            g = np.asarray(fields["girth"], dtype=np.float64)
+            g.flags.writeable = False
+            fields["girth"] = g
         fields["valid"] = np.asarray(fields["valid"])  # kept as given: checked by hullslice
         _freeze(
             fields,

@@ -44,7 +44,9 @@ __all__ = [
     "SECTION_METHODS",
     "WEDGE_TOLERANCE",
     "contour_half_widths",
+    "contour_heights",
     "submerged_parts",
+    "wagner_root",
 ]
 
 #: How the wetted half-width of a section is found, by name.
@@ -128,11 +130,11 @@ def _key(group: np.ndarray, y: np.ndarray) -> np.ndarray:
     return key
 
 
-def _heights(sections, p: np.ndarray, reach: np.ndarray) -> np.ndarray:
-    """The height of each side's contour above its keel, (2, n, SAMPLES) m, sampled from
+def _heights(sections, p: np.ndarray, reach: np.ndarray, samples: int = SAMPLES) -> np.ndarray:
+    """The height of each side's contour above its keel, (2, n, samples) m, sampled from
     the keel out to ``reach`` ((2, n) m); NaN past the side's extent."""
     n = len(sections)
-    unit = np.linspace(0.0, 1.0, SAMPLES)
+    unit = np.linspace(0.0, 1.0, samples)
     station = np.asarray(sections.station, dtype=np.int64)
     stations, st_index = np.unique(station, return_inverse=True)
     per_station = [_edges(sections.polygons[int(st)]) for st in stations]
@@ -159,10 +161,63 @@ def _heights(sections, p: np.ndarray, reach: np.ndarray) -> np.ndarray:
         & (np.minimum(e[:, 0], e[:, 2]) <= hi_y[entry])
         & (np.minimum(e[:, 1], e[:, 3]) <= z_top[entry])
     )
-    lines = np.repeat(np.arange(n), 2 * SAMPLES)
-    low = _lowest(e[near], y.ravel(), entry[near], lines).reshape(n, 2 * SAMPLES)
+    lines = np.repeat(np.arange(n), 2 * samples)
+    low = _lowest(e[near], y.ravel(), entry[near], lines).reshape(n, 2 * samples)
     heights = ratio[:, None] * (low - lowest[:, None])
-    return np.moveaxis(heights.reshape(n, 2, SAMPLES), 1, 0)
+    return np.moveaxis(heights.reshape(n, 2, samples), 1, 0)
+
+
+def contour_heights(sections, reach: np.ndarray, samples: int = SAMPLES) -> np.ndarray:
+    """The height above its keel of each side's bottom, sampled evenly from the keel out
+    to ``reach``.
+
+    Parameters
+    ----------
+    sections : Sections
+        The wetted entries.
+    reach : (2, n) float
+        How far out to sample each side (port, starboard), m.
+    samples : int
+        Points per side, the keel's and the reach's included.
+
+    Returns
+    -------
+    (2, n, samples) float
+        Heights in m of the lowest crossing of each vertical line, scaled so that the
+        depth at the keel is the entry's penetration; NaN past the side's extent (no
+        crossing).
+    """
+    p = np.asarray(sections.penetration, dtype=np.float64)
+    return _heights(sections, p, np.asarray(reach, dtype=np.float64), int(samples))
+
+
+def wagner_root(g: np.ndarray, ds: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """Wagner's half-width ``c`` on sampled contours: where ``integral_0^{pi/2}
+    g(c sin t) dt`` reaches ``target``.
+
+    Parameters
+    ----------
+    g : (..., K) float
+        Rising heights above the keel (m), sampled every ``ds`` from the keel.
+    ds : (...) float
+        The sampling step, m.
+    target : (...) float
+        ``(pi / 2) p``, m.
+
+    Returns
+    -------
+    (...) float
+        ``c`` in m, NaN where the contour's sampled width is too short to reach it.
+    """
+    k = g.shape[-1]
+    extent = (k - 1) * ds
+
+    def integral(c: np.ndarray) -> np.ndarray:
+        return _interp(g, ds, c[..., None] * _SIN) @ _W
+
+    past = ~(integral(extent) >= target)
+    c = _wagner_root(g, ds, extent, np.broadcast_to(target, extent.shape), past)
+    return np.where(past, np.nan, c)
 
 
 def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:

@@ -1,0 +1,197 @@
+"""The ``mlm`` plugin (the Modified Logvinovich Model) and the bound on suction.
+
+References:
+
+- Korobkin (2004), Eur. J. Appl. Math. 15, 821-838: the MLM pressure; on a wedge at
+  constant speed its force per metre has the closed form of
+  :func:`hullslice_mlm.wedge_force`, and it tends to Wagner's flat-plate force
+  ``rho pi^3 V^3 t / (4 tan^2 beta)`` as the deadrise goes to zero.
+- The momentum form (METHOD section 6): the pressure's integral over the wetted contour is
+  the force per metre ``rate v^2 - m_a a``.
+- Far past a sharp edge a straight continuation of deadrise ``beta_c`` gives the drag
+  ``rho V^2 b (pi / tan(beta_c) - 1)`` per metre (:func:`continuation_for_drag`).
+- Water cannot pull harder than ``p_atm - p_vapour``: no section's force per metre is
+  below that times its wetted girth.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import shapes
+
+mlm = pytest.importorskip("hullslice_mlm")
+
+from hullslice.forces.momentum import calm_girth  # noqa: E402
+
+from .conftest import MESHES  # noqa: E402
+
+RHO = 1000.0
+MOMENTUM_SOLVERS = ("mlm", "zarnick", "wagner", "von-karman")
+
+
+def wedge(deadrise_deg: float, beam: float = 0.4, sides: float = 0.0) -> hs.Hull:
+    v, f = shapes.wedge_prism(length=1.0, beam=beam, deadrise_deg=deadrise_deg, sides=sides)
+    return hs.Hull.from_arrays(v, f)
+
+
+def per_metre(result: hs.ForceResult) -> np.ndarray:
+    return np.asarray(result.force) / np.asarray(result.sections.dx)
+
+
+def test_mlm_is_installed_as_a_plugin_of_the_momentum_kind():
+    info = {i.name: i for i in hs.list_solvers()}["mlm"]
+    assert (info.status, info.kind, info.distribution) == ("ok", "momentum", "hullslice-mlm")
+
+
+@pytest.mark.parametrize("deadrise_deg", [10.0, 20.0, 30.0, 45.0])
+@pytest.mark.parametrize("method", ["auto", "contour", "wedge"])
+def test_a_wedge_at_constant_speed_has_the_closed_form(deadrise_deg, method):
+    beta = math.radians(deadrise_deg)
+    p = 0.02 * math.tan(beta)  # the contact at a quarter of the chine's half-width
+    r = hs.compute_force(
+        wedge(deadrise_deg), p, -5.0, slices=4, solver=mlm.MLM(section_method=method),
+        acceleration=0.0, fluid=hs.Fluid(RHO, 0.0),
+    )  # fmt: skip
+    assert r.total == pytest.approx(mlm.wedge_force(beta, p, 5.0, RHO), rel=1e-6)
+    assert r.all_valid
+
+
+def test_the_closed_form_tends_to_wagner_as_the_deadrise_goes_to_zero():
+    def ratio(deg: float) -> float:
+        beta, p, V = math.radians(deg), 0.01, 5.0
+        cp = math.pi / (2.0 * math.tan(beta))  # Wagner: c = cp p, f = rho pi c cp V^2
+        return mlm.wedge_force(beta, p, V, RHO) / (RHO * math.pi * cp * cp * p * V * V)
+
+    gaps = [1.0 - ratio(d) for d in (4.0, 2.0, 1.0, 0.5)]
+    assert all(0.0 < g for g in gaps)
+    assert gaps[-1] < 0.02  # within 2 % at half a degree
+    assert all(b < a for a, b in itertools.pairwise(gaps))  # and closing
+
+
+@pytest.mark.parametrize("acceleration", [0.0, 40.0, -25.0])
+def test_the_pressures_integrate_to_the_force(acceleration):
+    hull = wedge(30.0, beam=0.5, sides=0.3)
+    for p in (0.05, 0.2):  # before and after the knuckles
+        r = hs.compute_force(hull, p, -6.0, slices=2, solver="mlm", acceleration=acceleration)
+        assert r.pressures is not None
+        np.testing.assert_allclose(r.pressures.force_per_metre(), per_metre(r), rtol=1e-9)
+        pts = r.pressures.points
+        assert np.all(pts.y <= 0.25 + 1e-9)  # the real body only, past the knuckle too
+
+
+def test_past_a_sharp_edge_the_load_tends_to_the_continuations_drag():
+    hull = wedge(30.0, beam=0.5, sides=30.0)
+    solver = mlm.MLM()  # the default continuation: Zarnick's cross-flow drag, 1.0
+    assert solver.settings["continuation"] == pytest.approx(mlm.continuation_for_drag(1.0))
+    b, V = 0.25, 6.0
+    for p, tol in ((2.0, 2e-3), (10.0, 1e-4)):
+        r = hs.compute_force(hull, p, -V, slices=2, solver=solver, acceleration=0.0)
+        assert r.total / (RHO * V**2 * b) == pytest.approx(1.0, rel=tol)
+        assert r.loads.diagnostics["separated"].all()
+
+
+def test_a_round_section_keeps_its_load_past_its_widest_point():
+    R = 0.5
+    v, f = shapes.circular_cylinder(length=1.0, radius=R, points=720)
+    hull = hs.Hull.from_arrays(v, f)
+    s_d = np.array([0.05, 0.1, 0.15, 0.18, 0.2, 0.3, 0.5, 0.7, 1.0])
+    cs = np.array([
+        hs.compute_force(hull, s * 2 * R, -5.0, slices=2, solver="mlm", acceleration=0.0).total
+        / (RHO * R * 25.0)
+        for s in s_d
+    ])  # fmt: skip
+    # no loss at the widest point (s/D = 0.18 for Wagner's contact): the slamming
+    # coefficient falls steadily and stays above the continuation's drag, 1.0
+    assert np.all(np.diff(cs) < 0.0)
+    assert np.all(cs > 1.0)
+    assert cs[-1] == pytest.approx(1.0, abs=0.15)
+
+
+def test_a_re_entrant_section_is_flagged():
+    # a bottom that rises, dips back down and rises again
+    sec = np.array([[0.0, 0.0], [0.1, 0.05], [0.15, 0.03], [0.2, 0.2], [0.2, 0.4],
+                    [-0.2, 0.4], [-0.2, 0.2], [-0.15, 0.03], [-0.1, 0.05]])  # fmt: skip
+    x = np.array([0.0, 1.0])
+    v, f = shapes.prism_from_sections(x, np.broadcast_to(sec, (2, len(sec), 2)))
+    hull = hs.Hull.from_arrays(v, f)
+    r = hs.compute_force(hull, 0.1, -5.0, slices=2, solver="mlm", acceleration=0.0)
+    assert not r.valid.any()
+    assert all("re-entrant" in why for why in r.loads.reason)
+
+
+@pytest.mark.parametrize(
+    ("options", "words"),
+    [
+        ({"continuation": math.nan}, "continuation=nan"),
+        ({"continuation": -5.0}, "continuation=-5.0"),
+        ({"continuation": 90.0}, "vertical"),
+        ({"continuation": "curved"}, "tangent"),
+        ({"smooth_edge_deg": 0.0}, "smooth_edge_deg=0.0"),
+        ({"froude_min": -1.0}, "froude_min=-1.0"),
+        ({"gravity": "yes"}, "gravity='yes'"),
+        ({"section_method": "exact"}, "section_method='exact'"),
+    ],
+)
+def test_bad_options_are_refused_in_one_line(options, words):
+    with pytest.raises(hs.InputError, match=words) as err:
+        hs.get_solver("mlm", **options)
+    assert "\n" not in str(err.value)
+
+
+def test_a_continuation_not_steeper_than_the_bottom_is_refused():
+    hull = wedge(30.0, beam=0.5, sides=0.3)
+    with pytest.raises(hs.InputError, match="not steeper than the bottom") as err:
+        hs.compute_force(hull, 0.2, -6.0, slices=2, solver=mlm.MLM(continuation=20.0),
+                         acceleration=0.0)  # fmt: skip
+    assert "x = " in str(err.value) and "\n" not in str(err.value)
+
+
+def test_gravity_adds_the_hydrostatic_force_of_the_area_below_the_calm_water():
+    hull = wedge(30.0)
+    p = 0.05
+    kw = {"slices": 2, "acceleration": 0.0}
+    dry = hs.compute_force(hull, p, -5.0, solver=mlm.MLM(), **kw).total
+    wet = hs.compute_force(hull, p, -5.0, solver=mlm.MLM(gravity=True), **kw).total
+    area = p * p / math.tan(math.radians(30.0))  # the wedge's triangle below the water
+    assert wet - dry == pytest.approx(RHO * 9.81 * area, rel=1e-9)
+
+
+@pytest.mark.parametrize("solver", MOMENTUM_SOLVERS)
+def test_no_section_pulls_harder_than_the_water_can(solver):
+    # the bundled fuselage, pitched 6 deg at 60 m/s and sinking at 1.5 m/s, 0.5 m deep:
+    # its keel curves up aft, where the inertia term pulls sections down
+    hull = hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
+    pose = hs.Pose(draft=0.5, pitch=math.radians(6.0))
+    motion = hs.Motion(velocity=-1.5, forward_speed=60.0)
+    r = hs.compute_force(hull, pose, motion, slices=64, solver=solver)
+    fluid = hs.Fluid()
+    lower = r.loads.diagnostics["suction_bound"]
+    wet = r.sections.wetted
+    assert np.all(lower[wet] < 0.0) and np.all(lower[~wet] == 0.0)
+    assert np.all(per_metre(r) >= lower - 1e-9 * np.abs(lower))
+    limited = r.loads.diagnostics["suction_limited"] > 0
+    assert limited.any()  # the case does reach the bound
+    np.testing.assert_allclose(per_metre(r)[limited], lower[limited], rtol=1e-12)
+    # the bound is the suction limit times a girth at least the calm water's chords
+    chords = calm_girth(r.sections)
+    assert np.all(-lower[wet] >= fluid.suction_limit * chords[wet] * (1 - 1e-12))
+
+
+def test_the_suction_bound_leaves_a_body_that_does_not_pull_alone():
+    # a wedge entering at constant speed has positive pressure: nothing is limited
+    r = hs.compute_force(wedge(20.0), 0.01, -5.0, slices=4, solver="zarnick", acceleration=0.0)
+    assert not r.loads.diagnostics["suction_limited"].any()
+
+
+def test_the_fluid_refuses_a_vapour_pressure_above_the_atmosphere():
+    with pytest.raises(hs.InputError, match="vapour pressure"):
+        hs.Fluid(p_vapour=2e5)
+    with pytest.raises(hs.InputError, match="atmospheric pressure"):
+        hs.Fluid(p_atm=-1.0)
+    assert hs.Fluid().suction_limit == pytest.approx(101325.0 - 2339.0)
