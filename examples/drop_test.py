@@ -19,6 +19,12 @@ published figure (a digitisation shared in the public repository
 momentum in the measured velocity (with gravity), times the measuring section's share of
 its length, is an estimate of the section's impulse that does not use the force curve.
 
+The main model is the Modified Logvinovich Model (``mlm``): Wagner's contact with the
+pressure on the real body, and past the knuckles the contact continued on a fictitious
+straight body and the pressure integrated over the real one. The strip theory ``zarnick``
+(Wagner's flat-plate force, frozen added mass and a cross-flow drag after the knuckles)
+and the paper's solver are shown beside it.
+
 hullslice's model of the test is a 1.0 m prism of the same section and the rig's mass
 (``hullslice.shapes.wedge_prism`` with sides), level, so every slice is the 2D section;
 the force on the measuring section is the total force times 0.20 / 1.0. Two runs per
@@ -78,8 +84,13 @@ T_END = 0.025
 SHOWN = np.array([2.5, 5.0, 7.5, 10.0, 12.5, 15.0, 17.5, 20.0, 22.5, 25.0]) * 1e-3
 AFTER = (0.020, 0.025)
 
-#: The runs: (label, solver name, solver options).
+#: The runs: (label, solver name, solver options). The MLM's continuation past the
+#: knuckles is its default (the deadrise whose late drag is Zarnick's cross-flow drag,
+#: 57.5 deg), Keuning's drag (53.4 deg) and the bottom's tangent (30 deg).
 SOLVERS = (
+    ("mlm", "mlm", {}),
+    ("mlm, continuation for C_D,c = 1.33", "mlm", {"continuation": 53.4}),
+    ("mlm, tangent continuation", "mlm", {"continuation": "tangent"}),
     ("zarnick", "zarnick", {}),
     ("zarnick, Dobrovol'skaya pile-up", "zarnick", {"pile_up": "dobrovolskaya"}),
     ("zarnick, C_D,c = 1.33", "zarnick", {"cross_flow_drag": 1.33}),
@@ -202,9 +213,9 @@ def main(argv: list[str] | None = None) -> int:
         )
 
     histories = runs(args.slices)
-    heads = ("measured", "nonlinear 2D (paper)", "zarnick, measured motion", "zarnick, free drop")
+    heads = ("measured", "nonlinear 2D (paper)", "mlm, measured motion", "mlm, free drop")
     print("\n  t [ms]  " + "  ".join(heads))
-    main_runs = histories["zarnick"]
+    main_runs = histories["mlm"]
     for t in SHOWN:
         row = [np.interp(t, T_FORCE, F_MEASURED), np.interp(t, T_FORCE, F_NONLINEAR)]
         row += [np.interp(t, h.t, section_force(h)) for h in main_runs.values()]
@@ -235,7 +246,8 @@ def plot(histories: dict[str, dict[str, hs.History]], path: str) -> None:
     ax_f.plot(T_FORCE * 1e3, F_MEASURED, "ko-", label="measured (Zhao et al. 1996)")
     ax_f.plot(T_FORCE * 1e3, F_NONLINEAR, "k--", label="their nonlinear 2D computation")
     ax_v.plot(T_VELOCITY * 1e3, V_MEASURED, "ko-")
-    for (label, pair), colour in zip(histories.items(), ("C0", "C1", "C2", "C3"), strict=False):
+    colours = ("C0", "C1", "C2", "C3", "C4", "C5", "C6")
+    for (label, pair), colour in zip(histories.items(), colours, strict=False):
         for kind, style in (("measured motion", "-"), ("free drop", ":")):
             h = pair[kind]
             t = np.asarray(h.t) * 1e3

@@ -55,8 +55,8 @@ def test_model_scale_is_froude_similar(fuselage):
 
 @pytest.mark.slow
 def test_zarnick_ditching_with_free_pitch_converges(fuselage):
-    # the README's ditching with the strip theory and free pitch, to 0.16 s: measured 1.7 %
-    # from 64 to 128 slices and 0.008 % from a 4 ms to a 2 ms step on the force at its end,
+    # the README's ditching with the strip theory and free pitch, to 0.16 s: measured 0.23 %
+    # from 64 to 128 slices and 0.014 % from a 4 ms to a 2 ms step on the force at its end,
     # 0.0007 deg on the pitch
     def run(slices, dt):
         return hs.simulate(

@@ -49,6 +49,12 @@ class MomentumTerms:
     f0 : (n,) float
         Force per metre with the body at rest in acceleration, N/m:
         ``m_a' v^2 [v < 0] - m_a bias + extra``; on a limited section, the bound.
+    carried : (n,) float
+        Added mass per metre that follows the body's acceleration, kg/m: the solver's,
+        or, for a solver whose load is the positive part of its pressure, that of the
+        points where the pressure is positive.
+    loaded : (n, 2, k) bool or None
+        The points of the solver's pressures that carry load (None: all of them).
     lower : (n,) float
         The least force per metre the water can give each section, N/m: the suction
         limit of the fluid (``p_atm - p_vapour``) over the section's wetted girth, negated.
@@ -65,12 +71,14 @@ class MomentumTerms:
     f0: np.ndarray
     lower: np.ndarray
     limited: np.ndarray
+    carried: np.ndarray
+    loaded: np.ndarray | None = None
 
     @property
     def inertia(self) -> np.ndarray:
         """(n,) added mass per metre that follows the body's acceleration, kg/m (zero on
         limited sections)."""
-        return np.where(self.limited, 0.0, self.added.added_mass)
+        return np.where(self.limited, 0.0, self.carried)
 
     @property
     def matrix(self) -> np.ndarray:
@@ -89,7 +97,7 @@ class MomentumTerms:
         f0 = np.where(limited, self.lower, self.f0)
         return MomentumTerms(
             self.sections, self.velocity, self.added, self.jac, self.bias, f0, self.lower,
-            limited,
+            limited, self.carried, self.loaded,
         )  # fmt: skip
 
     @property
@@ -115,11 +123,10 @@ class MomentumTerms:
         """The force result once the body's acceleration is known."""
         acc = np.asarray(acceleration.as_array())
         a_n = self.jac @ acc + self.bias
-        m_a = self.added.added_mass
         force = self.force(acceleration)
         diagnostics = {
             **self.added.diagnostics,
-            "added_mass": m_a,
+            "added_mass": self.carried,
             "added_mass_rate": self.added.rate,
             "extra_force": cast(np.ndarray, self.added.extra),
             "vertical_force": cast(np.ndarray, self.added.vertical),
@@ -132,6 +139,8 @@ class MomentumTerms:
         pressures = None
         if self.added.pressure is not None:
             p = self.added.pressure.pressure(self.velocity, a_n)
+            if self.loaded is not None:
+                p = np.where(self.loaded, p, 0.0)
             p = np.maximum(p, -fluid.suction_limit)  # the water cavitates first
             p = np.where(self.limited[:, None, None], -fluid.suction_limit, p)
             pressures = SectionPressureResult(self.added.pressure, p)
@@ -149,10 +158,24 @@ def momentum_terms(
     added = evaluate_added_mass(solver, sections, velocity, fluid)
     jac, bias = section_kinematics(sections, motion, x_cg, velocity)
     flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
-    f0 = flux - added.added_mass * bias + added.extra + added.vertical
+    carried, loaded = added.added_mass, None
+    if getattr(solver, "positive_pressure", False) and added.pressure is not None:
+        # the load of the points whose pressure is positive at the body's rest
+        pts = added.pressure
+        p0 = pts.pressure(velocity, bias)
+        loaded = p0 > 0.0
+        flux = (np.where(loaded, p0, 0.0) * pts.weight).sum(axis=(1, 2))
+        carried = (np.where(loaded, pts.acceleration_coefficient, 0.0) * pts.weight).sum(
+            axis=(1, 2)
+        )
+        f0 = flux + added.extra + added.vertical
+    else:
+        f0 = flux - added.added_mass * bias + added.extra + added.vertical
     girth = added.girth if added.girth is not None else calm_girth(sections)
     lower = -fluid.suction_limit * np.where(sections.wetted, girth, 0.0)
-    terms = MomentumTerms(sections, velocity, added, jac, bias, f0, lower, f0 < lower)
+    terms = MomentumTerms(
+        sections, velocity, added, jac, bias, f0, lower, f0 < lower, carried, loaded
+    )
     return terms.with_limited(terms.limited)
 
 

@@ -20,6 +20,18 @@ from .record import Sections, ShiftedPolygons
 __all__ = ["assemble", "station_mass"]
 
 
+#: The keel line's curvature is averaged over at least this share of the body's beam:
+#: 2D+t describes the flow around sections no finer along the body than their own width,
+#: and a mesh's keel line zigzags about the true one at its facets' scale.
+KEEL_WINDOW_BEAMS = 0.5
+
+
+def keel_window(hull) -> float:
+    """The shortest length (m) over which a section's keel curvature is averaged: half the
+    body's beam (:data:`KEEL_WINDOW_BEAMS`)."""
+    return KEEL_WINDOW_BEAMS * float(hull.extents[1])
+
+
 def station_mass(
     hull: Hull, fr: Frame, area: np.ndarray, rel: np.ndarray, dx: np.ndarray | None = None
 ) -> np.ndarray:
@@ -110,5 +122,5 @@ def assemble(
         pitch=pose.pitch,
         wetted_length=length,
         z_cg=z_cg,
-        keel_curvature=fr.keel.mean_curvature(rel, dx)[st],
+        keel_curvature=fr.keel.mean_curvature(rel, np.maximum(dx, keel_window(hull)))[st],
     )

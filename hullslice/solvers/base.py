@@ -338,6 +338,13 @@ class MomentumFormSolver(SolverBase):
     #: after it): hullslice then does not flag sections whose water reaches their chine,
     #: and the ``chine`` stop rule does not apply.
     models_separation: ClassVar[bool] = False
+    #: True when only the part of each section's wetted contour where the pressure is
+    #: positive carries load (the MLM's rule: water does not pull, it ventilates): with
+    #: the solver's :class:`SectionPressures`, hullslice then keeps the points whose
+    #: pressure at the body's rest in acceleration (the section's own motion: its velocity
+    #: and the acceleration of a curved keel line passing by) is positive, and forms the
+    #: force and the added mass from those points alone.
+    positive_pressure: ClassVar[bool] = False
 
     @abc.abstractmethod
     def added_mass(self, sections: Sections, velocity: np.ndarray, fluid: Fluid) -> AddedMass:

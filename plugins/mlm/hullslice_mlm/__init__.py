@@ -192,6 +192,7 @@ class MLM(MomentumFormSolver):
         "real body, separation at sharp edges on a fictitious body, pressures returned"
     )
     models_separation = True
+    positive_pressure = True
     own_checks = ("continuation", "smooth_edge_deg", "gravity", "froude_min")
     options: ClassVar[dict[str, Any]] = {
         "section_method": "auto",
