@@ -274,6 +274,30 @@ def bench_slices(table: Table, hull, repeat: int) -> None:
         table.add(f"100k: cached evaluation, {n} slices", fmt(t))
 
 
+def bench_solvers(table: Table, hull, repeat: int) -> None:
+    """One momentum-form evaluation (the solver on every section and the terms of the
+    equations of motion) of ``mlm`` against ``zarnick``, interleaved on the same cut: the
+    100k-face fuselage at 0.8 m draft, 6 deg, 60 m/s forward, 128 fixed slices."""
+    from hullslice.forces import momentum_terms
+
+    sections = hs.cut(hull, hs.Pose(0.8, 0.105), 128, slicing="fixed")
+    motion, fluid, x_cg = hs.Motion(-1.5, 60.0), hs.Fluid(), float(hull.cg[0])
+    solvers = {name: hs.get_solver(name) for name in ("zarnick", "mlm")}
+    times: dict[str, list[float]] = {name: [] for name in solvers}
+    for _ in range(repeat):
+        for name, solver in solvers.items():
+
+            def once(i: int, s=solver) -> None:
+                momentum_terms(sections, motion, s, fluid, x_cg)
+
+            times[name].append(per_call(once, 10, 1))
+    t = {name: statistics.median(v) for name, v in times.items()}
+    for name in solvers:
+        table.add(f"100k: {name} evaluation, 128 fixed slices", fmt(t[name]))
+    ratio = t["mlm"] / t["zarnick"]
+    table.add("mlm / zarnick evaluation", f"{ratio:.2f}", "at most 2", ratio <= 2.0)
+
+
 def bench_steps(table: Table, repeat: int) -> None:
     hull = hs.load_hull(ROOT / "meshes" / "paper_prism.stl", mass=1.0)
     t_end = 0.02
@@ -511,6 +535,7 @@ def main() -> None:
             print(f"mesh {size} ...")
             results[size] = bench_mesh(table, Path(tmp), size, args.repeat)
         bench_slices(table, results["100k"]["hull"], args.repeat)
+        bench_solvers(table, results["100k"]["hull"], args.repeat)
         bench_steps(table, args.repeat)
         print("time step at a held and a free pitch ...")
         bench_pitch_steps(table, Path(tmp), results, args.repeat)

@@ -392,3 +392,47 @@ def history_summary(history) -> dict[str, Any]:
         "valid": bool(np.all(history.valid)),
         "max_flagged_share": history.max_flagged_share,
     }
+
+
+#: Columns of a pressure file (``hullslice force --pressures``), with their units.
+PRESSURE_COLUMNS = (
+    ("slice", ""), ("x", "m"), ("side", ""), ("y", "m"), ("z", "m"), ("weight", "m"),
+    ("pressure", "Pa"),
+)  # fmt: skip
+
+
+def pressure_records(result) -> list[dict[str, Any]]:
+    """One record per point of every wetted section's pressure in a force result: the
+    slice, its station ``x`` along the earth (m), the side (``port``: ``+y`` from the keel,
+    ``starboard``), the point's distance ``y`` from the keel and height ``z`` above it (m),
+    its weight ``dy`` (m, so that the weights times the pressures sum to the force per
+    metre) and the gauge pressure (Pa). Points with no weight (dry sections, the ends of a
+    loaded region) are left out."""
+    pr = result.pressures
+    if pr is None:
+        return []
+    pts = pr.points
+    x = np.asarray(result.sections.x, dtype=np.float64)
+    out = []
+    n, _, k = pr.pressure.shape
+    for i in range(n):
+        for side, name in ((0, "port"), (1, "starboard")):
+            for j in range(k):
+                w = float(pts.weight[i, side, j])
+                if w <= 0.0:
+                    continue
+                out.append({
+                    "slice": i, "x": float(x[i]), "side": name,
+                    "y": float(pts.y[i, side, j]), "z": float(pts.z[i, side, j]),
+                    "weight": w, "pressure": float(pr.pressure[i, side, j]),
+                })  # fmt: skip
+    return out
+
+
+def pressure_text(result, path: str) -> str:
+    """A force result's pressures as CSV, or as JSON when ``path`` ends in ``.json``."""
+    records = pressure_records(result)
+    if str(path).lower().endswith(".json"):
+        units = {k: u for k, u in PRESSURE_COLUMNS if u}
+        return json_text({"solver": result.solver, "units": units, "points": records})
+    return csv_text([k for k, _ in PRESSURE_COLUMNS], records)

@@ -47,6 +47,7 @@ SLOW = (
     "hullslice simulate meshes/fuselage_full.obj",
     "python examples/ditching.py",
     "python examples/drop_test.py",
+    "python examples/ditching_pitch.py",
 )
 #: Commands that read what an earlier command wrote: that one runs first.
 NEEDS = {

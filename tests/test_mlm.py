@@ -200,3 +200,38 @@ def test_the_fluid_refuses_a_vapour_pressure_above_the_atmosphere():
     with pytest.raises(hs.InputError, match="atmospheric pressure"):
         hs.Fluid(p_atm=-1.0)
     assert hs.Fluid().suction_limit == pytest.approx(101325.0 - 2339.0)
+
+
+def test_the_force_command_writes_the_pressures_that_sum_to_the_force(tmp_path, capsys):
+    import csv
+    import json
+
+    from hullslice.cli import main
+
+    mesh = str(MESHES / "wedge_prism.stl")
+    args = ["force", mesh, "--mass", "10", "--draft", "0.02", "--velocity=-5", "--slices", "4",
+            "--solver", "mlm", "--format", "json"]  # fmt: skip
+    path = tmp_path / "p.csv"
+    assert main([*args, "--pressures", str(path)]) == 0
+    data = json.loads(capsys.readouterr().out)
+    rows = list(csv.DictReader(path.open()))
+    assert {r["side"] for r in rows} == {"port", "starboard"}
+    for s in data["slices"]:  # each slice's weights times pressures: its force per metre
+        mine = [r for r in rows if float(r["x"]) == pytest.approx(s["x"], abs=1e-12)]
+        total = sum(float(r["weight"]) * float(r["pressure"]) for r in mine)
+        assert total == pytest.approx(s["force_per_metre"], rel=1e-9)
+    js = tmp_path / "p.json"
+    assert main([*args, "--pressures", str(js)]) == 0
+    doc = json.loads(js.read_text())
+    assert doc["units"]["pressure"] == "Pa" and len(doc["points"]) == len(rows)
+
+
+def test_pressures_from_a_solver_that_gives_none_are_refused_before_any_work(tmp_path, capsys):
+    from hullslice.cli import main
+
+    path = tmp_path / "p.csv"
+    rc = main(["force", str(MESHES / "wedge_prism.stl"), "--mass", "10", "--draft", "0.02",
+               "--velocity=-5", "--solver", "zarnick", "--pressures", str(path)])  # fmt: skip
+    err = capsys.readouterr().err.strip()
+    assert rc != 0 and "gives no pressures" in err and "--solver mlm" in err
+    assert len(err.splitlines()) == 1 and not path.exists()

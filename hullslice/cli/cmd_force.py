@@ -6,6 +6,8 @@ import argparse
 import math
 
 from .. import plots
+from ..atomic import write_atomic
+from ..errors import InputError
 from ..study import ForceStudyResult, Study, StudyResult
 from ..textout import (
     SLICE_COLUMNS,
@@ -13,6 +15,7 @@ from ..textout import (
     convergence_summary,
     force_csv,
     force_records,
+    pressure_text,
     significant,
     table_text,
 )
@@ -30,6 +33,7 @@ from .common import (
     slice_list,
     solver_label,
 )
+from .outputs import Extra, check_distinct, check_path, out_path
 
 
 def add_parser(sub) -> None:
@@ -81,6 +85,15 @@ def add_parser(sub) -> None:
         plot="the convergence in the slices (or, with one count, the force "
         "per metre along the body)",
     )
+    p.add_argument(
+        "--pressures",
+        type=out_path("pressure file"),
+        metavar="FILE",
+        help="write the gauge pressure (Pa) along every wetted section's contour at the "
+        "finest slice count to FILE: CSV (slice, x m, side, y m from the keel, z m above "
+        "it, weight m, pressure Pa), or JSON when FILE ends in .json; needs a solver that "
+        "gives pressures (mlm)",
+    )
     p.set_defaults(func=run)
 
 
@@ -109,12 +122,39 @@ def pitched(study: Study) -> bool:
 
 
 def run(args: argparse.Namespace) -> int:
-    return run_study(Study.from_args(args), args.save_case)
+    return run_study(Study.from_args(args), args.save_case, getattr(args, "pressures", None))
 
 
-def run_study(study: Study, save_case: str | None = None) -> int:
-    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file."""
-    return finish(study, outcome(compute(study, save_case)), save_case)
+def run_study(study: Study, save_case: str | None = None, pressures: str | None = None) -> int:
+    """Execute ``study`` and give its outputs; ``save_case`` also writes its case file and
+    ``pressures`` the pressures along the sections' contours."""
+    extra: list[Extra] = []
+    if pressures:
+        check_pressures(study, pressures, save_case)
+    result = compute(study, save_case)
+    if pressures:
+        assert isinstance(result, ForceStudyResult)
+        finest = result.convergence.finest
+        path = pressures
+        extra.append(("--pressures", path, lambda: write_atomic(path, pressure_text(finest, path))))
+    return finish(study, outcome(result), save_case, extra)
+
+
+def check_pressures(study: Study, path: str, save_case: str | None = None) -> None:
+    """Refuse a ``--pressures`` file before any work: a solver that gives none, or a path
+    that cannot be written (or that another output writes)."""
+    from ..solvers.registry import get_solver
+
+    solver = get_solver(study.solver, **dict(study.solver_options))
+    if not getattr(solver, "gives_pressures", False):
+        raise InputError(
+            f"solver {solver.name!r} gives no pressures along the sections' contours; "
+            "use --solver mlm for --pressures"
+        )
+    check_path(path, study, "--pressures")
+    given = [(o, p) for o, p in (("--output", study.output), ("--plot", study.plot),
+                                 ("--save-case", save_case)) if p]  # fmt: skip
+    check_distinct([*given, ("--pressures", path)])
 
 
 def outcome(result: StudyResult) -> Outcome:

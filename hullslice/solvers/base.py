@@ -133,6 +133,9 @@ class SolverBase(abc.ABC):  # noqa: B024 (its two subclasses each add the abstra
     options: ClassVar[Mapping[str, Any]] = {}
     #: The solver's kind, a key of :data:`SOLVER_KINDS` (set by the two base classes).
     kind: ClassVar[str] = ""
+    #: True when the solver returns the pressure along each section's wetted contour
+    #: (:class:`SectionPressures`, in :class:`AddedMass`).
+    gives_pressures: ClassVar[bool] = False
     #: Options whose range the solver checks itself in ``__init__`` (hullslice then refuses
     #: only NaN and infinities in them; otherwise an option with a positive default must be
     #: a positive number).

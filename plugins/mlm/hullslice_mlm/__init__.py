@@ -193,6 +193,7 @@ class MLM(MomentumFormSolver):
     )
     models_separation = True
     positive_pressure = True
+    gives_pressures = True
     own_checks = ("continuation", "smooth_edge_deg", "gravity", "froude_min")
     options: ClassVar[dict[str, Any]] = {
         "section_method": "auto",
