@@ -4,20 +4,18 @@ A case file holds what a command line would give, so that a study can be repeate
 
     # paper.toml: the paper's prism at t = 0.01 s
     mesh = "paper_prism.stl"      # STL or OBJ, relative to this file
-    units = "m"
     mass = 1.0                    # kg
     draft = 0.0383                # m
     velocity = -3.4943            # m/s, negative down
     slices = [16, 32, 64]
 
-:func:`load_case` reads one with the standard library's ``tomllib`` (a data format: nothing
-in the file is executed) and :func:`validate_case` checks every key against :data:`SCHEMA`:
-an unknown key, a value of the wrong type (a quoted number, a boolean for a number, a
-fractional slice count) or out of range (a negative mass, NaN) raises a
-:class:`~hullslice.errors.CaseError` that names the key, the expected type and unit, and
-the offending value. Keys are flat (no tables) except ``solver_options``, whose table is
-passed to the solver as it is. Values are in the command line's units: SI, angles in
-degrees (``pitch``, ``pitch_rate``).
+:func:`load_case` reads one with ``tomllib`` (nothing in it is executed) and
+:func:`validate_case` checks every key against :data:`SCHEMA`: an unknown key, a value of
+the wrong type (a quoted number, a boolean for a number, a fractional slice count) or out
+of range (a negative mass, NaN) raises a :class:`~hullslice.errors.CaseError` that names
+the key, the expected type and unit, and the offending value. Keys are flat except
+``solver_options``, a table passed to the solver as it is. Values are in the command
+line's units: SI, angles in degrees (``pitch``, ``pitch_rate``).
 """
 
 from __future__ import annotations
@@ -31,6 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from .aero import AERO_NUMBERS
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
 from .limits import MAX_CASE_BYTES
@@ -163,6 +162,12 @@ SCHEMA: dict[str, Key] = {
         Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
         Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
+        Key("lift", "text", "", "the air's forces: none, weight (lift equal to the weight at "
+            "touchdown) or coefficients", None, _one_of(("none", "weight", "coefficients"))),
+        *(Key(name, "number", unit, what, check={"wing_area": _positive, "wing_chord": _positive,
+              "cd": _not_negative, "thrust": _not_negative}.get(name))
+          for name, unit, what in AERO_NUMBERS),
+        Key("friction", "flag", "", "the water's friction on the wetted surface (ITTC-57)"),
         Key("max_flagged_share", "number", "", "largest share of the force that slices "
             "outside the solver's range may carry before a run stops", 0.1, _share),
         Key("acceleration", "number", "m/s^2", "vertical acceleration of the body, positive "
@@ -431,6 +436,7 @@ _COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "outp
 _MASS = {"mass", "mass_distribution", "cg", "inertia"}
 _METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
 _MOTION = {"pitch", "forward_speed", "pitch_rate"}
+AERO_KEYS = ("lift", *(name for name, _, _ in AERO_NUMBERS), "friction")  # air, friction
 
 #: The keys that each command takes (besides ``title``, ``command`` and the mesh's).
 COMMAND_KEYS: dict[str, set[str]] = {
@@ -439,7 +445,7 @@ COMMAND_KEYS: dict[str, set[str]] = {
     "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "acceleration", "plot"},
     "simulate": _COMMON | _MASS | _METHOD | _MOTION | {
         "velocity", "t_end", "dt", "draft", "kinematics", "free_pitch", "free_surge",
-        "continue_invalid", "max_flagged_share", "plot", "every", "at",
+        "continue_invalid", "max_flagged_share", "plot", "every", "at", *AERO_KEYS,
     },
 }  # fmt: skip
 

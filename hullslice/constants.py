@@ -12,8 +12,11 @@ __all__ = [
     "LENGTH_UNITS",
     "MAX_SLICES",
     "MAX_STEPS",
+    "NU_SEA",
+    "NU_WATER",
     "P_ATM",
     "P_VAPOUR",
+    "RHO_SEA",
     "RHO_WATER",
     "TOL",
     "G",
@@ -25,6 +28,13 @@ G = 9.81
 
 #: Fresh-water density in kg/m^3 (the paper's characteristic curves were made with it).
 RHO_WATER = 1000.0
+#: Density of sea water, kg/m^3 (ITTC 2011, 15 deg C and 35 g/kg salinity: 1026; 1025 is
+#: the value ditching rules and DNV-RP-C205 take).
+RHO_SEA = 1025.0
+#: Kinematic viscosity of fresh water at 20 deg C and of sea water at 15 deg C, m^2/s
+#: (ITTC 2011 fresh and sea water tables).
+NU_WATER = 1.0e-6
+NU_SEA = 1.19e-6
 #: Atmospheric pressure at sea level, Pa (ISO 2533 standard atmosphere).
 P_ATM = 101325.0
 #: Vapour pressure of water at 20 deg C, Pa (about 2.34 kPa; the IAPWS formulation).

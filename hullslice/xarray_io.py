@@ -58,6 +58,10 @@ UNITS: dict[str, tuple[str, str]] = {
     "flagged_share": ("1", "share of the force carried by flagged slices"),
     "added_mass": ("kg", "heave added mass of a momentum-form solver"),
     "slenderness": ("1", "wetted length over wetted beam"),
+    "air_force": ("N", "vertical force of the air on the body, positive up"),
+    "air_force_x": ("N", "horizontal force of the air on the body, positive forward"),
+    "air_moment": ("N m", "pitch moment of the air about the centre of gravity, nose up"),
+    "friction": ("N", "friction of the water on the wetted surface, positive forward"),
     "chine_wetted": ("", "the water reached a section's chine"),
     "reason": ("", "why the instant or slice is not valid"),
     # sections and force results

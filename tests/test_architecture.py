@@ -56,6 +56,7 @@ LAYERS: dict[str, int] = {
     "hullslice.solvers": 4,
     # 5 forces on the body
     "hullslice.forces": 5,
+    "hullslice.aero": 5,
     # 6 motion in time
     "hullslice.motion": 6,
     # 7 studies: one computation, case files, sweeps

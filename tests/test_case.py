@@ -169,6 +169,16 @@ def test_every_schema_key_has_a_documented_kind_and_unit():
         "dt": "s",
         "acceleration": "m/s^2",
         "max_flagged_share": "",  # a share of the force, 0 to 1
+        "lift_fraction": "",  # a share of the weight, 0 to 2
+        "wing_area": "m^2",
+        "wing_chord": "m",
+        "cl0": "",
+        "cl_alpha": "1/rad",
+        "cd": "",
+        "cm0": "",
+        "cm_alpha": "1/rad",
+        "cm_q": "1/rad",
+        "thrust": "N",
     }
     assert all(k.help for k in SCHEMA.values())
 

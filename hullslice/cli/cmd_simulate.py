@@ -11,6 +11,7 @@ from typing import TextIO
 import numpy as np
 
 from .. import plots
+from ..aero import AERO_NUMBERS
 from ..errors import InputError
 from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
 from ..study import SimulationResult, Study, StudyResult
@@ -39,6 +40,31 @@ from .common import (
 )
 
 TABLE_ROWS = 40
+
+
+def add_aero_options(p) -> None:
+    """The air's forces and the water's friction (a free motion)."""
+    a = p.add_argument_group("air and friction")
+    a.add_argument(
+        "--lift",
+        choices=("none", "weight", "coefficients"),
+        help="the air's forces: none (default), weight (lift equal to the weight at "
+        "touchdown, scaled with the speed squared and the angle of attack) or coefficients "
+        "(--wing-area, --wing-chord and the coefficients below)",
+    )
+    for name, unit, what in AERO_NUMBERS:
+        model = "weight" if name == "lift_fraction" else "coefficients"
+        a.add_argument(
+            "--" + name.replace("_", "-"),
+            type=number(unit),
+            metavar=unit.upper() or "C",
+            help=f"with --lift {model}: {what}" + (f", in {unit}" if unit else ""),
+        )
+    a.add_argument(
+        "--friction",
+        action="store_true",
+        help="add the water's friction on the wetted surface (ITTC-57 line, N)",
+    )
 
 
 def add_parser(sub) -> None:
@@ -110,6 +136,7 @@ def add_parser(sub) -> None:
         help="stop when slices outside the solver's range carry more than this share of "
         f"the force, 0 to 1 (default: {MAX_FLAGGED_SHARE:g})",
     )
+    add_aero_options(p)
     m = p.add_argument_group("method")
     m.add_argument(
         "--slices",
@@ -327,6 +354,11 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
             f"(draft {pk['draft']:.5f} m, velocity {pk['velocity']:.4f} m/s, "
             f"acceleration {pk['acceleration']:.3f} m/s^2)"
         )
+        if pk.get("at_end"):
+            lines.append(
+                "the largest force is the last sample: still rising at the end of the run "
+                "(the peak may lie beyond it; run longer)"
+            )
     reason = history.stop_reason
     lines.append(f"ended: {STOP_RULES.get(reason, reason)}")
     lines.append(

@@ -6,7 +6,7 @@ import argparse
 import json
 from typing import Any
 
-from ..constants import LENGTH_UNITS, RHO_WATER, G
+from ..constants import LENGTH_UNITS, RHO_SEA, RHO_WATER, G
 from ..safety import non_finite
 from ..solvers.registry import DEFAULT_SOLVER
 from ..study import Study
@@ -300,6 +300,23 @@ def add_pose_options(g, pitch_rate: bool = True, forward_speed: bool = True) -> 
         )
 
 
+#: Waters by name, kg/m^3.
+WATERS = {"sea": RHO_SEA, "fresh": RHO_WATER}
+
+
+def water(text: str) -> float:
+    """An argparse type: a water by name (:data:`WATERS`) or a density in kg/m^3."""
+    key = text.strip().lower()
+    if key in WATERS:
+        return WATERS[key]
+    try:
+        return number("kg/m^3")(text)
+    except argparse.ArgumentTypeError:
+        raise argparse.ArgumentTypeError(
+            f"{text!r} is neither sea, fresh nor a density in kg/m^3"
+        ) from None
+
+
 def add_fluid_options(p: argparse.ArgumentParser) -> None:
     g = p.add_argument_group("water")
     g.add_argument(
@@ -308,6 +325,14 @@ def add_fluid_options(p: argparse.ArgumentParser) -> None:
         default=RHO_WATER,
         metavar="KG/M3",
         help=f"water density in kg/m^3 (default: {RHO_WATER:g})",
+    )
+    g.add_argument(
+        "--water",
+        dest="rho",
+        type=water,
+        metavar="sea|fresh",
+        help=f"the water by name: sea ({RHO_SEA:g} kg/m^3, for a ditching) or fresh "
+        f"({RHO_WATER:g} kg/m^3), or a density in kg/m^3",
     )
     g.add_argument(
         "--g",

@@ -200,6 +200,7 @@ def solve_bounded(
     free: tuple[bool, bool, bool],
     fixed: Acceleration | None = None,
     when: str = "",
+    external: tuple[float, float, float] = (0.0, 0.0, 0.0),
 ) -> tuple[MomentumTerms, Acceleration]:
     """The body's accelerations with every section's force at or above its suction bound.
 
@@ -209,13 +210,13 @@ def solve_bounded(
     only grows, so it ends). Returns the terms with their limited sections and the
     accelerations; the arguments are those of :func:`solve_accelerations`.
     """
-    acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when)
+    acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     for _ in range(MAX_BOUND_ROUNDS):
         below = ~terms.limited & (terms.force(acc) < terms.lower)
         if not below.any():
             break
         terms = terms.with_limited(terms.limited | below)
-        acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when)
+        acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     return terms, acc
 
 
@@ -234,6 +235,7 @@ def solve_accelerations(
     free: tuple[bool, bool, bool],
     fixed: Acceleration | None = None,
     when: str = "",
+    external: tuple[float, float, float] = (0.0, 0.0, 0.0),
 ) -> Acceleration:
     """The body's accelerations from ``(M_body + A) q'' = Q0 - m g e_z`` over its free
     degrees of freedom (heave, pitch, surge); the others take ``fixed`` (default zero).
@@ -249,6 +251,9 @@ def solve_accelerations(
         m/s^2.
     free : (bool, bool, bool)
         Whether heave, pitch and surge are free.
+    external : (float, float, float)
+        Forces on the body besides the water's and gravity (the air's, friction): vertical
+        force (N), pitch moment (N m) and horizontal force (N).
 
     Raises
     ------
@@ -261,7 +266,7 @@ def solve_accelerations(
     if not idx:
         return fixed or Acceleration()
     total = terms.matrix[np.ix_(idx, idx)]
-    rhs = terms.generalized[idx]  # a vertical force (buoyancy) acts vertically, not normal
+    rhs = (terms.generalized + np.asarray(external, dtype=np.float64))[idx]
     body = {0: mass, 1: inertia, 2: mass}
     for k, i in enumerate(idx):
         if body[i] is None:

@@ -23,7 +23,9 @@ __all__ = [
 
 #: Why a run may end before its end time, and what each limit means.
 STOP_RULES: dict[str, str] = {
-    "velocity": "the body stopped sinking (vertical velocity >= 0)",
+    "velocity": "the body stopped sinking (vertical velocity >= 0) in a vertical entry; "
+    "with forward speed a ditching goes on (see 'left')",
+    "left": "the body left the water after its first contact (no slice wetted, rising)",
     "chine": "the water reached a section's chine or deck (its widest point)",
     "validity": "slices outside the 2D solver's range of validity carry more than the "
     "allowed share of the force",
@@ -33,7 +35,10 @@ STOP_RULES: dict[str, str] = {
 }
 
 #: The stop rules a run applies by default (``slender`` is recorded, not applied).
-DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "chine", "validity", "pitch")
+DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "left", "chine", "validity", "pitch")
+
+#: The history's forces from outside the water's 2D+t force (the air, friction).
+OUTSIDE = ("air_force", "air_force_x", "air_moment", "friction")
 
 #: Default largest share of the force (sum of the slices' absolute forces) that slices
 #: outside the solver's range may carry before the ``validity`` rule ends a run.
@@ -88,6 +93,14 @@ class History:
         solvers).
     slenderness : (k,) float
         Wetted length over wetted beam (``inf`` when nothing is wetted).
+    air_force, air_force_x : (k,) float
+        The air's vertical and horizontal forces on the body, N (zero without an
+        aerodynamic model, :mod:`hullslice.aero`).
+    air_moment : (k,) float
+        The air's pitch moment about the centre of gravity, N m, nose up.
+    friction : (k,) float
+        The water's friction on the wetted surface along the body, N, positive forward
+        (zero unless asked for).
     stop_reason : str
         ``"t_end"``, ``"end of table"`` or a key of :data:`STOP_RULES`.
     first_crossed : dict
@@ -118,6 +131,10 @@ class History:
     footprint: np.ndarray
     added_mass: np.ndarray
     slenderness: np.ndarray
+    air_force: np.ndarray
+    air_force_x: np.ndarray
+    air_moment: np.ndarray
+    friction: np.ndarray
     stop_reason: str
     first_crossed: Mapping[str, float | None]
     mode: str
@@ -143,6 +160,10 @@ class History:
         "footprint",
         "added_mass",
         "slenderness",
+        "air_force",
+        "air_force_x",
+        "air_moment",
+        "friction",
     )
 
     #: The columns of :meth:`columns`, in order (SI; angles in degrees as named).
@@ -166,6 +187,10 @@ class History:
         "chine_wetted",
         "added_mass",
         "slenderness",
+        "air_force",
+        "air_force_x",
+        "air_moment",
+        "friction",
         "reason",
     )
 
@@ -189,10 +214,14 @@ class History:
         return float(self.flagged_share.max()) if len(self) else 0.0
 
     @property
-    def peak(self) -> dict[str, float]:
+    def peak(self) -> dict[str, float | bool]:
         """The instant of the largest force: ``t``, ``force``, ``acceleration``, ``velocity``,
-        ``draft`` (m), ``pitch_deg``, ``moment``: the names of the command line's outputs."""
+        ``draft`` (m), ``pitch_deg``, ``moment``: the names of the command line's outputs;
+        and ``at_end``, True when it is the last sample of a run of several while the force
+        is still rising (the load's peak may lie beyond the run)."""
         i = int(np.argmax(self.force))
+        last = len(self) - 1
+        at_end = bool(last > 0 and i == last and self.force[last] > self.force[last - 1])
         return {
             "t": float(self.t[i]),
             "force": float(self.force[i]),
@@ -201,6 +230,7 @@ class History:
             "draft": float(self.draft[i]),
             "pitch_deg": float(np.degrees(self.pitch[i])),
             "moment": float(self.moment[i]),
+            "at_end": at_end,
         }
 
     @property
@@ -254,6 +284,7 @@ class _Recorder:
         self.rows: list[dict] = []
         self.first: dict[str, float | None] = dict.fromkeys(STOP_RULES)
         self.stop: str | None = None
+        self.touched = False
 
     def add(
         self,
@@ -261,15 +292,20 @@ class _Recorder:
         r: ForceResult,
         acceleration: float,
         draft: float | None = None,
+        outside: Mapping[str, float] | None = None,
     ) -> bool:
         """Record an instant; True when a stop rule ends the run here. ``draft`` is the
-        body's own when the force was computed at a draft clipped to its height."""
+        body's own when the force was computed at a draft clipped to its height;
+        ``outside`` the air's forces and the friction (zero by default)."""
         share = _valid_share(r)
         slender = r.slenderness
         reasons = sorted({part for text in r.loads.reason if text for part in text.split("; ")})
         w = r.motion.velocity
+        wetted = bool((r.sections.penetration > 0).any())
+        self.touched = self.touched or wetted
         crossed = {
-            "velocity": w >= 0.0,
+            "velocity": w >= 0.0 and r.motion.forward_speed == 0.0,
+            "left": self.touched and not wetted and w > 0.0,
             # flagged by hullslice where the solver does not model the separation at the
             # chine (a flag for another reason, e.g. a float wholly under water, is not it)
             "chine": CHINE_REASON in reasons,
@@ -303,6 +339,8 @@ class _Recorder:
                 "footprint": fp,
                 "added_mass": r.added_mass,
                 "slenderness": slender,
+                **dict.fromkeys(OUTSIDE, 0.0),
+                **(outside or {}),
             }
         )
         for rule, hit in crossed.items():

@@ -37,9 +37,13 @@ from typing import cast
 
 import numpy as np
 
+from ..aero import Aerodynamics, aero_model
 from ..constants import MAX_STEPS
 from ..errors import InputError
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_bounded
+from ..forces.friction import Friction
+from ..forces.friction import friction as wall_friction
+from ..forces.momentum import calm_girth
 from ..geometry import frame
 from ..limits import no_mass
 from ..mesh import Hull
@@ -190,6 +194,8 @@ def simulate(
     stop_on: Iterable[str] = DEFAULT_STOP_ON,
     max_flagged_share: float = MAX_FLAGGED_SHARE,
     progress: Callable[[float, float], None] | None = None,
+    aero: Aerodynamics | str | None = None,
+    friction: bool = False,
 ) -> History:
     """The free motion of a body entering the water.
 
@@ -234,6 +240,12 @@ def simulate(
         :data:`MAX_FLAGGED_SHARE`, 0.1).
     progress : callable, optional
         Called as ``progress(t, t_end)`` after each step.
+    aero : Aerodynamics or str, optional
+        The air's forces on the body (:mod:`hullslice.aero`): a model, or ``"weight"``
+        (lift equal to the weight at touchdown) or ``"none"`` (default).
+    friction : bool
+        Add the water's friction on the wetted surface by the ITTC-57 line (default
+        False; :mod:`hullslice.forces.friction`).
 
     Returns
     -------
@@ -243,10 +255,12 @@ def simulate(
         hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
     )
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
-    if w0 >= 0.0:
+    lifted = aero is not None and aero_model(aero).name != "none"
+    if w0 > 0.0 or (w0 == 0.0 and not lifted):
         raise InputError(
             f"initial velocity {w0:g} m/s is not downward: give a negative vertical velocity "
             "(e.g. -4 for 4 m/s into the water)"
+            + ("" if w0 > 0.0 else ", or the air's lift that holds the body (aero=...)")
         )
     t_end = _positive(t_end, "end time", "s")
     dt = t_end / 1000.0 if dt is None else _positive(dt, "time step", "s")
@@ -277,6 +291,17 @@ def simulate(
     q0 = float(pitch_rate)
     free = (True, bool(free_pitch), bool(free_surge))
     clock = [0.0]
+    air_model = aero_model(aero).start(cast(float, m), g, pose0.pitch, float(forward_speed), w0)
+    x_cg = float(hull.cg[0])
+
+    def outside(y, sections, girth) -> tuple[np.ndarray, dict[str, float]]:
+        """The air's and the friction's (vertical force, moment, horizontal force)."""
+        th, u, w, q = y[1], y[2], y[3], y[4]
+        air = air_model.forces(th, u, w, q)
+        fr = wall_friction(sections, girth, u, model.fluid) if friction else Friction()
+        ext = np.array([air.force_z, air.moment + fr.moment, air.force_x + fr.force_x])
+        return ext, {"air_force": air.force_z, "air_force_x": air.force_x,
+                     "air_moment": air.moment, "friction": fr.force_x}  # fmt: skip
 
     def state_pose(y) -> tuple[Pose, Motion]:
         z, th, u, w, q = y
@@ -289,13 +314,18 @@ def simulate(
         pose, motion = state_pose(y)
         if model.momentum:  # the added mass on the left, solved at this stage
             terms = model.terms(pose, motion)
-            terms, acc = solve_bounded(terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s")
-            r = terms.result(acc, model.solver, model.fluid, motion, float(hull.cg[0]))
-            return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), r
+            girth = -terms.lower / model.fluid.suction_limit
+            ext, parts = outside(y, terms.sections, girth)
+            terms, acc = solve_bounded(
+                terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s", external=ext
+            )
+            r = terms.result(acc, model.solver, model.fluid, motion, x_cg)
+            return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), (r, parts)
         r = model(pose, motion)
-        dq = r.moment / inertia if free_pitch else 0.0
-        du = r.total_x / m if free_surge else 0.0
-        return np.array([w, q, du, r.total / m - g, dq]), r
+        ext, parts = outside(y, r.sections, calm_girth(r.sections))
+        dq = (r.moment + ext[1]) / inertia if free_pitch else 0.0
+        du = (r.total_x + ext[2]) / m if free_surge else 0.0
+        return np.array([w, q, du, (r.total + ext[0]) / m - g, dq]), (r, parts)
 
     y = np.array([frame(hull, pose0.pitch).z_cg(pose0.draft), pose0.pitch, forward_speed, w0, q0])
     rec = _Recorder(stop_on, max_flagged_share)
@@ -304,11 +334,11 @@ def simulate(
     for k in range(steps + 1):
         clock[0] = t
         try:
-            k1, r = rate(y)
+            k1, (r, parts) = rate(y)
         except _PitchLimit:  # past what the model describes: the run ends, whatever stop_on
             rec.end("pitch", t)
             break
-        if rec.add(t, r, k1[3], model.draft(y[0], y[1])) or k == steps:
+        if rec.add(t, r, k1[3], model.draft(y[0], y[1]), parts) or k == steps:
             break
         h = min(dt, t_end - t)
         try:
@@ -339,6 +369,8 @@ def simulate(
         "t_end": t_end,
         "dt": dt,
         "scheme": "classical Runge-Kutta, 4th order, fixed step",
+        **air_model.settings(),
+        "friction": "ITTC-57" if friction else "none",
         "stop_on": list(rec.stop_on),
         "max_flagged_share": rec.max_flagged_share,
     }

@@ -88,9 +88,10 @@ def plot_history(history: Any, title: str | None = None, *, ax: Any = None) -> A
         a.grid(True, alpha=0.3)
     top = axes[0]
     if peak is not None:
+        rising = " (last sample: still rising)" if peak.get("at_end") else ""
         top.plot(
             [peak["t"]], [peak["force"] / scale], "v", color="C1", ms=7,
-            label=f"peak {peak['force'] / scale:.4g} {unit} at t = {peak['t']:.4g} s",
+            label=f"peak {peak['force'] / scale:.4g} {unit} at t = {peak['t']:.4g} s{rising}",
         )  # fmt: skip
     if len(t):
         reason = str(history.stop_reason)

@@ -268,7 +268,9 @@ class AddedMass:
         Added mass per metre of each section, kg/m (``>= 0``).
     rate : (n,) float
         Its rate with the penetration, ``dm_a/dp``, kg/m^2. Zero once the flow has
-        separated (the spray root past the chine).
+        separated (the spray root past the chine). In general the coefficient of ``v^2``
+        in the force per metre: a solver whose force is not the flux of its added mass
+        (the MLM, whose ``v^2`` term is its pressure's integral) gives that here.
     extra : (n,) float
         Force per metre normal to the keel line that does not depend on an acceleration
         (a cross-flow drag), N/m, positive up. Zeros by default.

@@ -308,6 +308,8 @@ def simulation(
             free_surge=study.free_surge,
             stop_on=() if study.continue_invalid else DEFAULT_STOP_ON,
             max_flagged_share=study.max_flagged_share,
+            aero=study.aero(),
+            friction=study.friction,
             **common,
         )
     # a prescribed motion is evaluated over the whole table, limits flagged

@@ -33,7 +33,9 @@ COMMANDS = ("info", "sections", "force", "simulate")
 #: Study fields whose case key (and command-line option) differs: angles, in degrees.
 _CASE_NAMES = {"pitch_deg": "pitch", "pitch_rate_deg_s": "pitch_rate"}
 _FIELD_NAMES = {v: k for k, v in _CASE_NAMES.items()}
-_FLAGS = ("no_fix", "free_pitch", "free_surge", "continue_invalid")
+_FLAGS = ("no_fix", "free_pitch", "free_surge", "continue_invalid", "friction")
+#: The study's fields of the aerodynamic coefficients (:data:`hullslice.aero.COEFFICIENTS`).
+COEFS = ("wing_area", "wing_chord", "cl0", "cl_alpha", "cd", "cm0", "cm_alpha", "cm_q", "thrust")
 _PATHS = ("mesh", "kinematics", "mass_distribution", "output", "plot")
 
 
@@ -116,6 +118,13 @@ class Study:
         CSV of a prescribed motion (t, draft, velocity, ...).
     free_pitch, free_surge, continue_invalid : bool
         Integrate the pitch, the forward speed; go on past the stop rules.
+    lift : str, optional
+        The air's forces (:data:`hullslice.aero.AERO_MODELS`): ``none`` (default),
+        ``weight`` (lift equal to ``lift_fraction`` of the weight at touchdown) or
+        ``coefficients`` (``wing_area`` m^2, ``wing_chord`` m, ``cl0``, ``cl_alpha``, ``cd``,
+        ``cm0``, ``cm_alpha``, ``cm_q`` per rad, ``thrust`` N).
+    friction : bool
+        The water's friction on the wetted surface by the ITTC-57 line.
     max_flagged_share : float
         Largest share of the force that flagged slices may carry before a run stops.
     stations : int, optional
@@ -170,6 +179,18 @@ class Study:
     free_surge: bool = False
     continue_invalid: bool = False
     max_flagged_share: float = MAX_FLAGGED_SHARE
+    lift: str | None = None
+    lift_fraction: float | None = None
+    wing_area: float | None = None
+    wing_chord: float | None = None
+    cl0: float | None = None
+    cl_alpha: float | None = None
+    cd: float | None = None
+    cm0: float | None = None
+    cm_alpha: float | None = None
+    cm_q: float | None = None
+    thrust: float | None = None
+    friction: bool = False
     stations: int | None = None
     every: int | None = None
     at: tuple[float, ...] | None = None
@@ -214,6 +235,7 @@ class Study:
         if self.command == "simulate":
             self._check_motion()
             self._check_rows()
+            self.aero()  # refuses a model's bad values here, before any work
 
     def _check_values(self) -> None:
         """The state and the water, checked by the objects the library computes with (so
@@ -298,6 +320,12 @@ class Study:
     def horizontal_speed(self) -> float:
         """The forward speed in m/s (0 when not given)."""
         return 0.0 if self.forward_speed is None else self.forward_speed
+
+    def aero(self):
+        """The aerodynamic model of this study (:func:`hullslice.aero.model_of`)."""
+        from ..aero import model_of
+
+        return model_of(self.lift, self.lift_fraction, {k: getattr(self, k) for k in COEFS})
 
     @property
     def slice_counts(self) -> tuple[int, ...]:

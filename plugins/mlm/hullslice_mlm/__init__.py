@@ -183,7 +183,8 @@ class MLM(MomentumFormSolver):
     gravity : bool, optional
         Add the hydrostatic pressure (default False).
     froude_min : float, optional
-        Smallest section Froude number ``|v| / sqrt(g h)`` inside the range (default 2).
+        Smallest section Froude number ``|v| / sqrt(g h)`` inside the range (default 2),
+        where ``gravity`` is off (with it the hydrostatic force is in the load).
     """
 
     name = "mlm"
@@ -421,10 +422,11 @@ class MLM(MomentumFormSolver):
         continued = np.any(smooth & (c > e), axis=0)
         submerged = np.any(capped & edge_in, axis=0)
         re_in = np.any(reentrant, axis=0)
+        slow = (froude <= fr_min) & (not self.settings["gravity"])  # else buoyancy is in
         reason = join_reasons(
             n,
             [
-                (froude <= fr_min, f"Fr = |v| / sqrt(g p) <= {fr_min:g} (gravity not negligible)"),
+                (slow, f"Fr = |v| / sqrt(g p) <= {fr_min:g} (gravity not negligible)"),
                 (
                     re_in,
                     "re-entrant contour (the bottom turns back down): its running maximum used",

@@ -1,0 +1,166 @@
+"""The air's forces, the water's friction and the end of a ditching, against closed forms.
+
+References:
+
+- Lift equal to the weight: a body held at the surface with no sink rate stays there.
+- A pitch oscillation with a restoring moment ``C_m,alpha`` and a damping ``C_m,q``:
+  ``I theta'' = q S c (C_m,alpha theta + C_m,q theta' c / (2 V))``, a damped oscillator
+  whose closed form the run follows.
+- The ITTC-57 line: ``C_F = 0.075 / (log10(Re) - 2)^2`` on the wetted surface.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import shapes
+from hullslice.aero import AIR_DENSITY, Coefficients, WeightLift, aero_model, path
+from hullslice.cli import main
+from hullslice.forces.friction import ittc57
+
+from .conftest import MESHES
+
+
+def prism(mass: float = 50.0, length: float = 4.0) -> hs.Hull:
+    v, f = shapes.wedge_prism(length=length, beam=0.5, deadrise_deg=20.0, stations=3)
+    return hs.Hull.from_arrays(v, f, mass=mass)
+
+
+def test_the_path_gives_the_angle_of_attack():
+    speed, gamma, alpha = path(60.0, -1.5, math.radians(8.0))
+    assert speed == pytest.approx(math.hypot(60.0, 1.5), rel=1e-15)
+    assert gamma == pytest.approx(math.atan2(-1.5, 60.0), rel=1e-15)
+    assert alpha == pytest.approx(math.radians(8.0) - gamma, rel=1e-15)
+
+
+def test_lift_equal_to_the_weight_holds_a_body_at_the_surface():
+    hull = prism()
+    g = 9.81
+    u = 20.0
+    # level, no sink rate: coefficients whose lift is the weight at zero angle of attack
+    area = 2.0
+    cl0 = hull.mass * g / (0.5 * AIR_DENSITY * u * u * area)
+    level = Coefficients(area, 0.5, cl0=cl0)
+    h = hs.simulate(hull, 0.0, 0.2, dt=0.002, forward_speed=u, solver="mlm", aero=level,
+                    stop_on=())  # fmt: skip
+    assert np.all(h.draft == 0.0) and np.all(h.force == 0.0)
+    np.testing.assert_allclose(h.air_force, hull.mass * g, rtol=1e-12)
+    assert np.all(h.acceleration == pytest.approx(0.0, abs=1e-12))
+    # pitched 4 deg on a level path: lift equal to the weight at touchdown
+    h = hs.simulate(hull, 0.0, 0.2, dt=0.002, forward_speed=u, pitch=math.radians(4.0),
+                    solver="mlm", aero="weight", stop_on=())  # fmt: skip
+    assert np.all(h.draft == 0.0) and np.all(h.force == 0.0)
+    np.testing.assert_allclose(h.air_force, hull.mass * g, rtol=1e-12)
+    assert h.settings["aero"] == "weight" and h.settings["lift_fraction"] == 1.0
+
+
+def test_the_weight_lift_scales_with_the_speed_squared_and_the_angle():
+    model = WeightLift(0.8).start(1000.0, 9.81, math.radians(6.0), 50.0, -1.0)
+    at_start = model.forces(math.radians(6.0), 50.0, -1.0, 0.0)
+    assert at_start.lift == pytest.approx(0.8 * 1000.0 * 9.81, rel=1e-14)
+    _, _, a0 = path(50.0, -1.0, math.radians(6.0))
+    later = model.forces(math.radians(3.0), 40.0, 0.0, 0.0)
+    expected = 0.8 * 1000.0 * 9.81 * (40.0**2 / (50.0**2 + 1.0)) * math.radians(3.0) / a0
+    assert later.lift == pytest.approx(expected, rel=1e-13)
+    assert later.force_z == pytest.approx(expected, rel=1e-13)  # a level path: lift is up
+
+
+def test_a_pitch_damping_damps_at_the_rate_of_its_closed_form():
+    # water of a negligible density: the air's moment alone turns the body
+    hull = prism(mass=20.0)
+    inertia = hull.pitch_inertia
+    u, area, chord = 30.0, 1.0, 0.5
+    qsc = 0.5 * AIR_DENSITY * u * u * area * chord
+    cm_alpha, cm_q = -0.05, -15.0
+    cl0 = hull.mass * 9.81 / (0.5 * AIR_DENSITY * u * u * area)
+    model = Coefficients(area, chord, cl0=cl0, cm_alpha=cm_alpha, cm_q=cm_q)
+    theta0 = math.radians(2.0)
+    t_end = 1.0
+    h = hs.simulate(
+        hull, 0.0, t_end, dt=1e-3, pitch=theta0, forward_speed=u, free_pitch=True,
+        solver="zarnick", aero=model, fluid=hs.Fluid(rho=1e-9), stop_on=(),
+    )  # fmt: skip
+    omega2 = -qsc * cm_alpha / inertia
+    two_zeta_omega = -qsc * cm_q * chord / (2.0 * u) / inertia
+    decay = 0.5 * two_zeta_omega
+    wd = math.sqrt(omega2 - decay**2)
+    t = np.asarray(h.t)
+    closed = theta0 * np.exp(-decay * t) * (np.cos(wd * t) + decay / wd * np.sin(wd * t))
+    assert decay * t_end > 0.5  # the run shows the damping
+    np.testing.assert_allclose(np.asarray(h.pitch), closed, atol=2e-4 * theta0)
+
+
+def test_the_friction_is_the_ittc_line_on_the_wetted_surface():
+    hull = prism()
+    beta = math.radians(20.0)
+    p, u = 0.03, 12.0
+    fluid = hs.Fluid()
+    h = hs.simulate(hull, -0.5, 0.002, dt=0.001, draft=p, forward_speed=u, solver="zarnick",
+                    friction=True, stop_on=())  # fmt: skip
+    girth = 2.0 * p / math.sin(beta)  # the wedge's two sides to the calm water
+    length = 4.0  # level: the whole prism is wetted
+    re = u * length / fluid.nu
+    cf = 0.075 / (math.log10(re) - 2.0) ** 2
+    assert ittc57(re) == pytest.approx(cf, rel=1e-15)
+    expected = -0.5 * fluid.rho * u * u * girth * length * cf
+    assert h.friction[0] == pytest.approx(expected, rel=1e-9)
+    assert h.settings["friction"] == "ITTC-57"
+
+
+def test_a_peak_at_the_last_sample_is_reported_as_such(capsys):
+    hull = hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+    rising = hs.simulate(hull, -4.0, 0.002, dt=0.0005, slices=16)  # cut while rising
+    assert rising.peak["at_end"]
+    whole = hs.simulate(hull, -4.0, 0.02, dt=0.0005, slices=16, stop_on=())
+    assert not whole.peak["at_end"]
+    rc = main(["simulate", str(MESHES / "paper_prism.stl"), "--mass", "1", "--velocity=-4",
+               "--t-end", "0.002", "--dt", "0.0005", "--slices", "16"])  # fmt: skip
+    assert rc == 0 and "still rising at the end of the run" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("build", "words"),
+    [
+        (lambda: Coefficients(math.nan, 1.0), "reference area nan"),
+        (lambda: Coefficients(-2.0, 1.0), "reference area -2.0"),
+        (lambda: Coefficients(2.0, 0.0), "reference chord 0.0"),
+        (lambda: Coefficients(2.0, 1.0, cl_alpha=math.inf), "C_L,alpha inf"),
+        (lambda: Coefficients(2.0, 1.0, cd=-0.1), "C_D -0.1"),
+        (lambda: WeightLift(2.5), "lift fraction 2.5"),
+        (lambda: WeightLift(math.nan), "lift fraction nan"),
+        (lambda: aero_model("wings"), "unknown aerodynamic model 'wings'"),
+    ],
+)
+def test_bad_aerodynamics_are_refused_in_one_line(build, words):
+    with pytest.raises(hs.InputError, match=words) as err:
+        build()
+    assert "\n" not in str(err.value)
+
+
+def test_the_command_line_refuses_bad_aerodynamics_in_one_line(capsys):
+    base = ["simulate", str(MESHES / "paper_prism.stl"), "--mass", "1", "--velocity=-4",
+            "--t-end", "0.01", "--forward-speed", "5", "--pitch", "4"]  # fmt: skip
+    for extra, words in (
+        (["--lift", "weight", "--lift-fraction", "3"], "lift fraction 3"),
+        (["--lift", "coefficients", "--wing-area=-1", "--wing-chord", "1"], "reference area"),
+        (["--cl0", "0.5"], "--lift coefficients"),
+        (["--lift", "weight", "--pitch", "-45"], "positive angle of attack"),
+    ):
+        rc = main(base + extra)
+        err = capsys.readouterr().err.strip()
+        assert rc != 0 and words in err and len(err.splitlines()) == 1, err
+
+
+def test_sea_water_by_name(capsys):
+    mesh = str(MESHES / "paper_prism.stl")
+    rc = main(["force", mesh, "--mass", "1", "--draft", "0.02", "--velocity=-3", "--water",
+               "sea", "--slices", "16", "--format", "json"])  # fmt: skip
+    assert rc == 0
+    import json
+
+    assert json.loads(capsys.readouterr().out)["rho"] == 1025.0
+    assert hs.Fluid.sea().rho == 1025.0 and hs.Fluid.sea().nu == pytest.approx(1.19e-6)
