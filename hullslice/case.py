@@ -29,7 +29,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .aero import AERO_NUMBERS
+from .aero import AERO_MODELS, AERO_NUMBERS
 from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
 from .limits import MAX_CASE_BYTES
@@ -162,12 +162,12 @@ SCHEMA: dict[str, Key] = {
         Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
         Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
         Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
-        Key("lift", "text", "", "the air's forces: none, weight (lift equal to the weight at "
-            "touchdown) or coefficients", None, _one_of(("none", "weight", "coefficients"))),
+        Key("lift", "text", "", "the air's forces", None, _one_of(tuple(AERO_MODELS))),
         *(Key(name, "number", unit, what, check={"wing_area": _positive, "wing_chord": _positive,
               "cd": _not_negative, "thrust": _not_negative}.get(name))
           for name, unit, what in AERO_NUMBERS),
         Key("friction", "flag", "", "the water's friction on the wetted surface (ITTC-57)"),
+        Key("check", "flag", "", "also run at half the step and twice the slices (simulate)"),
         Key("max_flagged_share", "number", "", "largest share of the force that slices "
             "outside the solver's range may carry before a run stops", 0.1, _share),
         Key("acceleration", "number", "m/s^2", "vertical acceleration of the body, positive "
@@ -436,7 +436,7 @@ _COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "outp
 _MASS = {"mass", "mass_distribution", "cg", "inertia"}
 _METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
 _MOTION = {"pitch", "forward_speed", "pitch_rate"}
-AERO_KEYS = ("lift", *(name for name, _, _ in AERO_NUMBERS), "friction")  # air, friction
+AERO_KEYS = ("lift", *(name for name, _, _ in AERO_NUMBERS), "friction", "check")
 
 #: The keys that each command takes (besides ``title``, ``command`` and the mesh's).
 COMMAND_KEYS: dict[str, set[str]] = {

@@ -65,6 +65,12 @@ def add_aero_options(p) -> None:
         action="store_true",
         help="add the water's friction on the wetted surface (ITTC-57 line, N)",
     )
+    a.add_argument(
+        "--check",
+        action="store_true",
+        help="also run at half the time step and at twice the slices, and report how much "
+        "the peak force (%%), its time (s) and the largest pitch (deg) moved",
+    )
 
 
 def add_parser(sub) -> None:
@@ -284,8 +290,12 @@ def outcome(result: StudyResult) -> Outcome:
         figures["footprint"] = lambda: plots.plot_footprint(
             [history], [hull.name], (float(x[0]), float(x[1]))
         )
+    table = _table(hull, history, summary, solver_label(study), chosen, study)
+    if result.check is not None:
+        data["check"] = result.check
+        table += "\n" + check_text(result.check)
     return Outcome(
-        table=_table(hull, history, summary, solver_label(study), chosen, study),
+        table=table,
         data=data,
         csv_columns=list(history.COLUMNS),
         csv_rows=history_records(history, indices=chosen),
@@ -361,6 +371,9 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
             )
     reason = history.stop_reason
     lines.append(f"ended: {STOP_RULES.get(reason, reason)}")
+    hint = solver_hint(history)
+    if hint:
+        lines.append(hint)
     lines.append(
         f"flagged share of the force: largest {100 * summary['max_flagged_share']:.3g} % "
         f"(slices outside the solver's range; a run stops above "
@@ -369,4 +382,52 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
     for rule, t in history.first_crossed.items():
         if t is not None:
             lines.append(f"limit '{rule}' first crossed at t = {t:.5f} s: {STOP_RULES[rule]}")
+    return "\n".join(lines)
+
+
+#: Solvers that carry a body with forward speed and round sections through a ditching.
+DITCHING_SOLVERS = ("mlm", "zarnick")
+
+
+def solver_hint(history) -> str:
+    """A line naming the solvers that can run a case whose solver stopped it early (its
+    range left in the first tenth of the run), or ``""``."""
+    s = history.settings
+    solver = str(s.get("solver", ""))
+    t_end = s.get("t_end")
+    if history.stop_reason not in ("validity", "chine") or solver in DITCHING_SOLVERS:
+        return ""
+    if not len(history) or t_end is None or history.t[-1] > 0.1 * float(t_end):
+        return ""
+    return (
+        f"the solver {solver!r} left its range at t = {history.t[-1]:.4g} s of {t_end:g} s: "
+        "for a ditching, a planing hull or round sections use --solver mlm (the MLM: "
+        "separation, round sections, pressures) or --solver zarnick (planing strip theory)"
+    )
+
+
+#: A peak that moves more than this share under --check is said not to be converged.
+CHECK_TOLERANCE = 0.02
+
+
+def check_text(check: dict) -> str:
+    """The lines of a ``--check``: what the peak, its time and the largest pitch did at half
+    the time step and at twice the slices."""
+    lines = [f"check (peak {significant(check['peak'])} N at t = {check['peak_t']:.5f} s, "
+             f"largest pitch {check['pitch_max_deg']:.3f} deg, dt {check['dt']:g} s, "
+             f"{check['slices']} slices):"]  # fmt: skip
+    for key, what in (("half_step", "half the time step"), ("double_slices", "twice the slices")):
+        c = check[key]
+        lines.append(
+            f"  {what} (dt {c['dt']:g} s, {c['slices']} slices): peak "
+            f"{100 * c['peak_change']:+.3f} %, its time {c['peak_t_change']:+.5f} s, largest "
+            f"pitch {c['pitch_max_change_deg']:+.4f} deg"
+        )
+    worst = check["largest_change"]
+    verdict = "converged" if worst <= CHECK_TOLERANCE else "NOT converged"
+    lines.append(
+        f"  the peak moved by {100 * worst:.3f} % at most: {verdict} to "
+        f"{100 * CHECK_TOLERANCE:g} %" + ("" if worst <= CHECK_TOLERANCE else
+                                          " (refine the step or the slices)")
+    )  # fmt: skip
     return "\n".join(lines)

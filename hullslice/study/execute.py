@@ -3,14 +3,15 @@ result returned as objects (no text), for the outputs to be made from."""
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, fields
-from typing import Any
+from dataclasses import dataclass, fields, replace
+from typing import Any, cast
 
 import numpy as np
 
-from ..errors import OrientationWarning
+from ..errors import InputError, OrientationWarning
 from ..forces import ConvergenceStudy, convergence
 from ..mass import read_mass_distribution
 from ..mesh import Hull, load_hull
@@ -116,6 +117,7 @@ class SimulationResult(StudyResult):
 
     solver: SolverBase
     history: History
+    check: dict[str, Any] | None = None
 
 
 def build_solver(study: Study) -> SolverBase:
@@ -124,8 +126,15 @@ def build_solver(study: Study) -> SolverBase:
 
 
 def fluid(study: Study) -> Fluid:
-    """The study's water."""
+    """The study's water: its density and gravity; the kinematic viscosity of sea water
+    (15 deg C) at a density of :data:`SEA_FROM` or more, else of fresh water (20 deg C)."""
+    if study.rho >= SEA_FROM:
+        return Fluid.sea(rho=study.rho, g=study.g)
     return Fluid(rho=study.rho, g=study.g)
+
+
+#: From this density on (kg/m^3) a study's water is sea water, for its viscosity.
+SEA_FROM = 1020.0
 
 
 def _mass_free(study: Study) -> bool:
@@ -253,7 +262,48 @@ def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> 
     slv = build_solver(study)
     kinematics = None if study.kinematics is None else read_kinematics(study.kinematics)
     history = simulation(study, hull, slv, kinematics, progress=progress)
-    return SimulationResult(study, hull, slv, history)
+    check = convergence_check(study, hull, slv, history) if study.check else None
+    return SimulationResult(study, hull, slv, history, check)
+
+
+def convergence_check(study: Study, hull: Hull, solver: SolverBase, history: History):
+    """The same free motion at half the time step and at twice the slices: how much the
+    peak force, its time and the largest pitch move (``--check``).
+
+    Returns a dict: for ``half_step`` and ``double_slices``, the run's ``dt`` (s) and
+    ``slices``, its ``peak`` (N), ``peak_t`` (s), ``pitch_max_deg``, and the changes from
+    the study's run: ``peak_change`` (a share), ``peak_t_change`` (s),
+    ``pitch_max_change_deg``; and ``largest_change``, the larger share of the two.
+    """
+    if study.kinematics is not None:
+        raise InputError(
+            "--check refines a free motion's step and slices; a prescribed motion has neither"
+        )
+    dt = float(cast(float, history.settings["dt"]))
+    n = study.slice_counts[0]
+    base = _figures(history)
+    out: dict[str, Any] = {"dt": dt, "slices": n, **base}
+    runs = (("half_step", dt / 2.0, n), ("double_slices", dt, 2 * n))
+    for key, step, count in runs:
+        other = simulation(replace(study, dt=step, slices=(count,)), hull, solver)
+        fig = _figures(other)
+        out[key] = {
+            "dt": step, "slices": count, **fig,
+            "peak_change": fig["peak"] / base["peak"] - 1.0 if base["peak"] else math.nan,
+            "peak_t_change": fig["peak_t"] - base["peak_t"],
+            "pitch_max_change_deg": fig["pitch_max_deg"] - base["pitch_max_deg"],
+        }  # fmt: skip
+    out["largest_change"] = max(abs(out[k]["peak_change"]) for k in ("half_step", "double_slices"))
+    return out
+
+
+def _figures(history: History) -> dict[str, float]:
+    pk = history.peak
+    return {
+        "peak": float(pk["force"]),
+        "peak_t": float(pk["t"]),
+        "pitch_max_deg": float(np.degrees(np.asarray(history.pitch)).max()),
+    }
 
 
 def simulation(

@@ -33,7 +33,7 @@ COMMANDS = ("info", "sections", "force", "simulate")
 #: Study fields whose case key (and command-line option) differs: angles, in degrees.
 _CASE_NAMES = {"pitch_deg": "pitch", "pitch_rate_deg_s": "pitch_rate"}
 _FIELD_NAMES = {v: k for k, v in _CASE_NAMES.items()}
-_FLAGS = ("no_fix", "free_pitch", "free_surge", "continue_invalid", "friction")
+_FLAGS = ("no_fix", "free_pitch", "free_surge", "continue_invalid", "friction", "check")
 #: The study's fields of the aerodynamic coefficients (:data:`hullslice.aero.COEFFICIENTS`).
 COEFS = ("wing_area", "wing_chord", "cl0", "cl_alpha", "cd", "cm0", "cm_alpha", "cm_q", "thrust")
 _PATHS = ("mesh", "kinematics", "mass_distribution", "output", "plot")
@@ -125,6 +125,8 @@ class Study:
         ``cm0``, ``cm_alpha``, ``cm_q`` per rad, ``thrust`` N).
     friction : bool
         The water's friction on the wetted surface by the ITTC-57 line.
+    check : bool
+        Also run at half the time step and at twice the slices, and report what moved.
     max_flagged_share : float
         Largest share of the force that flagged slices may carry before a run stops.
     stations : int, optional
@@ -191,6 +193,7 @@ class Study:
     cm_q: float | None = None
     thrust: float | None = None
     friction: bool = False
+    check: bool = False
     stations: int | None = None
     every: int | None = None
     at: tuple[float, ...] | None = None
