@@ -164,3 +164,28 @@ def test_sea_water_by_name(capsys):
 
     assert json.loads(capsys.readouterr().out)["rho"] == 1025.0
     assert hs.Fluid.sea().rho == 1025.0 and hs.Fluid.sea().nu == pytest.approx(1.19e-6)
+
+
+def test_check_reruns_at_half_the_step_and_twice_the_slices(capsys):
+    import json
+
+    mesh = MESHES / "paper_prism.stl"
+    rc = main(["simulate", str(mesh), "--mass", "1", "--velocity=-4", "--t-end", "0.02",
+               "--dt", "0.001", "--slices", "8", "--check", "--format", "json"])  # fmt: skip
+    assert rc == 0
+    check = json.loads(capsys.readouterr().out)["check"]
+    hull = hs.load_hull(mesh, mass=1.0)
+    base = hs.simulate(hull, -4.0, 0.02, dt=0.001, slices=8)
+    half = hs.simulate(hull, -4.0, 0.02, dt=0.0005, slices=8)
+    double = hs.simulate(hull, -4.0, 0.02, dt=0.001, slices=16)
+    assert check["peak"] == pytest.approx(base.peak["force"], rel=1e-12)
+    for key, run in (("half_step", half), ("double_slices", double)):
+        assert check[key]["peak"] == pytest.approx(run.peak["force"], rel=1e-12)
+        change = run.peak["force"] / base.peak["force"] - 1.0
+        assert check[key]["peak_change"] == pytest.approx(change, rel=1e-9, abs=1e-15)
+    largest = max(abs(check[k]["peak_change"]) for k in ("half_step", "double_slices"))
+    assert check["largest_change"] == largest
+    rc = main(["simulate", str(mesh), "--mass", "1", "--velocity=-4", "--t-end", "0.02",
+               "--dt", "0.001", "--slices", "8", "--check"])  # fmt: skip
+    out = capsys.readouterr().out
+    assert "twice the slices (dt 0.001 s, 16 slices)" in out and "converged to 2 %" in out

@@ -58,7 +58,13 @@ def add_aero_options(p) -> None:
             "--" + name.replace("_", "-"),
             type=number(unit),
             metavar=unit.upper() or "C",
-            help=f"with --lift {model}: {what}" + (f", in {unit}" if unit else ""),
+            help=f"with --lift {model}: {what}"
+            + (f", in {unit}" if unit else "")
+            + (
+                ""
+                if name in ("wing_area", "wing_chord")
+                else f" (default: {1 if name == 'lift_fraction' else 0})"
+            ),  # fmt: skip
         )
     a.add_argument(
         "--friction",
