@@ -54,17 +54,14 @@ def add_aero_options(p) -> None:
     )
     for name, unit, what in AERO_NUMBERS:
         model = "weight" if name == "lift_fraction" else "coefficients"
+        given = name in ("wing_area", "wing_chord")
+        default = "" if given else f" (default: {int(model == 'weight')})"
+        in_unit = f", in {unit}" if unit else ""
         a.add_argument(
             "--" + name.replace("_", "-"),
             type=number(unit),
             metavar=unit.upper() or "C",
-            help=f"with --lift {model}: {what}"
-            + (f", in {unit}" if unit else "")
-            + (
-                ""
-                if name in ("wing_area", "wing_chord")
-                else f" (default: {1 if name == 'lift_fraction' else 0})"
-            ),  # fmt: skip
+            help=f"with --lift {model}: {what}{in_unit}{default}",
         )
     a.add_argument(
         "--friction",
