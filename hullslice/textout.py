@@ -387,6 +387,7 @@ def history_summary(history) -> dict[str, Any]:
         "settings": dict(history.settings),
         "steps": len(history),
         "peak": history.peak if len(history) else None,
+        "horizontal": history.horizontal if len(history) else None,
         "stop_reason": history.stop_reason,
         "first_crossed": dict(history.first_crossed),
         "valid": bool(np.all(history.valid)),
@@ -397,7 +398,7 @@ def history_summary(history) -> dict[str, Any]:
 #: Columns of a pressure file (``hullslice force --pressures``), with their units.
 PRESSURE_COLUMNS = (
     ("slice", ""), ("x", "m"), ("side", ""), ("y", "m"), ("z", "m"), ("weight", "m"),
-    ("pressure", "Pa"),
+    ("pressure", "Pa"), ("clipped", ""),
 )  # fmt: skip
 
 
@@ -406,8 +407,9 @@ def pressure_records(result) -> list[dict[str, Any]]:
     slice, its station ``x`` along the earth (m), the side (``port``: ``+y`` from the keel,
     ``starboard``), the point's distance ``y`` from the keel and height ``z`` above it (m),
     its weight ``dy`` (m, so that the weights times the pressures sum to the force per
-    metre) and the gauge pressure (Pa). Points with no weight (dry sections, the ends of a
-    loaded region) are left out."""
+    metre) and the gauge pressure (Pa); ``clipped`` when a point of the section was held
+    at the suction limit (its pressures then sum to more than its force). Points with no
+    weight (dry sections, the ends of a loaded region) are left out."""
     pr = result.pressures
     if pr is None:
         return []
@@ -415,6 +417,7 @@ def pressure_records(result) -> list[dict[str, Any]]:
     x = np.asarray(result.sections.x, dtype=np.float64)
     out = []
     n, _, k = pr.pressure.shape
+    clipped = np.zeros(n, dtype=bool) if pr.clipped is None else np.asarray(pr.clipped)
     for i in range(n):
         for side, name in ((0, "port"), (1, "starboard")):
             for j in range(k):
@@ -425,6 +428,7 @@ def pressure_records(result) -> list[dict[str, Any]]:
                     "slice": i, "x": float(x[i]), "side": name,
                     "y": float(pts.y[i, side, j]), "z": float(pts.z[i, side, j]),
                     "weight": w, "pressure": float(pr.pressure[i, side, j]),
+                    "clipped": bool(clipped[i]),
                 })  # fmt: skip
     return out
 

@@ -372,6 +372,12 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
                 "the largest force is the last sample: still rising at the end of the run "
                 "(the peak may lie beyond it; run longer)"
             )
+    hz = summary.get("horizontal")
+    if hz is not None and np.any(history.forward_speed != 0):
+        lines.append(
+            f"largest horizontal load {significant(hz['force'])} N against the motion at "
+            f"t = {hz['t']:.5f} s ({hz['g']:.3f} g; water, air and friction)"
+        )
     reason = history.stop_reason
     lines.append(f"ended: {STOP_RULES.get(reason, reason)}")
     hint = solver_hint(history)

@@ -141,9 +141,10 @@ class MomentumTerms:
             p = self.added.pressure.pressure(self.velocity, a_n)
             if self.loaded is not None:
                 p = np.where(self.loaded, p, 0.0)
+            below = (p < -fluid.suction_limit).any(axis=(1, 2)) & ~self.limited
             p = np.maximum(p, -fluid.suction_limit)  # the water cavitates first
             p = np.where(self.limited[:, None, None], -fluid.suction_limit, p)
-            pressures = SectionPressureResult(self.added.pressure, p)
+            pressures = SectionPressureResult(self.added.pressure, p, below)
         return ForceResult(
             s, self.velocity, loads, solver.name, fluid, pose, motion, x_cg, MOMENTUM,
             acceleration, a_n, pressures,

@@ -31,10 +31,16 @@ class SectionPressureResult:
         and point) and their weights ``dy`` (m).
     pressure : (n, 2, k) float
         Gauge pressure at each point, Pa, bounded below by the fluid's suction limit.
+    clipped : (n,) bool
+        Sections with a point whose pressure fell below the suction limit and is shown at
+        it (the section's force keeps its own total, bounded as a whole): on them the
+        pressures' integral is above the force per metre. Elsewhere they agree to
+        rounding.
     """
 
     points: SectionPressures
     pressure: np.ndarray
+    clipped: np.ndarray | None = None
 
     def force_per_metre(self) -> np.ndarray:
         """(n,) the pressure's integral over both sides, N/m (``sum(weight p)``)."""

@@ -234,6 +234,22 @@ class History:
         }
 
     @property
+    def horizontal(self) -> dict[str, float]:
+        """The largest horizontal load against the motion: the water's force along the
+        body, the air's and the friction together, ``force`` (N, positive: a
+        deceleration), its ``t`` (s) and ``g``, the deceleration of the body's mass in g
+        (``mass`` from the settings; NaN without it)."""
+        total = np.asarray(self.force_x) + np.asarray(self.air_force_x) + np.asarray(self.friction)
+        if not len(total):
+            return {"force": 0.0, "t": math.nan, "g": math.nan}
+        i = int(np.argmin(total))
+        mass = self.settings.get("mass")
+        g = self.settings.get("g", 9.81)
+        decel = -float(total[i])
+        in_g = decel / (float(mass) * float(g)) if mass and g else math.nan  # type: ignore[arg-type]
+        return {"force": decel, "t": float(self.t[i]), "g": in_g}
+
+    @property
     def penetration(self) -> np.ndarray:
         """(k,) float: the draft, m. Deprecated: use :attr:`draft`."""
         warnings.warn(

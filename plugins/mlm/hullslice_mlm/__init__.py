@@ -408,7 +408,8 @@ class MLM(MomentumFormSolver):
         rho = fluid.rho
         phi = (pv * dy).sum(axis=-1)  # (2, n), m
         ma = np.maximum((pa * dy).sum(axis=-1), 0.0)
-        girth = (np.sqrt(1.0 + fpk**2) * dy).sum(axis=-1)
+        # the bound on suction is the pressure's, point by point: over the loaded width
+        girth = dy.sum(axis=-1)
         added = rho * ma.sum(axis=0)
         rate = rho * np.maximum(phi, 0.0).sum(axis=0)
         vertical = np.zeros(n)
