@@ -13,6 +13,7 @@ All quantities are SI: m, kg, s, N; angles in rad inside the library.
 """
 
 from ._version import __version__
+from .aero import AERO_MODELS, Aerodynamics, Coefficients, WeightLift
 from .case import load_case, validate_case
 from .constants import RHO_WATER, TOL, G
 from .convergence import Richardson, richardson
@@ -55,14 +56,17 @@ from .study import Study, execute
 from .sweeps import sweep
 
 __all__ = [
+    "AERO_MODELS",
     "DEADRISE_ESTIMATORS",
     "RHO_WATER",
     "STOP_RULES",
     "TOL",
     "Acceleration",
     "AddedMass",
+    "Aerodynamics",
     "CaseError",
     "CharacteristicCurves",
+    "Coefficients",
     "ConvergenceStudy",
     "CurveSolver",
     "Fluid",
@@ -97,6 +101,7 @@ __all__ = [
     "Study",
     "UnitsWarning",
     "UnknownSolverError",
+    "WeightLift",
     "__version__",
     "compute_force",
     "convergence",
