@@ -166,9 +166,11 @@ def check_finite(v: np.ndarray, name: str) -> None:
 def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
     import manifold3d
 
+    # fresh writeable copies: manifold3d (nanobind) refuses a read-only array, and
+    # np.ascontiguousarray hands one back uncopied when it is already contiguous
     mesh = manifold3d.Mesh64(
-        vert_properties=np.ascontiguousarray(v, dtype=np.float64),
-        tri_verts=np.ascontiguousarray(f, dtype=np.uint64),
+        vert_properties=np.array(v, dtype=np.float64, order="C", copy=True),
+        tri_verts=np.array(f, dtype=np.uint64, order="C", copy=True),
     )
     man = manifold3d.Manifold(mesh)
     status = man.status()

@@ -189,3 +189,18 @@ def test_check_reruns_at_half_the_step_and_twice_the_slices(capsys):
                "--dt", "0.001", "--slices", "8", "--check"])  # fmt: skip
     out = capsys.readouterr().out
     assert "twice the slices (dt 0.001 s, 16 slices)" in out and "converged to 2 %" in out
+
+
+def test_a_planing_run_out_ends_when_the_body_has_settled():
+    # a prism at a held trim of 4 deg, 8 m/s: it sinks to the draft where the water carries
+    # its weight and stays there; the run ends once it has been still for 0.25 s
+    v, f = shapes.wedge_prism(length=2.0, beam=0.5, deadrise_deg=20.0, stations=3, sides=0.5)
+    hull = hs.Hull.from_arrays(v, f, mass=40.0)
+    h = hs.simulate(hull, -0.3, 10.0, dt=0.005, pitch=math.radians(4.0), forward_speed=8.0,
+                    solver="zarnick", slicing="fixed", slices=32)  # fmt: skip
+    assert h.stop_reason == "settled" and h.t[-1] < 2.0
+    still = h.t >= h.t[-1] - 0.25
+    assert np.all(np.abs(h.velocity[still]) <= 0.05)
+    assert np.all(np.abs(h.acceleration[still]) <= 0.1)
+    # settled: the water's force carries the weight (the acceleration within 0.1 m/s^2)
+    assert h.force[-1] == pytest.approx(hull.mass * 9.81, rel=0.1 / 9.81)

@@ -321,3 +321,21 @@ def test_the_units_warning_without_a_fitting_unit_asks_to_check():
     v, f = box(extents=(0.35, 0.2, 0.1))
     with pytest.warns(hs.UnitsWarning, match="check the mass and the mesh's units"):
         hs.Hull.from_arrays(v, f, mass=1e-30)
+
+
+def test_read_only_arrays_are_handed_to_manifold3d_as_writeable_copies():
+    # manifold3d refuses a read-only array; a repair pass or a cache hands back read-only
+    # views, which np.ascontiguousarray does not copy
+    import numpy as np
+
+    from hullslice import shapes
+    from hullslice.topology import to_manifold
+
+    v, f = shapes.wedge_prism()
+    v = np.asarray(v, dtype=np.float64)
+    f = np.asarray(f, dtype=np.uint64)
+    v.flags.writeable = False
+    f.flags.writeable = False
+    man = to_manifold(v, f, "read-only")
+    # a 1 m prism of a 30-degree wedge 0.2 m wide: half the beam times its height
+    assert man.volume() == pytest.approx(0.1 * 0.1 * np.tan(np.radians(30.0)), rel=1e-12)

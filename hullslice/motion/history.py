@@ -26,6 +26,9 @@ STOP_RULES: dict[str, str] = {
     "velocity": "the body stopped sinking (vertical velocity >= 0) in a vertical entry; "
     "with forward speed a ditching goes on (see 'left')",
     "left": "the body left the water after its first contact (no slice wetted, rising)",
+    "settled": "the body settled in the water: over the last 0.25 s its vertical velocity "
+    "stayed within 0.05 m/s, its pitch rate within 0.5 deg/s and its vertical acceleration "
+    "within 0.1 m/s^2 (floating, or a steady run-out)",
     "chine": "the water reached a section's chine or deck (its widest point)",
     "validity": "slices outside the 2D solver's range of validity carry more than the "
     "allowed share of the force",
@@ -35,7 +38,16 @@ STOP_RULES: dict[str, str] = {
 }
 
 #: The stop rules a run applies by default (``slender`` is recorded, not applied).
-DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "left", "chine", "validity", "pitch")
+DEFAULT_STOP_ON: tuple[str, ...] = ("velocity", "left", "settled", "chine", "validity", "pitch")
+
+#: The ``settled`` rule: the window (s) and the largest vertical velocity (m/s), pitch rate
+#: (rad/s) and vertical acceleration (m/s^2) in it.
+SETTLE_WINDOW, SETTLE_VELOCITY, SETTLE_PITCH_RATE, SETTLE_ACCELERATION = (
+    0.25,
+    0.05,
+    math.radians(0.5),
+    0.1,
+)
 
 #: The history's forces from outside the water's 2D+t force (the air, friction).
 OUTSIDE = ("air_force", "air_force_x", "air_moment", "friction")
@@ -301,6 +313,7 @@ class _Recorder:
         self.first: dict[str, float | None] = dict.fromkeys(STOP_RULES)
         self.stop: str | None = None
         self.touched = False
+        self._still_since: float | None = None
 
     def add(
         self,
@@ -322,6 +335,7 @@ class _Recorder:
         crossed = {
             "velocity": w >= 0.0 and r.motion.forward_speed == 0.0,
             "left": self.touched and not wetted and w > 0.0,
+            "settled": self._settled(t, wetted, w, r.motion.pitch_rate, acceleration),
             # flagged by hullslice where the solver does not model the separation at the
             # chine (a flag for another reason, e.g. a float wholly under water, is not it)
             "chine": CHINE_REASON in reasons,
@@ -365,6 +379,21 @@ class _Recorder:
             if hit and rule in self.stop_on and self.stop is None:
                 self.stop = rule
         return self.stop is not None
+
+    def _settled(self, t: float, wetted: bool, w: float, q: float, a: float) -> bool:
+        """Whether the body has been wetted and still (:data:`SETTLE_VELOCITY`,
+        :data:`SETTLE_PITCH_RATE`, :data:`SETTLE_ACCELERATION`) for :data:`SETTLE_WINDOW`."""
+        still = (
+            wetted
+            and abs(w) <= SETTLE_VELOCITY
+            and abs(q) <= SETTLE_PITCH_RATE
+            and abs(a) <= SETTLE_ACCELERATION
+        )
+        if not still:
+            self._still_since = None
+        elif self._still_since is None:
+            self._still_since = t
+        return self._still_since is not None and t - self._still_since >= SETTLE_WINDOW
 
     def end(self, rule: str, t: float) -> None:
         """End the run here by ``rule`` (a limit the run cannot go past)."""
