@@ -388,6 +388,7 @@ def history_summary(history) -> dict[str, Any]:
         "steps": len(history),
         "peak": history.peak if len(history) else None,
         "horizontal": history.horizontal if len(history) else None,
+        "step_change": history.step_change,
         "stop_reason": history.stop_reason,
         "first_crossed": dict(history.first_crossed),
         "valid": bool(np.all(history.valid)),

@@ -204,3 +204,19 @@ def test_a_planing_run_out_ends_when_the_body_has_settled():
     assert np.all(np.abs(h.acceleration[still]) <= 0.1)
     # settled: the water's force carries the weight (the acceleration within 0.1 m/s^2)
     assert h.force[-1] == pytest.approx(hull.mass * 9.81, rel=0.1 / 9.81)
+
+
+def test_a_step_too_long_for_the_load_is_said_to_be(capsys):
+    mesh = str(MESHES / "paper_prism.stl")
+    hull = hs.load_hull(mesh, mass=1.0)
+    coarse = hs.simulate(hull, -4.0, 0.02, dt=0.002, slices=16)
+    fine = hs.simulate(hull, -4.0, 0.02, dt=0.0002, slices=16)
+    f = np.asarray(coarse.force)
+    largest = np.abs(np.diff(f)).max() / f.max()
+    assert coarse.step_change["share"] == pytest.approx(largest, rel=1e-15) and largest > 0.1
+    assert fine.step_change["share"] < 0.1
+    args = ["simulate", mesh, "--mass", "1", "--velocity=-4", "--t-end", "0.02", "--slices", "16"]
+    assert main([*args, "--dt", "0.002"]) == 0
+    assert "the step may be too long for the load" in capsys.readouterr().out
+    assert main([*args, "--dt", "0.0002"]) == 0
+    assert "the step may be too long" not in capsys.readouterr().out

@@ -14,6 +14,7 @@ from .. import plots
 from ..aero import AERO_NUMBERS
 from ..errors import InputError
 from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
+from ..motion.history import STEP_CHANGE_WARN
 from ..study import SimulationResult, Study, StudyResult
 from ..textout import (
     HISTORY_COLUMNS,
@@ -372,6 +373,13 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
                 "the largest force is the last sample: still rising at the end of the run "
                 "(the peak may lie beyond it; run longer)"
             )
+    jump = history.step_change
+    if history.mode != "prescribed" and jump["share"] > STEP_CHANGE_WARN:
+        lines.append(
+            f"the force changes by {100 * jump['share']:.3g} % of its peak in one step (to "
+            f"t = {jump['t']:.5f} s): the step may be too long for the load; halve --dt or "
+            "run --check"
+        )
     hz = summary.get("horizontal")
     if hz is not None and np.any(history.forward_speed != 0):
         lines.append(

@@ -17,6 +17,7 @@ __all__ = [
     "DEFAULT_STOP_ON",
     "MAX_FLAGGED_SHARE",
     "MAX_PITCH",
+    "STEP_CHANGE_WARN",
     "STOP_RULES",
     "History",
 ]
@@ -48,6 +49,10 @@ SETTLE_WINDOW, SETTLE_VELOCITY, SETTLE_PITCH_RATE, SETTLE_ACCELERATION = (
     math.radians(0.5),
     0.1,
 )
+
+#: A force that changes by more than this share of its peak in one step is not resolved
+#: in time: the summary says so (halve the step, or run --check).
+STEP_CHANGE_WARN = 0.1
 
 #: The history's forces from outside the water's 2D+t force (the air, friction).
 OUTSIDE = ("air_force", "air_force_x", "air_moment", "friction")
@@ -244,6 +249,20 @@ class History:
             "moment": float(self.moment[i]),
             "at_end": at_end,
         }
+
+    @property
+    def step_change(self) -> dict[str, float]:
+        """The largest change of the force between two consecutive samples, as a share of
+        the peak force (``share``), and the time it ends at (``t``): a run whose force jumps
+        by a large share in one step does not resolve its load in time (see
+        :data:`STEP_CHANGE_WARN`)."""
+        f = np.asarray(self.force, dtype=np.float64)
+        peak = float(f.max()) if len(f) else 0.0
+        if len(f) < 2 or not peak > 0.0:
+            return {"share": 0.0, "t": math.nan}
+        jumps = np.abs(np.diff(f))
+        i = int(np.argmax(jumps))
+        return {"share": float(jumps[i] / peak), "t": float(self.t[i + 1])}
 
     @property
     def horizontal(self) -> dict[str, float]:
