@@ -6,7 +6,9 @@ The friction drag of the wetted surface ``S`` moving at the forward speed ``u`` 
 
 (the ITTC 1957 model-ship correlation line, the standard friction line of ship resistance),
 ``L`` the wetted length and ``nu`` the water's kinematic viscosity. ``S`` is the sum of the
-sections' wetted girths times their thickness. The force acts along the keel line at each
+sections' wetted girths times their thickness, each girth the chords from the keel to the
+calm water on both sides (the same for every solver; the spray's wetting above the calm
+water is left out). The force acts along the keel line at each
 section's keel, so it also has a moment about the centre of gravity (nose down when it acts
 below the centre of gravity and the body moves forward).
 """

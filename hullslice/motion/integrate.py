@@ -314,8 +314,7 @@ def simulate(
         pose, motion = state_pose(y)
         if model.momentum:  # the added mass on the left, solved at this stage
             terms = model.terms(pose, motion)
-            girth = -terms.lower / model.fluid.suction_limit
-            ext, parts = outside(y, terms.sections, girth)
+            ext, parts = outside(y, terms.sections, calm_girth(terms.sections))
             terms, acc = solve_bounded(
                 terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s", external=ext
             )
