@@ -255,8 +255,8 @@ def simulate(
         hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
     )
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
-    lifted = aero is not None and aero_model(aero).name != "none"
-    if w0 > 0.0 or (w0 == 0.0 and not lifted):
+    air0 = aero_model(aero)
+    if w0 > 0.0 or (w0 == 0.0 and air0.name == "none"):
         raise InputError(
             f"initial velocity {w0:g} m/s is not downward: give a negative vertical velocity "
             "(e.g. -4 for 4 m/s into the water)"
@@ -291,7 +291,7 @@ def simulate(
     q0 = float(pitch_rate)
     free = (True, bool(free_pitch), bool(free_surge))
     clock = [0.0]
-    air_model = aero_model(aero).start(cast(float, m), g, pose0.pitch, float(forward_speed), w0)
+    air_model = air0.start(cast(float, m), g, pose0.pitch, float(forward_speed), w0)
     x_cg = float(hull.cg[0])
 
     def outside(y, sections, girth) -> tuple[np.ndarray, dict[str, float]]:

@@ -240,7 +240,8 @@ class MLM(MomentumFormSolver):
 
     def _contours(self, sections):
         """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising),
-        the side's extent ``E`` to its widest point (inf: not reached within the grid),
+        the side's extent ``E`` to its widest point (the sampled reach where the grid ends
+        before it),
         the grid's step, and the sides whose contour turns back down."""
         n = len(sections)
         p = np.asarray(sections.penetration, dtype=np.float64)
@@ -278,12 +279,9 @@ class MLM(MomentumFormSolver):
             edge_in = np.ones((2, n), dtype=bool)
             reentrant = np.zeros((2, n), dtype=bool)
         if wedge.any():  # the equivalent wedge, its chine at the section's widest point
-            grid = ds[:, wedge, None] * np.arange(RAW)
-            raw[:, wedge] = tb[:, wedge, None] * grid
             ext_w = np.broadcast_to(chine[wedge], (2, int(wedge.sum())))
             extent[:, wedge] = ext_w
-            reach_w = np.maximum(ext_w, 1e-12)
-            ds[:, wedge] = reach_w / (RAW - 1)
+            ds[:, wedge] = np.maximum(ext_w, 1e-12) / (RAW - 1)
             raw[:, wedge] = tb[:, wedge, None] * ds[:, wedge, None] * np.arange(RAW)
             last[:, wedge] = RAW - 1
             edge_in[:, wedge] = True
@@ -297,7 +295,8 @@ class MLM(MomentumFormSolver):
 
         Returns the heights (2, n, GRID) and their step, the edge ``e`` (the side's
         widest point), the line's ``(offset, slope)`` (``f = offset + slope y`` past the
-        departure), and which sides are sharp and smooth there."""
+        departure), which sides are sharp and smooth there, and the last sample of the real
+        bottom with its slope ``(y_last, s_edge)`` (:func:`_real` goes on with it)."""
         k_raw = raw.shape[-1]
         slope_raw = np.diff(raw, axis=-1) / ds[..., None]
         i_last = np.clip(last, 1, k_raw - 1)
@@ -342,7 +341,7 @@ class MLM(MomentumFormSolver):
         line = f_dep[..., None] + (y - dep[..., None]) * slope[..., None]
         g = np.where(edge_in[..., None] & (y > dep[..., None]), line, inside)
         g = np.maximum.accumulate(g, axis=-1)
-        return g, step, e, (f_dep - slope * dep, slope), sharp, smooth
+        return g, step, e, (f_dep - slope * dep, slope), sharp, smooth, (y_last, s_edge)
 
     # -- the solver ------------------------------------------------------------------------
 
@@ -351,7 +350,9 @@ class MLM(MomentumFormSolver):
         p = np.asarray(sections.penetration, dtype=np.float64)
         v = np.asarray(velocity, dtype=np.float64)
         raw, ds, last, extent, edge_in, reentrant = self._contours(sections)
-        g, step, e, line, sharp, smooth = self._continued(sections, raw, ds, last, extent, edge_in)
+        g, step, e, line, sharp, smooth, (y_last, s_last) = self._continued(
+            sections, raw, ds, last, extent, edge_in
+        )
         target = np.broadcast_to(0.5 * np.pi * p, (2, n))
         c = wagner_root(g, step, target)
         end = step * (GRID - 1)
@@ -366,12 +367,10 @@ class MLM(MomentumFormSolver):
         with np.errstate(divide="ignore", invalid="ignore"):
             cp = np.where(denom > 0, 0.5 * np.pi / denom, 0.0)
         cp = np.where(capped, 0.0, cp)
+        i_end = _interp_rows(g, step, end[..., None] * np.sin(t)) @ wt  # Wagner's, at the end
         far = capped & edge_in
         if far.any():  # past the grid the continuation is straight: c grows as a wedge's
             offset, k_c = line
-            i_end = _interp_rows(g, step, end[..., None] * np.sin(0.5 * np.pi * _U)) @ (
-                0.5 * np.pi * _WU
-            )
             rest = i_end - k_c * end - 0.5 * np.pi * offset  # decays as 1 / c
             with np.errstate(divide="ignore", invalid="ignore"):
                 c_far = (0.5 * np.pi * (p[None, :] - offset) - rest) / k_c
@@ -380,18 +379,12 @@ class MLM(MomentumFormSolver):
             cp = np.where(ok, 0.5 * np.pi / np.where(k_c > 0, k_c, 1.0), cp)
             capped = capped & ~ok
         # past the end of the continuation the contact and the added mass stay
-        h_cap = (_interp_rows(g, step, end[..., None] * np.sin(t)) @ wt) / (0.5 * np.pi)
+        h_cap = i_end / (0.5 * np.pi)
         h = np.where(capped, np.minimum(h_cap, p), p)
         # the pressure: on the real body only, up to the velocity term's change of sign
         y_lim = np.where(edge_in, np.minimum(e, c), c)
         t_lim = np.arcsin(np.clip(y_lim / np.where(c > 0, c, 1.0), 0.0, 1.0))
         t_lim = np.minimum(t_lim, 0.5 * np.pi * (1.0 - 1e-12))
-        k_raw = raw.shape[-1]
-        i_last = np.clip(last, 1, k_raw - 1)
-        y_last = i_last * ds
-        s_last = np.take_along_axis(np.diff(raw, axis=-1), (i_last - 1)[..., None], axis=-1)[
-            ..., 0
-        ] / np.where(ds > 0, ds, 1.0)
 
         def body(y):  # the real bottom's height and slope at y (up to its widest point)
             return _real(raw, ds, y_last, s_last, y)
@@ -449,9 +442,7 @@ class MLM(MomentumFormSolver):
             vertical=vertical,
             diagnostics={
                 "wetted_half_width": 0.5 * (c[0] + c[1]),
-                "pressure_half_width": 0.5 * (yk[0, :, -1] + yk[1, :, -1]) / _U[-1]
-                if NODES
-                else np.zeros(n),
+                "pressure_half_width": 0.5 * (c * np.sin(t_star)).sum(axis=0),
                 "edge_half_width": 0.5 * (e[0] + e[1]),
                 "separated": separated.astype(np.float64),
                 "continued": continued.astype(np.float64),
