@@ -12,6 +12,7 @@ solvers through plugins), and the 2D forces are summed along the body.
 All quantities are SI: m, kg, s, N; angles in rad inside the library.
 """
 
+from . import loads
 from ._version import __version__
 from .aero import AERO_MODELS, Aerodynamics, Coefficients, WeightLift
 from .case import load_case, validate_case
@@ -33,6 +34,7 @@ from .errors import (
     UnknownSolverError,
 )
 from .forces import ConvergenceStudy, ForceResult, compute_force, convergence
+from .loads import FacePressures, FrameLoads, face_pressures
 from .mass import MassDistribution, MassProperties, read_mass_distribution
 from .mesh import Hull, load_hull
 from .motion import STOP_RULES, ForceModel, History, prescribed, read_kinematics, simulate
@@ -69,9 +71,11 @@ __all__ = [
     "Coefficients",
     "ConvergenceStudy",
     "CurveSolver",
+    "FacePressures",
     "Fluid",
     "ForceModel",
     "ForceResult",
+    "FrameLoads",
     "FreeFallMomentumSolver",
     "G",
     "History",
@@ -107,10 +111,12 @@ __all__ = [
     "convergence",
     "cut",
     "execute",
+    "face_pressures",
     "get_solver",
     "list_solvers",
     "load_case",
     "load_hull",
+    "loads",
     "prescribed",
     "read_kinematics",
     "read_mass_distribution",

@@ -57,6 +57,7 @@ LAYERS: dict[str, int] = {
     # 5 forces on the body
     "hullslice.forces": 5,
     "hullslice.aero": 5,
+    "hullslice.loads": 5,
     # 6 motion in time
     "hullslice.motion": 6,
     # 7 studies: one computation, case files, sweeps

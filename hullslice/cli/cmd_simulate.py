@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import shutil
 import sys
 import time
 from collections.abc import Callable
+from dataclasses import replace
 from typing import TextIO
 
 import numpy as np
@@ -39,6 +41,7 @@ from .common import (
     positive_int,
     solver_label,
 )
+from .loads_out import LoadsOutput, add_loads_options, loads_output
 
 TABLE_ROWS = 40
 
@@ -159,6 +162,7 @@ def add_parser(sub) -> None:
     add_section_options(m)
     add_fluid_options(p)
     add_output_options(p, plot="the history (force, acceleration, velocity, draft, pitch)")
+    add_loads_options(p)
     r = p.add_argument_group("rows")
     rows = r.add_mutually_exclusive_group()
     rows.add_argument(
@@ -257,18 +261,37 @@ class Progress:
 
 
 def run(args: argparse.Namespace) -> int:
-    return run_study(Study.from_args(args), args.save_case)
+    return run_study(Study.from_args(args), args.save_case, loads_output(args))
 
 
-def run_study(study: Study, save_case: str | None = None) -> int:
-    """Execute ``study`` (with a progress line on a terminal) and give its outputs."""
+def run_study(study: Study, save_case: str | None = None, loads: LoadsOutput | None = None) -> int:
+    """Execute ``study`` (with a progress line on a terminal) and give its outputs;
+    ``loads`` also writes the face pressures and frame loads (``--pressures-out``)."""
+    every = 0
+    if loads is not None:
+        loads.check(study)
+        every = loads.sections_every(study)
     progress = Progress() if sys.stderr.isatty() else None
     try:
-        result = compute(study, save_case, progress)
+        result = compute(study, save_case, progress, sections_every=every)
     finally:
         if progress is not None:
             progress.done()
-    return finish(study, outcome(result), save_case)
+    out = outcome(result)
+    if loads is None:
+        return finish(study, out, save_case)
+    assert isinstance(result, SimulationResult)
+    line, stage = loads.stage(result.history, result.hull)
+    data = {**out.data, "pressures_out": {"folder": loads.folder, "summary": line}}
+    out = replace(out, table=out.table + "\n" + line, data=data)
+    try:
+        code = finish(study, out, save_case)
+    except BaseException:
+        shutil.rmtree(stage, ignore_errors=True)
+        raise
+    loads.place(stage)
+    print(f"wrote {loads.folder}", file=sys.stderr)
+    return code
 
 
 def outcome(result: StudyResult) -> Outcome:

@@ -67,10 +67,12 @@ def compute(
     save_case: str | None = None,
     progress=None,
     write_mesh: str | None = None,
+    sections_every: int = 0,
 ) -> StudyResult:
-    """Check the outputs can be written (before any work), then execute the study."""
+    """Check the outputs can be written (before any work), then execute the study
+    (``sections_every``: a simulation keeps every Nth instant's slices)."""
     check_output(study, save_case, write_mesh)
-    return execute(study, progress=progress)
+    return execute(study, progress=progress, sections_every=sections_every)
 
 
 #: A file a command writes besides its text, figure and case: ``(option, path, writer)``,

@@ -4,14 +4,16 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..errors import InputError
-from ..forces import CHINE_REASON, MIN_SLENDERNESS, ForceResult
+from ..forces import MIN_SLENDERNESS
 from ..limits import MAX_PITCH
+from ..loads import FacePressures, FrameLoads, SectionRecord, face_pressures
+from ..loads.frames import frame_loads, frame_stations
 
 __all__ = [
     "DEFAULT_STOP_ON",
@@ -127,6 +129,9 @@ class History:
         ``"free fall"``, ``"free motion"`` or ``"prescribed"``.
     settings : dict
         The run's inputs (hull, mass, solver, fluid, slices, time step, ...).
+    sections : tuple of SectionRecord
+        The slices of every kept instant (``sections_every`` of :func:`simulate`), for the
+        structural loads (:meth:`face_pressures`, :meth:`frame_loads`); empty by default.
     """
 
     t: np.ndarray
@@ -156,6 +161,7 @@ class History:
     first_crossed: Mapping[str, float | None]
     mode: str
     settings: Mapping[str, object] = field(default_factory=dict)
+    sections: tuple[SectionRecord, ...] = ()
 
     ARRAYS = (
         "t",
@@ -311,6 +317,57 @@ class History:
 
         return history_to_dataframe(self)
 
+    def face_pressures(self, hull) -> Iterator[FacePressures]:
+        """The pressure on every face of ``hull``'s mesh at each kept instant, one instant
+        at a time (:func:`hullslice.loads.face_pressures`; memory for one instant only).
+
+        Raises
+        ------
+        InputError
+            The run kept no sections (run with ``sections_every``), or its solver gives no
+            pressures.
+        """
+        self._need_sections("face pressures")
+        if not any(rec.has_pressures for rec in self.sections):
+            loaded = [rec for rec in self.sections if np.any(rec.force)]
+            face_pressures(hull, (loaded or self.sections)[0])  # raises, naming the fix
+        return (face_pressures(hull, rec) for rec in self.sections)
+
+    def peak_face_pressures(self, hull) -> tuple[np.ndarray, np.ndarray]:
+        """Each face's largest pressure over the kept instants (Pa) and its time (s; NaN
+        on a face that stays dry)."""
+        peak = np.zeros(len(hull.faces))
+        when = np.full(len(hull.faces), np.nan)
+        for fp in self.face_pressures(hull):
+            higher = fp.pressure > peak
+            peak = np.where(higher, fp.pressure, peak)
+            when = np.where(higher, fp.t, when)
+        return peak, when
+
+    def frame_loads(self, hull, frames=None, *, spacing: float | None = None) -> FrameLoads:
+        """The loads of the frame bays at each kept instant (:mod:`hullslice.loads.frames`).
+
+        Parameters
+        ----------
+        hull : Hull
+            The body of the run.
+        frames : sequence of float, optional
+            The frames' stations along the body's ``x``, m.
+        spacing : float, optional
+            Or a frame at every multiple of this (m).
+        """
+        self._need_sections("frame loads")
+        bounds = (float(hull.bounds[0, 0]), float(hull.bounds[1, 0]))
+        x = frame_stations(bounds, frames, spacing)
+        return frame_loads(self.sections, x, bounds, hull.cg)
+
+    def _need_sections(self, what: str) -> None:
+        if not self.sections:
+            raise InputError(
+                f"{what} need the run's sections, which it did not keep: run it with "
+                "sections_every=N (--pressures-out on the command line)"
+            )
+
     def at(self, t: float) -> dict[str, float]:
         """The numeric columns interpolated linearly at time ``t`` (s)."""
         if not (self.t[0] <= t <= self.t[-1]):
@@ -318,128 +375,6 @@ class History:
         cols = self.columns()
         skip = ("t", "slices", "valid", "valid_share", "chine_wetted", "reason", "slenderness")
         return {k: float(np.interp(t, self.t, v)) for k, v in cols.items() if k not in skip}
-
-
-class _Recorder:
-    """Collects the instants of a run and applies the stop rules."""
-
-    def __init__(
-        self, stop_on: Iterable[str], max_flagged_share: float = MAX_FLAGGED_SHARE
-    ) -> None:
-        self.stop_on = _check_rules(stop_on)
-        self.max_flagged_share = check_share(max_flagged_share)
-        self.rows: list[dict] = []
-        self.first: dict[str, float | None] = dict.fromkeys(STOP_RULES)
-        self.stop: str | None = None
-        self.touched = False
-        self._still_since: float | None = None
-
-    def add(
-        self,
-        t: float,
-        r: ForceResult,
-        acceleration: float,
-        draft: float | None = None,
-        outside: Mapping[str, float] | None = None,
-    ) -> bool:
-        """Record an instant; True when a stop rule ends the run here. ``draft`` is the
-        body's own when the force was computed at a draft clipped to its height;
-        ``outside`` the air's forces and the friction (zero by default)."""
-        share = _valid_share(r)
-        slender = r.slenderness
-        reasons = sorted({part for text in r.loads.reason if text for part in text.split("; ")})
-        w = r.motion.velocity
-        wetted = bool((r.sections.penetration > 0).any())
-        self.touched = self.touched or wetted
-        crossed = {
-            "velocity": w >= 0.0 and r.motion.forward_speed == 0.0,
-            "left": self.touched and not wetted and w > 0.0,
-            "settled": self._settled(t, wetted, w, r.motion.pitch_rate, acceleration),
-            # flagged by hullslice where the solver does not model the separation at the
-            # chine (a flag for another reason, e.g. a float wholly under water, is not it)
-            "chine": CHINE_REASON in reasons,
-            "validity": 1.0 - share > self.max_flagged_share,
-            "slender": slender < MIN_SLENDERNESS,
-        }
-        s = r.sections
-        wet = s.penetration > 0
-        if wet.any():
-            fp = (float((s.x - s.dx / 2)[wet].min()), float((s.x + s.dx / 2)[wet].max()))
-        else:
-            fp = (math.nan, math.nan)
-        self.rows.append(
-            {
-                "t": t,
-                "draft": r.pose.draft if draft is None else draft,
-                "velocity": w,
-                "acceleration": acceleration,
-                "force": r.total,
-                "pitch": r.pose.pitch,
-                "pitch_rate": r.motion.pitch_rate,
-                "forward_speed": r.motion.forward_speed,
-                "force_x": r.total_x,
-                "moment": r.moment,
-                "wetted_length": s.wetted_length,
-                "slices": len(np.unique(s.station[wet])),
-                "valid": r.all_valid,
-                "valid_share": share,
-                "chine_wetted": bool(r.sections.chine_wetted.any()),
-                "reason": "; ".join(reasons),
-                "footprint": fp,
-                "added_mass": r.added_mass,
-                "slenderness": slender,
-                **dict.fromkeys(OUTSIDE, 0.0),
-                **(outside or {}),
-            }
-        )
-        for rule, hit in crossed.items():
-            if hit and self.first[rule] is None:
-                self.first[rule] = t
-            if hit and rule in self.stop_on and self.stop is None:
-                self.stop = rule
-        return self.stop is not None
-
-    def _settled(self, t: float, wetted: bool, w: float, q: float, a: float) -> bool:
-        """Whether the body has been wetted and still (:data:`SETTLE_VELOCITY`,
-        :data:`SETTLE_PITCH_RATE`, :data:`SETTLE_ACCELERATION`) for :data:`SETTLE_WINDOW`."""
-        still = (
-            wetted
-            and abs(w) <= SETTLE_VELOCITY
-            and abs(q) <= SETTLE_PITCH_RATE
-            and abs(a) <= SETTLE_ACCELERATION
-        )
-        if not still:
-            self._still_since = None
-        elif self._still_since is None:
-            self._still_since = t
-        return self._still_since is not None and t - self._still_since >= SETTLE_WINDOW
-
-    def end(self, rule: str, t: float) -> None:
-        """End the run here by ``rule`` (a limit the run cannot go past)."""
-        self.first[rule] = t if self.first[rule] is None else self.first[rule]
-        self.stop = self.stop or rule
-
-    def history(self, end: str, mode: str, settings: dict) -> History:
-        def col(name, dtype):
-            return np.array([row[name] for row in self.rows], dtype=dtype)
-
-        dtypes = {"slices": int, "valid": bool, "chine_wetted": bool, "reason": object}
-        arrays = {name: col(name, dtypes.get(name, float)) for name in History.ARRAYS}
-        arrays["footprint"] = arrays["footprint"].reshape(-1, 2)
-        return History(
-            **arrays,
-            stop_reason=self.stop or end,
-            first_crossed=dict(self.first),
-            mode=mode,
-            settings=settings,
-        )
-
-
-def _valid_share(r: ForceResult) -> float:
-    """Share of the slices' absolute forces carried by valid slices (1 with no force)."""
-    size = np.abs(r.force)
-    total = size.sum()
-    return float(size[r.loads.valid].sum() / total) if total > 0 else 1.0
 
 
 def check_share(value: float) -> float:

@@ -51,8 +51,9 @@ from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count
 from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
 from ..solvers.registry import get_solver
 from ..state import Acceleration, Fluid, Motion, Pose
-from .history import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, MAX_PITCH, History, _Recorder
+from .history import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, MAX_PITCH, History
 from .kinematics import check_kinematics, kinematics_accelerations
+from .recorder import Recorder
 
 __all__ = ["ForceModel", "prescribed", "simulate"]
 
@@ -196,6 +197,7 @@ def simulate(
     progress: Callable[[float, float], None] | None = None,
     aero: Aerodynamics | str | None = None,
     friction: bool = False,
+    sections_every: int = 0,
 ) -> History:
     """The free motion of a body entering the water.
 
@@ -246,6 +248,10 @@ def simulate(
     friction : bool
         Add the water's friction on the wetted surface by the ITTC-57 line (default
         False; :mod:`hullslice.forces.friction`).
+    sections_every : int
+        Keep the slices of every Nth instant, with the last, in :attr:`History.sections`
+        for the structural loads (:meth:`History.face_pressures`,
+        :meth:`History.frame_loads`); default 0, none.
 
     Returns
     -------
@@ -327,7 +333,7 @@ def simulate(
         return np.array([w, q, du, (r.total + ext[0]) / m - g, dq]), (r, parts)
 
     y = np.array([frame(hull, pose0.pitch).z_cg(pose0.draft), pose0.pitch, forward_speed, w0, q0])
-    rec = _Recorder(stop_on, max_flagged_share)
+    rec = Recorder(stop_on, max_flagged_share, sections_every)
     steps = math.ceil(t_end / dt - 1e-9)
     t = 0.0
     for k in range(steps + 1):
@@ -388,6 +394,7 @@ def prescribed(
     stop_on: Iterable[str] = (),
     max_flagged_share: float = MAX_FLAGGED_SHARE,
     progress: Callable[[float, float], None] | None = None,
+    sections_every: int = 0,
 ) -> History:
     """The force along a prescribed motion.
 
@@ -415,6 +422,7 @@ def prescribed(
     with a free-fall solver.
     """
     kin = check_kinematics(kinematics, hull)
+    rec = Recorder(stop_on, max_flagged_share, sections_every)
     model = ForceModel(
         hull,
         slices=slices,
@@ -425,7 +433,6 @@ def prescribed(
         need_mass=False,
     )
     accelerations = kinematics_accelerations(kin) if model.momentum else None
-    rec = _Recorder(stop_on, max_flagged_share)
     t_all = kin["t"]
     g = model.fluid.g
     for i, t in enumerate(t_all):

@@ -257,11 +257,15 @@ def _force(study: Study) -> ForceStudyResult:
     return ForceStudyResult(study, hull, slv, result)
 
 
-def _simulate(study: Study, progress: Callable[[float, float], None] | None) -> SimulationResult:
+def _simulate(
+    study: Study, progress: Callable[[float, float], None] | None, sections_every: int = 0
+) -> SimulationResult:
     hull = load(study)
     slv = build_solver(study)
     kinematics = None if study.kinematics is None else read_kinematics(study.kinematics)
-    history = simulation(study, hull, slv, kinematics, progress=progress)
+    history = simulation(
+        study, hull, slv, kinematics, progress=progress, sections_every=sections_every
+    )
     check = convergence_check(study, hull, slv, history) if study.check else None
     return SimulationResult(study, hull, slv, history, check)
 
@@ -313,6 +317,7 @@ def simulation(
     kinematics: dict[str, np.ndarray] | None = None,
     *,
     progress: Callable[[float, float], None] | None = None,
+    sections_every: int = 0,
 ) -> History:
     """The history of a ``simulate`` study on a hull already read with its mass: the one
     computation behind ``hullslice simulate``, ``hullslice run`` and every case of a sweep
@@ -331,6 +336,8 @@ def simulation(
         default: read from the study's file).
     progress : callable, optional
         ``progress(t, t_end)`` (s) called as the run advances.
+    sections_every : int
+        Keep every Nth instant's slices for the structural loads (default 0: none).
     """
     slv = build_solver(study) if solver is None else solver
     if study.kinematics is not None and kinematics is None:
@@ -342,6 +349,7 @@ def simulation(
         "deadrise": study.deadrise,
         "slicing": study.slicing,
         "progress": progress,
+        "sections_every": sections_every,
     }
     if kinematics is None:
         assert study.velocity is not None and study.t_end is not None  # checked by Study
@@ -366,7 +374,12 @@ def simulation(
     return prescribed(hull, kinematics, max_flagged_share=study.max_flagged_share, **common)
 
 
-def execute(study: Study, *, progress: Callable[[float, float], None] | None = None) -> StudyResult:
+def execute(
+    study: Study,
+    *,
+    progress: Callable[[float, float], None] | None = None,
+    sections_every: int = 0,
+) -> StudyResult:
     """Compute a study.
 
     Parameters
@@ -375,6 +388,8 @@ def execute(study: Study, *, progress: Callable[[float, float], None] | None = N
         What to compute.
     progress : callable, optional
         ``progress(t, t_end)`` (s) called as a simulation advances.
+    sections_every : int
+        A simulation keeps every Nth instant's slices (default 0: none).
 
     Returns
     -------
@@ -388,4 +403,4 @@ def execute(study: Study, *, progress: Callable[[float, float], None] | None = N
         return _sections(study)
     if study.command == "force":
         return _force(study)
-    return _simulate(study, progress)
+    return _simulate(study, progress, sections_every)
