@@ -12,7 +12,8 @@ every step (naive); the cost of an evaluation at a new pitch (the cut must be re
 once the hull has its first region, and the cost of making that region. Then: the cached
 cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
 2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
-RK4 step of 4 evaluations against 0.5 ms, peak memory), the paper's free-fall case from
+RK4 step of 4 evaluations against 0.5 ms, peak memory), the face pressures of a saved
+instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's free-fall case from
 process start to printed report, and the time of ``import hullslice`` and ``hullslice
 --help``.
 
@@ -298,6 +299,52 @@ def bench_solvers(table: Table, hull, repeat: int) -> None:
     table.add("mlm / zarnick evaluation", f"{ratio:.2f}", "at most 2", ratio <= 2.0)
 
 
+def bench_face_loads(table: Table, results: dict, repeat: int) -> None:
+    """The face pressures of one saved instant (:func:`hullslice.face_pressures`) and one
+    ``.vtu`` file of them, at 128k and 1M faces: the fuselage at 0.8 m draft, 6 deg,
+    60 m/s forward, 1.5 m/s down, ``mlm`` on 128 fixed slices; time per instant and the
+    mapping's peak memory (tracemalloc, which counts numpy's arrays)."""
+    import tracemalloc
+
+    from hullslice.loads import SectionRecord, face_geometry, face_pressures
+
+    for size in ("128k", "1M"):
+        if size not in results:
+            continue
+        hull = results[size]["hull"]
+        r = hs.compute_force(
+            hull, hs.Pose(0.8, 0.105), hs.Motion(-1.5, 60.0), solver="mlm", slices=128,
+            slicing="fixed",
+        )  # fmt: skip
+        rec = SectionRecord.of(0.0, r)
+        face_geometry(hull)  # kept on the hull, made once per run
+        t = median_time(lambda h=hull: face_pressures(h, rec), repeat)
+        tracemalloc.start()
+        fp = face_pressures(hull, rec)
+        _, peak = tracemalloc.get_traced_memory()
+        tracemalloc.stop()
+        err = abs(fp.total / r.total - 1.0)
+        table.add(f"{size}: face pressures of one instant", fmt(t))
+        table.add(f"{size}: face pressures' peak memory", f"{peak / 2**20:.0f} MiB")
+        table.add(
+            f"{size}: face loads against slice forces", f"{err:.1e}", "below 1e-3", err < 1e-3
+        )
+        if importlib.util.find_spec("meshio") is not None:
+            import meshio
+
+            from hullslice.loads.files import _vtu
+
+            with tempfile.TemporaryDirectory() as tmp:
+                path = Path(tmp) / "p.vtu"
+                t_vtu = median_time(
+                    lambda h=hull: _vtu(meshio, h, path, {"pressure": fp.pressure}), 1
+                )
+                table.add(
+                    f"{size}: one .vtu of the face pressures",
+                    f"{fmt(t_vtu)}, {path.stat().st_size / 2**20:.1f} MiB",
+                )
+
+
 def bench_steps(table: Table, repeat: int) -> None:
     hull = hs.load_hull(ROOT / "meshes" / "paper_prism.stl", mass=1.0)
     t_end = 0.02
@@ -540,6 +587,8 @@ def main() -> None:
         print("time step at a held and a free pitch ...")
         bench_pitch_steps(table, Path(tmp), results, args.repeat)
         bench_fresh_cuts(table, results["128k"]["path"])
+        print("face pressures ...")
+        bench_face_loads(table, results, args.repeat)
         if not args.quick:
             bench_big_simulation(table, results["1M"]["path"])
             if not args.no_sweep:

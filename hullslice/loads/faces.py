@@ -3,10 +3,13 @@
 At an instant every face of the mesh gets a pressure (Pa, gauge) from the 2D solutions of
 the slices around it:
 
-* **Where.** The face is placed in the earth frame by the instant's pose. Its centroid's
-  earth ``X`` sets the two stations around it and the weight of each (linear between the
-  stations' mid-points; at the first and last slices, the slice's own pressure out to its
-  outer edge); a face outside the slices is dry.
+* **Where.** The face is placed in the earth frame by the instant's pose and cut at the
+  stations it crosses and at the ends of the slices. On each piece the pressure is linear
+  in earth ``X`` between the two stations around it (at the first and last slices, the
+  slice's own pressure out to its outer edge), integrated exactly; a face outside the
+  slices is dry. Where the slices are not of equal thickness (a fixed slicing's partial
+  slices at the ends) each station's pressure is scaled by its slice's thickness over the
+  integral of its interpolation weight, so that the loads still add up.
 * **Which faces.** A section's pressure acts on the bottom it was computed for: faces
   whose outward normal points down, no higher above the keel than the section's loaded
   contour (with a margin of half the contour's height and the face's own height), so that
@@ -20,9 +23,10 @@ the slices around it:
   integral is exact from ``P0`` and ``P1`` at the face's three corners. The face's
   pressure is that load over its projected area: the **mean** of the section pressure
   over the face, so that a face's load (pressure times area, along its inward normal)
-  has exactly the section's vertical load on the face's footprint. On a prism the faces'
-  loads add up to the slices' forces to rounding; elsewhere the error is that of the
-  linear interpolation between stations, and shrinks with the faces' size along the body.
+  has exactly the section's vertical load on the face's footprint. The faces' vertical
+  loads add up to the slices' forces to rounding on any mesh whose bottom the faces
+  tile; what remains is the faces' share of the wetted bottom (a face that does not face
+  down, or lies above the loaded contour, takes none).
 * **Hydrostatics.** Where the slices' forces hold the calm water's hydrostatic pressure
   (a solver's gravity option), every face below the calm water also gets ``rho g`` times
   its mean depth (exact for a plane face cut by the water line): their sum is the
@@ -357,14 +361,29 @@ def _dynamic_load(rec: SectionRecord, corners: np.ndarray, normal: np.ndarray) -
     end = (gap <= 0) | (xc < xs[j]) | (xc > xs[j1])
     slope = np.where(end, 0.0, 1.0 / np.where(gap > 0, gap, 1.0))
     x_rel = xs_ - xs[j][:, None]
+    scale = _scales(rec, xs, first, start, stop)
     total = np.zeros(len(parent))
     for st, level, sign in ((j, 1.0, -1.0), (j1, 0.0, 1.0)):
         entry = _entry_of(rec, stations[st], first[st], yc[parent])
         part, moment = _footprint_integrals(tables, entry, rec.y_keel, x_rel, ys_)
         on = _on_contour(tables, entry, rec, yc[parent], zc[parent], dz[parent])
-        total += np.where(on, level * part + sign * slope * moment, 0.0)
+        total += np.where(on, scale[st] * (level * part + sign * slope * moment), 0.0)
     load[idx] = np.bincount(parent, weights=total, minlength=len(idx))
     return load
+
+
+def _scales(rec: SectionRecord, xs: np.ndarray, first: np.ndarray, start: float, stop: float):
+    """Per station, its slice's thickness over the integral of its interpolation weight
+    (1 for equal slices), so that the faces' loads add up to the slices' forces when the
+    slices are not equal (a fixed slicing's partial slices at the ends)."""
+    if len(xs) == 1:
+        return np.array([rec.dx[first[0]] / (stop - start)]) if stop > start else np.ones(1)
+    half = 0.5 * np.diff(xs)
+    weight = np.concatenate([[0.0], half]) + np.concatenate([half, [0.0]])
+    weight[0] += xs[0] - start
+    weight[-1] += stop - xs[-1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(weight > 0, rec.dx[first] / weight, 1.0)
 
 
 def _split(x: np.ndarray, y: np.ndarray, parent: np.ndarray, lines: np.ndarray):
