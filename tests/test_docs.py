@@ -46,6 +46,7 @@ SLOW = (
     "python examples/sweep_envelope.py",
     "hullslice simulate meshes/fuselage_full.obj",
     "python examples/ditching.py",
+    "python examples/structure_loads.py",
     "python examples/drop_test.py",
     "python examples/ditching_pitch.py",
 )

@@ -15,6 +15,7 @@ from ._common import _pyplot as _pyplot
 from ._common import choose_backend, in_notebook, save
 from .body import plot_area_curve, plot_sections
 from .history import plot_footprint, plot_history
+from .loads import plot_face_pressure, plot_frame_loads
 from .results import plot_convergence, plot_force_distribution
 from .views import plot_views
 
@@ -23,8 +24,10 @@ __all__ = [
     "in_notebook",
     "plot_area_curve",
     "plot_convergence",
+    "plot_face_pressure",
     "plot_footprint",
     "plot_force_distribution",
+    "plot_frame_loads",
     "plot_history",
     "plot_sections",
     "plot_views",
