@@ -18,7 +18,7 @@ from ..paths import markdown_fence, markdown_text, printable, run_inputs
 from ..study import Study, execute
 from ..textout import csv_text, json_text
 from . import cmd_info
-from .common import out_path, write_error
+from .common import check_extras, out_path, write_error
 from .studies import command_module
 
 
@@ -70,6 +70,7 @@ def run(args: argparse.Namespace) -> int:
     study = Study.from_case(case, checked=True)
     # the report gives every output itself; the case file is an input, like the mesh
     study = dataclasses.replace(study, format=None, output=None, plot=None, case_file=args.case)
+    check_extras(study, figures=True)
     command = study.command
     outcome = command_module(command).outcome(execute(study))
     info = outcome if command == "info" else cmd_info.outcome(execute(study.for_command("info")))

@@ -123,16 +123,27 @@ def _inputs(case: str, plan) -> list[tuple[str, Path]]:
     return found
 
 
+def _check_extras(base: dict) -> None:
+    """The libraries the sweep's cases need besides the sweep's own, before any work: the
+    mesh format's, and pymeshfix for ``repair = "close"``."""
+    from ..extras import need
+    from ..readers.extra import require_format
+
+    if base.get("repair") == "close":
+        need("repair", "pymeshfix", 'repair = "close"')
+    require_format(Path(base["mesh"]).suffix)
+
+
 def run(args: argparse.Namespace) -> int:
     from .. import sweeps
-    from ..xarray_io import output_format, write_dataset
+    from ..xarray_io import require_output, write_dataset
 
     sweeps.require("xarray")
     if args.workers != 1 or args.scheduler:
         sweeps.require("distributed")
     partial = None
     if args.output:
-        ext = output_format(args.output)
+        ext = require_output(args.output)  # the format's library, before any work
         target = Path(args.output)
         store = ext == ".zarr" and target.is_dir()
         if store and not ((target / "zarr.json").is_file() or (target / ".zgroup").is_file()):
@@ -156,6 +167,7 @@ def run(args: argparse.Namespace) -> int:
     elif args.resume:
         raise InputError("--resume continues the sweep written to -o PATH: give -o PATH")
     plan = sweeps.load_sweep(args.case)
+    _check_extras(plan.base)
     if args.output:
         check_not_an_input(args.output, _inputs(args.case, plan), "--output")
     progress = Progress() if sys.stderr.isatty() else None

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..atomic import write_atomic
 from ..errors import InputError, MissingDependencyError
+from ..extras import need
 
 #: Instants (or slices) whose share of the force on slices outside the validity range is
 #: above this are marked.
@@ -68,9 +69,8 @@ def _backend_chosen(matplotlib: Any) -> bool:
 
 
 def _pyplot() -> Any:
+    matplotlib = need("plot", "matplotlib", "drawing figures")
     try:
-        import matplotlib
-
         backend = choose_backend(
             chosen=_backend_chosen(matplotlib),
             notebook=in_notebook(),
@@ -80,9 +80,10 @@ def _pyplot() -> Any:
         if backend is not None:
             matplotlib.use(backend)
         import matplotlib.pyplot as plt
-    except ImportError:
+    except ImportError:  # a broken installation: its own error, with the install hint
         raise MissingDependencyError(
-            "plots need matplotlib: pip install 'hullslice[plot]' (or pip install matplotlib)"
+            "drawing figures needs matplotlib.pyplot, which cannot be imported: pip install "
+            "'hullslice[plot]' (or pip install matplotlib)"
         ) from None
     return plt
 

@@ -15,7 +15,8 @@ from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager, nullcontext
 from typing import Any
 
-from ..errors import InputError, MissingDependencyError
+from ..errors import InputError
+from ..extras import need
 from .plan import Plan
 from .run import HullState, _mass_key, run_batch
 
@@ -42,15 +43,10 @@ TAIL_TASK_CASES = 2
 
 
 def require(*modules: str) -> None:
-    import importlib
-
+    """Import the libraries of the extra ``hullslice[sweep]`` a sweep will use, or raise
+    the one-line hint naming what to install."""
     for m in modules:
-        try:
-            importlib.import_module(m)
-        except ImportError:
-            raise MissingDependencyError(
-                f"sweeps need {m}, which is not installed: pip install 'hullslice[sweep]'"
-            ) from None
+        need("sweep", m, "a sweep")
 
 
 def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
