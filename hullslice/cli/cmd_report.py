@@ -146,9 +146,18 @@ def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:
     return files
 
 
+#: Keys of a case that are not inputs of its computation: its outputs (the report gives its
+#: own), the rows its tables show, and the title (the report's heading).
+NOT_INPUTS = ("format", "output", "plot", "every", "at", "title")
+
+
 def _inputs(case) -> list[tuple[str, str, str]]:
+    """The inputs table: ``(key, value, unit)`` of every input of the case (not
+    :data:`NOT_INPUTS`), in the case's order."""
     rows = []
     for name, value in case.items():
+        if name in NOT_INPUTS:
+            continue
         key = SCHEMA[name]
         if isinstance(value, dict):
             value = ", ".join(f"{k} = {v}" for k, v in value.items())
