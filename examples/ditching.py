@@ -22,6 +22,7 @@ from pathlib import Path
 
 import hullslice as hs
 from hullslice import plots
+from hullslice.progress import terminal_progress
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -43,21 +44,24 @@ def main() -> None:
     solver = hs.get_solver(args.solver, **options)
     histories, labels = [], []
     for deg in (0.0, 4.0, 8.0):
-        h = hs.simulate(
-            hull,
-            -1.5,
-            args.t_end,
-            dt=args.dt,
-            pitch=math.radians(deg),
-            forward_speed=60.0,
-            free_pitch=args.free_pitch,
-            slices=args.slices,
-            slicing="fixed",
-            solver=solver,
-            fluid=hs.Fluid.sea(),
-            aero="weight",
-            friction=True,
-        )
+        # a progress line on a terminal's stderr (nothing when it is not one)
+        with terminal_progress(f"pitch {deg:g} deg") as progress:
+            h = hs.simulate(
+                hull,
+                -1.5,
+                args.t_end,
+                dt=args.dt,
+                pitch=math.radians(deg),
+                forward_speed=60.0,
+                free_pitch=args.free_pitch,
+                slices=args.slices,
+                slicing="fixed",
+                solver=solver,
+                fluid=hs.Fluid.sea(),
+                aero="weight",
+                friction=True,
+                progress=progress,
+            )
         pk = h.peak
         print(
             f"pitch {deg:3.0f} deg: peak force {pk['force'] / 1e3:8.1f} kN at t = {pk['t']:.3f} s, "

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 import hullslice as hs
+from hullslice.progress import terminal_progress
 
 ROOT = Path(__file__).resolve().parents[1]
 SOLVERS = ("mlm", "zarnick")
@@ -34,10 +35,12 @@ SOLVERS = ("mlm", "zarnick")
 
 def run(solver: str, t_end: float) -> hs.History:
     hull = hs.load_hull(ROOT / "meshes" / "fuselage_full.obj", mass=60000.0)
-    return hs.simulate(
-        hull, -1.5, t_end, dt=0.004, pitch=math.radians(8.0), forward_speed=60.0,
-        free_pitch=True, slices=64, slicing="fixed", solver=solver, stop_on=(),
-    )  # fmt: skip
+    with terminal_progress(solver) as progress:  # a progress line on a terminal's stderr
+        return hs.simulate(
+            hull, -1.5, t_end, dt=0.004, pitch=math.radians(8.0), forward_speed=60.0,
+            free_pitch=True, slices=64, slicing="fixed", solver=solver, stop_on=(),
+            progress=progress,
+        )  # fmt: skip
 
 
 def main(argv: list[str] | None = None) -> int:

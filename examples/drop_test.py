@@ -51,6 +51,7 @@ from scipy.interpolate import CubicSpline
 
 import hullslice as hs
 from hullslice import shapes
+from hullslice.progress import terminal_progress
 
 #: The drop test (Zhao, Faltinsen & Aarsnes 1996, Section 5 and Figure 15).
 TEST = {
@@ -161,13 +162,17 @@ def runs(slices: int) -> dict[str, dict[str, hs.History]]:
     out = {}
     for label, name, options in SOLVERS:
         solver = hs.get_solver(name, **options)
-        out[label] = {
-            "measured motion": hs.prescribed(body, kin, slices=slices, solver=solver, fluid=water),
-            "free drop": hs.simulate(
+        # a progress line on a terminal's stderr (nothing when it is not one)
+        with terminal_progress(f"{label}, measured motion") as progress:
+            measured = hs.prescribed(
+                body, kin, slices=slices, solver=solver, fluid=water, progress=progress
+            )
+        with terminal_progress(f"{label}, free drop") as progress:
+            drop = hs.simulate(
                 body, -V_MEASURED[0], T_END, dt=dt, slices=slices, solver=solver, fluid=water,
-                stop_on=(),
-            ),
-        }  # fmt: skip
+                stop_on=(), progress=progress,
+            )  # fmt: skip
+        out[label] = {"measured motion": measured, "free drop": drop}
     return out
 
 

@@ -214,7 +214,7 @@ SLICE_COLUMNS = (
     Column("half_beam", "c", "m", ".5f"),
     Column("deadrise_deg", "beta", "deg", ".3f"),
     Column("mass_per_metre", "mass/m", "kg/m", ".4f"),
-    Column("z_tilde", "z~", "", ".5f"),
+    Column("z_tilde", "z~", "m^1.5/kg^0.5", ".5f"),
     Column("force_per_metre", "f", "N/m", "~7"),
     Column("force", "F", "N", "~7"),
     Column("valid", "valid", ""),

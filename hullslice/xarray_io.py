@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError, MissingDependencyError
+from .extras import need
 
 __all__ = [
     "OUTPUT_FORMATS",
@@ -31,6 +32,7 @@ __all__ = [
     "history_to_dataframe",
     "history_to_xarray",
     "output_format",
+    "require_output",
     "sections_to_dataframe",
     "sections_to_xarray",
     "write_dataset",
@@ -91,13 +93,7 @@ OUTPUT_FORMATS = {".nc": "netCDF", ".zarr": "Zarr", ".parquet": "Parquet"}
 
 
 def _xarray():
-    try:
-        import xarray
-    except ImportError:
-        raise MissingDependencyError(
-            "labelled results need xarray: pip install 'hullslice[sweep]'"
-        ) from None
-    return xarray
+    return need("sweep", "xarray", "a labelled result")
 
 
 def attrs_for(name: str) -> dict[str, str]:
@@ -248,6 +244,28 @@ def output_format(path: str | os.PathLike) -> str:
     return ext
 
 
+#: The libraries each output format needs besides xarray, by extension.
+_FORMAT_NEEDS = {".nc": "h5netcdf", ".zarr": "zarr", ".parquet": "pyarrow"}
+
+
+def require_output(path: str | os.PathLike) -> str:
+    """Check, before any work, that a dataset can be written to ``path``: its extension
+    (:func:`output_format`), and xarray and the format's library installed. Returns the
+    extension.
+
+    Raises
+    ------
+    InputError
+        An extension that is not one of :data:`OUTPUT_FORMATS`.
+    MissingDependencyError
+        xarray or the format's library is not installed: the message names what to install.
+    """
+    ext = output_format(path)
+    _xarray()
+    need("sweep", _FORMAT_NEEDS[ext], f"{OUTPUT_FORMATS[ext]} output")
+    return ext
+
+
 def write_dataset(ds, path: str | os.PathLike) -> Path:
     """Write a Dataset to ``path`` by its extension, completely or not at all.
 
@@ -270,13 +288,15 @@ def _write(ds, target: Path) -> Path:
 
     ext = output_format(target)
     if ext == ".nc":
+        need("sweep", "h5netcdf", "netCDF output")
         try:
             data = ds.to_netcdf(engine="h5netcdf")
         except (ImportError, ValueError) as exc:
             if "h5netcdf" not in str(exc) and not isinstance(exc, ImportError):
                 raise
             raise MissingDependencyError(
-                "netCDF output needs h5netcdf: pip install 'hullslice[sweep]'"
+                "netCDF output needs h5netcdf: pip install 'hullslice[sweep]' (or pip install "
+                "h5netcdf)"
             ) from None
         return write_atomic(target, bytes(data))
     if ext == ".parquet":
@@ -285,13 +305,8 @@ def _write(ds, target: Path) -> Path:
 
 
 def _parquet_bytes(ds) -> bytes:
-    try:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
-    except ImportError:
-        raise MissingDependencyError(
-            "Parquet output needs pyarrow: pip install 'hullslice[sweep]'"
-        ) from None
+    pa = need("sweep", "pyarrow", "Parquet output")
+    pq = need("sweep", "pyarrow.parquet", "Parquet output")
     df = ds.to_dataframe().reset_index()
     table = pa.Table.from_pandas(df, preserve_index=False)
     meta = {
@@ -307,12 +322,7 @@ def _parquet_bytes(ds) -> bytes:
 
 
 def _write_zarr(ds, target: Path) -> Path:
-    try:
-        import zarr  # noqa: F401
-    except ImportError:
-        raise MissingDependencyError(
-            "Zarr output needs zarr: pip install 'hullslice[sweep]'"
-        ) from None
+    need("sweep", "zarr", "Zarr output")
     parent = target.parent if str(target.parent) else Path(".")
     tmp = Path(tempfile.mkdtemp(prefix=f".{target.name}.", suffix=".tmp", dir=parent))
     old = None

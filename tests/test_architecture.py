@@ -33,6 +33,8 @@ LAYERS: dict[str, int] = {
     "hullslice.convergence": 0,
     "hullslice.xarray_io": 0,
     "hullslice.caching": 0,
+    "hullslice.progress": 0,
+    "hullslice.extras": 0,
     # 1 kernel: pure numpy on 2D contours and waterlines
     "hullslice.kernel": 1,
     # 2 mesh: the body, its files, repair and mass

@@ -14,7 +14,7 @@ import pytest
 
 import hullslice as hs
 from hullslice.cli import main
-from hullslice.cli.cmd_simulate import Progress
+from hullslice.progress import TimeProgress
 from hullslice.textout import JSON_SCHEMA_VERSION, Column, coordinate_text, table_text
 
 from .conftest import MESHES
@@ -137,7 +137,7 @@ def test_info_prints_a_centre_of_volume_without_noise(capsys, tmp_path):
 def test_progress_shows_time_elapsed_and_left():
     now = [100.0]
     stream = io.StringIO()
-    p = Progress(stream, clock=lambda: now[0])
+    p = TimeProgress(stream=stream, clock=lambda: now[0])
     now[0] = 110.0
     p(0.025, 0.1)
     assert "t = 0.02500 s of 0.1 s ( 25 %), 10 s elapsed, about 30 s left" in stream.getvalue()

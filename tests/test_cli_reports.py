@@ -279,3 +279,25 @@ def test_a_solver_file_in_a_case_is_relative_to_the_case(capsys, tmp_path):
     assert code == 0, err
     default = hs.compute_force(hs.load_hull(PRISM, mass=1.0), 0.0383, -3.4943, slices=16)
     assert json.loads(out)["force"] == pytest.approx(default.total, rel=1e-4)  # same curves
+
+
+def test_the_report_lists_the_cases_inputs_only(capsys, tmp_path):
+    case = tmp_path / "fall.toml"
+    case.write_text(
+        f'title = "A short fall"\ncommand = "simulate"\nmesh = "{MESHES / "paper_prism.stl"}"\n'
+        "mass = 1.0\nvelocity = -4.0\nt_end = 0.004\ndt = 0.0004\nslices = 8\nevery = 2\n"
+        'format = "json"\noutput = "fall.json"\nplot = "fall.png"\n',
+        encoding="utf-8",
+    )
+    out = tmp_path / "report"
+    code, _, err = run(capsys, "report", str(case), "-o", str(out))
+    assert code == 0, err
+    text = (out / "report.md").read_text()
+    table = text.split("## Inputs", 1)[1].split("## Mesh", 1)[0]
+    keys = [line.split("|")[1].strip() for line in table.splitlines() if line.startswith("| ")]
+    keys = set(keys) - {"key", "---"}
+    assert {"command", "mesh", "mass", "velocity", "t_end", "dt", "slices", "rho"} <= keys
+    assert not keys & {"title", "format", "output", "plot", "every", "at"}
+    assert "| t_end | 0.004 | s |" in table and "| mass | 1.0 | kg |" in table
+    assert text.startswith("# A short fall\n")  # the title heads the page
+    assert not (tmp_path / "fall.json").exists() and not (tmp_path / "fall.png").exists()

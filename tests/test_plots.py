@@ -261,3 +261,83 @@ def test_the_force_distribution_reds_only_some_flagged_slices(prism):
         assert len(reds) == red_bars
         labels = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
         assert ("every slice is outside the validity range" in labels) is note
+
+
+# --- a user's own layout: legends inside their Axes -------------------------------------------
+
+
+def _legends_within_their_axes(fig) -> int:
+    """Check that every legend of ``fig`` lies within its Axes' box (to half a pixel) and
+    that the figure has no legend of its own beyond them; return how many there are."""
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    count = 0
+    for a in fig.axes:
+        legend = a.get_legend()
+        if legend is None:
+            continue
+        box, frame = legend.get_window_extent(r), a.get_window_extent(r)
+        assert frame.x0 - 0.5 <= box.x0 and box.x1 <= frame.x1 + 0.5, (box, frame)
+        assert frame.y0 - 0.5 <= box.y0 and box.y1 <= frame.y1 + 0.5, (box, frame)
+        count += 1
+    assert not fig.legends
+    return count
+
+
+def _grid():
+    fig, axes = plt.subplots(2, 2)  # matplotlib's default figure: 6.4 x 4.8 in, 100 dpi
+    return fig, list(axes.ravel())
+
+
+def test_in_a_two_by_two_grid_every_legend_stays_within_its_axes(prism):
+    # a history with a long peak label, a flagged span and a stop, and a footprint of three
+    history = hs.simulate(prism, -4.0, 0.03, dt=0.0005, slices=16)
+    some = np.ones(len(history))
+    some[len(history) // 3 : len(history) // 2] = 0.5
+    flagged = dataclasses.replace(history, valid_share=some)
+    study = hs.convergence(prism, 0.0383, -3.4943, slices=(16, 32, 64))
+    result = study.finest
+    bad = np.zeros(len(result.valid), bool)
+    bad[:3] = True
+    some_bad = dataclasses.replace(result, loads=dataclasses.replace(result.loads, valid=~bad))
+    sections = hs.cut(prism, 0.0383, slices=16)
+    x, area = area_curve(prism, 20)
+    kept = hs.simulate(prism, -4.0, 0.01, dt=0.0005, slices=16, sections_every=4)
+    frames = kept.frame_loads(prism, spacing=0.05)
+    # name, (figure function of the grid's Axes), legends it draws
+    figures = [
+        ("history", lambda axes: plots.plot_history(flagged, "t", ax=axes), 1),
+        ("views", lambda axes: plots.plot_views(prism, ax=axes), 0),
+        ("footprint", lambda axes: plots.plot_footprint(
+            [history] * 3, ["first run", "second run", "third run"], (0.0, 0.35), ax=axes[0]), 1),
+        ("convergence", lambda axes: plots.plot_convergence(
+            study, {"the paper's extrapolation": 147.7947, "CFD": 137.9688}, ax=axes[0]), 1),
+        ("distribution", lambda axes: plots.plot_force_distribution(some_bad, ax=axes[:2]), 1),
+        ("sections", lambda axes: plots.plot_sections(prism, sections, "t", ax=axes[2:]), 1),
+        ("area", lambda axes: plots.plot_area_curve(x, area, ax=axes[3]), 0),
+        ("frame loads", lambda axes: plots.plot_frame_loads(frames, ax=axes[1]), 1),
+        ("face pressure", lambda axes: plots.plot_face_pressure(
+            prism, np.linspace(0.0, 1e5, len(prism.faces)), ax=axes[0]), 0),
+    ]  # fmt: skip
+    for name, draw, legends in figures:
+        fig, axes = _grid()
+        assert draw(axes) is fig
+        assert _legends_within_their_axes(fig) == legends, name
+        plt.close(fig)
+    # the one-Axes figures side by side in one grid, each with its neighbours
+    fig, axes = _grid()
+    plots.plot_footprint([history], ["a run"], (0.0, 0.35), ax=axes[0])
+    plots.plot_convergence(study, {"paper": 147.7947}, ax=axes[1])
+    plots.plot_history(flagged, ax=axes[2])
+    plots.plot_force_distribution(some_bad, ax=axes[3])
+    assert _legends_within_their_axes(fig) == 4
+
+
+def test_on_its_own_figure_a_legend_stays_beside_the_axes(prism, history):
+    """Without ax=, hullslice lays out its own figure with the legend clear of the data."""
+    study = hs.convergence(prism, 0.0383, -3.4943, slices=(16, 32))
+    fig = plots.plot_convergence(study, {"paper": 147.7947})
+    fig.canvas.draw()
+    r = fig.canvas.get_renderer()
+    ax = fig.axes[0]
+    assert ax.get_legend().get_window_extent(r).x0 >= ax.get_window_extent(r).x1

@@ -168,19 +168,19 @@ def test_a_scheduler_that_does_not_answer_within_10_s(tmp_path, capsys):
     assert time.monotonic() - start < 20.0
 
 
-def test_the_progress_line_counts_cases_failures_and_time_left(capsys, monkeypatch):
-    from hullslice.cli import cmd_sweep
+def test_the_progress_line_counts_cases_failures_and_time_left(capsys):
+    from hullslice.progress import CaseProgress
 
     clock = iter([100.0, 100.0, 104.0])  # 2 finished cases found on resuming, 2 run in 4 s
-    monkeypatch.setattr(cmd_sweep.time, "monotonic", lambda: next(clock))
-    progress = cmd_sweep.Progress()
+    progress = CaseProgress(clock=lambda: next(clock))
     progress(2, 10, 0)
     progress(4, 10, 1)
     progress.done()
     err = capsys.readouterr().err
     # 2 cases in 4 s, 6 to go: 12 s left
-    assert "\rsweep: 4/10 cases done, 1 failed, 0:00:12 left" in err
-    assert "\rsweep: 2/10 cases done, 0 failed   " in err
+    assert "\rsweep: 4/10 cases done, 1 failed, 4 s elapsed, about 12 s left" in err
+    assert "\rsweep: 2/10 cases done, 0 failed, 0 s elapsed, time left unknown" in err
+    assert err.endswith("\r")  # cleared
 
 
 def test_a_sweep_applies_the_mesh_options_and_protects_its_inputs(tmp_path, capsys):

@@ -2,6 +2,12 @@
 
 from __future__ import annotations
 
+import contextlib
+import json
+import socket
+import subprocess
+import sys
+import warnings
 from pathlib import Path
 
 import pytest
@@ -97,3 +103,56 @@ def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):
     assert set(threads.values()) == {str(before["OMP_NUM_THREADS"])}
     assert dict(dask.config.get("distributed.nanny.pre-spawn-environ")) == before
     assert os.environ["MALLOC_TRIM_THRESHOLD_"] == "65536"
+
+
+@contextlib.contextmanager
+def _port_taken(port: int):
+    """``port`` on this machine taken for the while (already taken by another program: as
+    good)."""
+    s = socket.socket()
+    try:
+        s.bind(("", port))
+        s.listen()
+    except OSError:
+        pass
+    try:
+        yield
+    finally:
+        s.close()
+
+
+def test_a_taken_dashboard_port_is_no_warning_and_the_sweep_runs(tmp_path):
+    """With Dask's port 8787 taken, a sweep's cluster takes a free one without a word: no
+    line on stderr, and the results of the cluster are those of this process."""
+    pytest.importorskip("distributed")
+    from hullslice.sweeps import engine
+
+    case = tmp_path / "case.toml"
+    case.write_text(
+        "\n".join(f"{k} = {json.dumps(v)}" for k, v in BASE.items())
+        + "\n\n[sweep]\nmass = [8.0, 12.0]\n",
+        encoding="utf-8",
+    )
+    with _port_taken(8787):
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
+            client = engine.local_client(1)
+        try:
+            http = client.cluster.scheduler.http_server
+            host, port = http.address, http.port
+            assert host == "127.0.0.1" and port != 8787
+        finally:
+            client.close()
+            client.cluster.close()
+        assert [str(w.message) for w in seen if issubclass(w.category, UserWarning)] == []
+        done = subprocess.run(
+            [sys.executable, "-m", "hullslice", "sweep", str(case), "--workers", "2"],
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
+    assert done.returncode == 0 and done.stderr == "", done.stderr
+    reference = hs.sweep(BASE, {"mass": [8.0, 12.0]}, workers=1)
+    rows = done.stdout.splitlines()[2:]
+    peaks = [float(row.split()[1]) for row in rows]
+    assert peaks == pytest.approx(reference["peak_force"].values, rel=1e-3)  # 4 digits shown

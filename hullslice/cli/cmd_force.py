@@ -243,22 +243,32 @@ def _table(hull, spec: Study, study, summary, records) -> str:
             CONVERGENCE_PITCH_COLUMNS if moving else CONVERGENCE_COLUMNS, summary["convergence"]
         ),
         "",
+        *_answer(spec, study, moving),
+        "",
         f"slices at n = {study.counts[-1]}:",
         table_text(slice_columns, records),
-        "",
-        f"force {significant(finest.total)} N at {study.counts[-1]} slices",
     ]
+    return "\n".join(lines)
+
+
+def _answer(spec: Study, study, moving: bool) -> list[str]:
+    """The lines that give the answer, after the convergence table and before the
+    per-slice one: the force at the finest count (the momentum form's added mass and
+    acceleration, the horizontal force and pitch moment), the extrapolated force, and how
+    many slices are outside the validity range."""
+    finest = study.finest
+    lines = []
+    if finest.acceleration is not None:
+        how = "given" if spec.acceleration is not None else "free in heave"
+        lines.append(
+            f"momentum form: heave added mass {finest.added_mass:.6g} kg, body acceleration "
+            f"{finest.acceleration.vertical:.6g} m/s^2 ({how})"
+        )
+    lines.append(f"force {significant(finest.total)} N at {study.counts[-1]} slices")
     if moving:
         lines.append(
             f"horizontal force force_x {significant(finest.total_x)} N, pitch moment My "
             f"{significant(finest.moment)} N m (nose up) about the centre of gravity"
-        )
-    if finest.acceleration is not None:
-        how = "given" if spec.acceleration is not None else "free in heave"
-        lines.insert(
-            -2 if moving else -1,
-            f"momentum form: heave added mass {finest.added_mass:.6g} kg, body acceleration "
-            f"{finest.acceleration.vertical:.6g} m/s^2 ({how})",
         )
     rich = study.richardson
     if finest.sections.wetted_length == 0.0:
@@ -282,4 +292,4 @@ def _table(hull, spec: Study, study, summary, records) -> str:
             if invalid == 0
             else f"{invalid} of {len(finest)} slices outside the validity range (see 'reason')"
         )
-    return "\n".join(lines)
+    return lines

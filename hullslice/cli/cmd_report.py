@@ -15,10 +15,11 @@ from ..atomic import _umask, check_writable, remove_stale, temp_prefix, write_at
 from ..case import SCHEMA, load_case, write_case
 from ..errors import InputError
 from ..paths import markdown_fence, markdown_text, printable, run_inputs
+from ..progress import terminal_progress
 from ..study import Study, execute
 from ..textout import csv_text, json_text
 from . import cmd_info
-from .common import out_path, write_error
+from .common import check_extras, out_path, write_error
 from .studies import command_module
 
 
@@ -70,16 +71,38 @@ def run(args: argparse.Namespace) -> int:
     study = Study.from_case(case, checked=True)
     # the report gives every output itself; the case file is an input, like the mesh
     study = dataclasses.replace(study, format=None, output=None, plot=None, case_file=args.case)
+    check_extras(study, figures=True)
+    with terminal_progress("report") as progress:
+        name = _write_report(args, target, parent, case, study, progress)
+    print(f"wrote {target / name}", file=sys.stderr)
+    return 0
+
+
+def _write_report(args, target: Path, parent: Path, case, study: Study, progress) -> str:
+    """Compute the case and write its report folder, saying how far it is on a terminal's
+    stderr (``progress``, a :class:`~hullslice.progress.TimeProgress`, or None off a
+    terminal); the report's name."""
+
+    def note(text: str) -> None:
+        if progress is not None:
+            progress.show(text)
+
     command = study.command
-    outcome = command_module(command).outcome(execute(study))
-    info = outcome if command == "info" else cmd_info.outcome(execute(study.for_command("info")))
+    note(f"running the {command} case")
+    result = execute(study, progress=progress)
+    outcome = command_module(command).outcome(result)
+    if command == "info":
+        info = outcome
+    else:
+        note("the mesh summary")
+        info = cmd_info.outcome(execute(study.for_command("info")))
 
     # built beside the target (same depth, so that the case's relative paths hold) and
     # renamed into place only when complete
     remove_stale(parent, target.name)
     work = Path(tempfile.mkdtemp(prefix=temp_prefix(target.name), dir=parent))
     try:
-        files = _write_files(work, case, outcome, info, command)
+        files = _write_files(work, case, outcome, info, command, note)
         page = _html if args.html else _markdown
         name = "report.html" if args.html else "report.md"
         write_atomic(work / name, page(case, command, outcome, info, files))
@@ -90,8 +113,7 @@ def run(args: argparse.Namespace) -> int:
     except BaseException:
         shutil.rmtree(work, ignore_errors=True)
         raise
-    print(f"wrote {target / name}", file=sys.stderr)
-    return 0
+    return name
 
 
 def _refuse_inputs_inside(target: Path, case_path: str, case) -> None:
@@ -121,7 +143,7 @@ class _OptionsOf:
         self.solver_option = list(options.items())
 
 
-def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:
+def _write_files(work: Path, case, outcome, info, command, note) -> dict[str, str]:
     files: dict[str, str] = {}
     case_out = {k: v for k, v in case.items() if k not in ("output", "plot", "format")}
     case_out["command"] = command
@@ -139,15 +161,25 @@ def _write_files(work: Path, case, outcome, info, command) -> dict[str, str]:
     figures = dict(outcome.figures)
     if command != "info":
         figures.update(info.figures)
-    for fig_name, build in figures.items():
+    for i, (fig_name, build) in enumerate(figures.items()):
+        note(f"drawing the figures ({i + 1} of {len(figures)}: {fig_name.replace('_', ' ')})")
         save(build(), work / f"{fig_name}.png")
         files[f"{fig_name}.png"] = fig_name.replace("_", " ")
     return files
 
 
+#: Keys of a case that are not inputs of its computation: its outputs (the report gives its
+#: own), the rows its tables show, and the title (the report's heading).
+NOT_INPUTS = ("format", "output", "plot", "every", "at", "title")
+
+
 def _inputs(case) -> list[tuple[str, str, str]]:
+    """The inputs table: ``(key, value, unit)`` of every input of the case (not
+    :data:`NOT_INPUTS`), in the case's order."""
     rows = []
     for name, value in case.items():
+        if name in NOT_INPUTS:
+            continue
         key = SCHEMA[name]
         if isinstance(value, dict):
             value = ", ".join(f"{k} = {v}" for k, v in value.items())

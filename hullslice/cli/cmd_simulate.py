@@ -5,10 +5,7 @@ from __future__ import annotations
 import argparse
 import shutil
 import sys
-import time
-from collections.abc import Callable
 from dataclasses import replace
-from typing import TextIO
 
 import numpy as np
 
@@ -17,6 +14,7 @@ from ..aero import AERO_NUMBERS
 from ..errors import InputError
 from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
 from ..motion.history import STEP_CHANGE_WARN
+from ..progress import terminal_progress
 from ..study import SimulationResult, Study, StudyResult
 from ..textout import (
     HISTORY_COLUMNS,
@@ -201,82 +199,20 @@ def times(text: str) -> list[float]:
     return out
 
 
-def _duration(seconds: float) -> str:
-    """A wall-clock duration as ``12 s`` or ``3 min 05 s``."""
-    s = max(0, round(seconds))
-    return f"{s} s" if s < 60 else f"{s // 60} min {s % 60:02d} s"
-
-
-class Progress:
-    """A one-line progress display on a terminal's stderr: the simulated time, the
-    percentage done, the wall time elapsed and the time left (from the rate so far).
-
-    Parameters
-    ----------
-    stream : text file, optional
-        Where the line is written (default: ``sys.stderr``).
-    clock : callable, optional
-        Wall clock in s (default: :func:`time.monotonic`).
-    """
-
-    #: Shortest wall time between two updates of the line, s.
-    INTERVAL = 0.25
-
-    def __init__(
-        self, stream: TextIO | None = None, clock: Callable[[], float] = time.monotonic
-    ) -> None:
-        self.stream = stream if stream is not None else sys.stderr
-        self.clock = clock
-        self.start = clock()
-        self.shown = -1
-        self.last = -self.INTERVAL
-        self.width = 0
-
-    def __call__(self, t: float, t_end: float) -> None:
-        pct = min(100, int(100 * t / t_end)) if t_end > 0 else 100
-        now = self.clock()
-        if pct == self.shown and now - self.last < self.INTERVAL:
-            return
-        self.shown, self.last = pct, now
-        elapsed = now - self.start
-        frac = t / t_end if t_end > 0 else 1.0
-        left = (
-            f"about {_duration(elapsed * (1 - frac) / frac)} left"
-            if 0 < frac
-            else "time left unknown"
-        )
-        line = (
-            f"simulating: t = {t:.5f} s of {t_end:g} s ({pct:3d} %), "
-            f"{_duration(elapsed)} elapsed, {left}"
-        )
-        self.stream.write("\r" + line.ljust(self.width))
-        self.width = len(line)
-        self.stream.flush()
-
-    def done(self) -> None:
-        """Clear the line."""
-        if self.shown >= 0:
-            self.stream.write("\r" + " " * self.width + "\r")
-            self.stream.flush()
-
-
 def run(args: argparse.Namespace) -> int:
     return run_study(Study.from_args(args), args.save_case, loads_output(args))
 
 
 def run_study(study: Study, save_case: str | None = None, loads: LoadsOutput | None = None) -> int:
-    """Execute ``study`` (with a progress line on a terminal) and give its outputs;
-    ``loads`` also writes the face pressures and frame loads (``--pressures-out``)."""
+    """Execute ``study`` (with a progress line on a terminal, :mod:`hullslice.progress`)
+    and give its outputs; ``loads`` also writes the face pressures and frame loads
+    (``--pressures-out``)."""
     every = 0
     if loads is not None:
         loads.check(study)
         every = loads.sections_every(study)
-    progress = Progress() if sys.stderr.isatty() else None
-    try:
+    with terminal_progress() as progress:
         result = compute(study, save_case, progress, sections_every=every)
-    finally:
-        if progress is not None:
-            progress.done()
     out = outcome(result)
     if loads is None:
         return finish(study, out, save_case)

@@ -4,12 +4,12 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
 from pathlib import Path
 
 from ..atomic import check_writable
 from ..errors import InputError
 from ..paths import check_not_an_input
+from ..progress import terminal_case_progress
 from .common import check_path, out_path, positive_int, write_error
 
 #: Shown by a terminal table of cases: result, heading, unit, format.
@@ -75,38 +75,6 @@ def add_parser(sub) -> None:
     p.set_defaults(func=run)
 
 
-class Progress:
-    """Cases done, total, failures and the time left, on one line of a terminal's stderr."""
-
-    def __init__(self) -> None:
-        self.start = time.monotonic()
-        self.first: int | None = None
-        self.shown = False
-
-    def __call__(self, done: int, total: int, failed: int) -> None:
-        if self.first is None:
-            self.first = done  # cases found finished by --resume do not count for the pace
-            self.start = time.monotonic()
-        ran = done - self.first
-        left = ""
-        if ran > 0 and done < total:
-            seconds = (time.monotonic() - self.start) / ran * (total - done)
-            left = f", {_duration(seconds)} left"
-        sys.stderr.write(f"\rsweep: {done}/{total} cases done, {failed} failed{left}   ")
-        sys.stderr.flush()
-        self.shown = True
-
-    def done(self) -> None:
-        if self.shown:
-            sys.stderr.write("\r" + " " * 72 + "\r")
-            sys.stderr.flush()
-
-
-def _duration(seconds: float) -> str:
-    s = round(seconds)
-    return f"{s // 3600}:{s // 60 % 60:02d}:{s % 60:02d}"
-
-
 def _inputs(case: str, plan) -> list[tuple[str, Path]]:
     """The files a sweep reads: its case file, the mesh, the cases table, the kinematics
     and mass distribution, and every solver option that names a file."""
@@ -123,16 +91,27 @@ def _inputs(case: str, plan) -> list[tuple[str, Path]]:
     return found
 
 
+def _check_extras(base: dict) -> None:
+    """The libraries the sweep's cases need besides the sweep's own, before any work: the
+    mesh format's, and pymeshfix for ``repair = "close"``."""
+    from ..extras import need
+    from ..readers.extra import require_format
+
+    if base.get("repair") == "close":
+        need("repair", "pymeshfix", 'repair = "close"')
+    require_format(Path(base["mesh"]).suffix)
+
+
 def run(args: argparse.Namespace) -> int:
     from .. import sweeps
-    from ..xarray_io import output_format, write_dataset
+    from ..xarray_io import require_output, write_dataset
 
     sweeps.require("xarray")
     if args.workers != 1 or args.scheduler:
         sweeps.require("distributed")
     partial = None
     if args.output:
-        ext = output_format(args.output)
+        ext = require_output(args.output)  # the format's library, before any work
         target = Path(args.output)
         store = ext == ".zarr" and target.is_dir()
         if store and not ((target / "zarr.json").is_file() or (target / ".zgroup").is_file()):
@@ -156,10 +135,10 @@ def run(args: argparse.Namespace) -> int:
     elif args.resume:
         raise InputError("--resume continues the sweep written to -o PATH: give -o PATH")
     plan = sweeps.load_sweep(args.case)
+    _check_extras(plan.base)
     if args.output:
         check_not_an_input(args.output, _inputs(args.case, plan), "--output")
-    progress = Progress() if sys.stderr.isatty() else None
-    try:
+    with terminal_case_progress() as progress:
         ds = sweeps.sweep(
             plan,
             client=args.scheduler,
@@ -169,9 +148,6 @@ def run(args: argparse.Namespace) -> int:
             resume=args.resume,
             progress=progress,
         )
-    finally:
-        if progress is not None:
-            progress.done()
     failures = list(sweeps.iter_failures(ds))
     for label, error in failures[:5]:
         print(f"hullslice: case {label} failed: {error}", file=sys.stderr)

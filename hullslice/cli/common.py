@@ -17,6 +17,7 @@ from .outputs import (  # noqa: F401
     Extra,
     Outcome,
     check_distinct,
+    check_extras,
     check_output,
     check_path,
     compute,

@@ -69,10 +69,30 @@ def compute(
     write_mesh: str | None = None,
     sections_every: int = 0,
 ) -> StudyResult:
-    """Check the outputs can be written (before any work), then execute the study
-    (``sections_every``: a simulation keeps every Nth instant's slices)."""
+    """Check the outputs can be written and the optional libraries they need are installed
+    (before any work), then execute the study (``sections_every``: a simulation keeps
+    every Nth instant's slices)."""
     check_output(study, save_case, write_mesh)
+    check_extras(study, write_mesh)
     return execute(study, progress=progress, sections_every=sections_every)
+
+
+def check_extras(study: Study, write_mesh: str | None = None, figures: bool = False) -> None:
+    """Refuse, before any work, a study that needs an optional library not installed, with
+    the one-line hint naming the extra (:func:`hullslice.extras.need`): matplotlib for
+    ``--plot`` (or the ``figures`` of a report), pymeshfix for ``--repair close``, and the
+    libraries of a mesh format of ``hullslice[formats]``, read or written (``write_mesh``).
+    """
+    from ..extras import need
+    from ..readers.extra import require_format
+
+    if study.plot or figures:
+        need("plot", "matplotlib", "--plot" if study.plot else "a report")
+    if study.repair == "close":
+        need("repair", "pymeshfix", "--repair close")
+    require_format(Path(study.mesh).suffix)
+    if write_mesh:
+        require_format(Path(write_mesh).suffix, writing=True)
 
 
 #: A file a command writes besides its text, figure and case: ``(option, path, writer)``,

@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
-from ..errors import MissingDependencyError
+from ..extras import need
 from .faces import face_geometry
 from .frames import FrameLoads
 
@@ -47,13 +47,7 @@ MANIFEST = "loads.json"
 
 def require_meshio():
     """meshio, or the one-line install hint."""
-    try:
-        import meshio
-    except ImportError:
-        raise MissingDependencyError(
-            "the face pressures' VTK files need meshio: pip install 'hullslice[formats]'"
-        ) from None
-    return meshio
+    return need("formats", "meshio", "--pressures-out (the face pressures' VTK files)")
 
 
 def _vtu(meshio, hull, path: Path, fields: dict[str, np.ndarray]) -> None:

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..atomic import write_atomic
 from ..errors import InputError, MissingDependencyError
+from ..extras import need
 
 #: Instants (or slices) whose share of the force on slices outside the validity range is
 #: above this are marked.
@@ -68,9 +69,8 @@ def _backend_chosen(matplotlib: Any) -> bool:
 
 
 def _pyplot() -> Any:
+    matplotlib = need("plot", "matplotlib", "drawing figures")
     try:
-        import matplotlib
-
         backend = choose_backend(
             chosen=_backend_chosen(matplotlib),
             notebook=in_notebook(),
@@ -80,9 +80,10 @@ def _pyplot() -> Any:
         if backend is not None:
             matplotlib.use(backend)
         import matplotlib.pyplot as plt
-    except ImportError:
+    except ImportError:  # a broken installation: its own error, with the install hint
         raise MissingDependencyError(
-            "plots need matplotlib: pip install 'hullslice[plot]' (or pip install matplotlib)"
+            "drawing figures needs matplotlib.pyplot, which cannot be imported: pip install "
+            "'hullslice[plot]' (or pip install matplotlib)"
         ) from None
     return plt
 
@@ -148,21 +149,74 @@ def panel_axes(ax: Any, panels: Sequence[str], what: str, make: Any) -> tuple[An
     return root_figure(axes[0]), axes, False
 
 
-def legend_outside(ax: Any, **kwargs: Any) -> Any:
-    """A legend to the right of the Axes, clear of the data (nothing when nothing is
-    labelled)."""
-    handles, labels = ax.get_legend_handles_labels()
+#: Legend font sizes (pt) tried, largest first, for a legend inside a user's Axes.
+INSIDE_FONT_SIZES = (8.0, 7.0, 6.0)
+
+
+def place_legend(ax: Any, created: bool, handles: Any = None, labels: Any = None) -> Any:
+    """The legend of ``ax`` (its labelled artists, or ``handles`` and ``labels``); nothing
+    when nothing is labelled.
+
+    On a figure hullslice made (``created``), to the right of the Axes, clear of the data:
+    the figure is laid out around it. In a user's Axes (``ax=``), inside the Axes where it
+    hides the least data, its labels wrapped and its font made smaller (down to the last of
+    :data:`INSIDE_FONT_SIZES`) until it fits: never over a neighbouring Axes of the user's
+    layout.
+    """
+    if handles is None:
+        handles, labels = ax.get_legend_handles_labels()
     if not handles:
         return None
-    return ax.legend(
+    if created:
+        return ax.legend(
+            handles,
+            labels,
+            loc="upper left",
+            bbox_to_anchor=(1.01, 1.0),
+            borderaxespad=0.0,
+            fontsize=8,
+        )
+    box = ax.get_window_extent()
+    dpi = root_figure(ax).dpi
+    width, height = box.width * 72.0 / dpi, box.height * 72.0 / dpi  # pt
+    size = INSIDE_FONT_SIZES[-1]
+    wrapped = list(labels)
+    for size in INSIDE_FONT_SIZES:
+        wrapped = [_wrap(str(label), width, size) for label in labels]
+        if _legend_height(wrapped, size) <= height:
+            break
+    legend = ax.legend(
         handles,
-        labels,
-        loc="upper left",
-        bbox_to_anchor=(1.01, 1.0),
-        borderaxespad=0.0,
-        fontsize=8,
-        **kwargs,
+        wrapped,
+        loc="best",
+        fontsize=size,
+        borderaxespad=0.3,
+        handlelength=1.5,
+        framealpha=0.8,
     )
+    legend.set_in_layout(False)  # inside the Axes: nothing for a layout to make room for
+    return legend
+
+
+def _wrap(label: str, width: float, size: float) -> str:
+    """``label`` in lines that fit a legend inside an Axes ``width`` pt wide at ``size`` pt
+    (a character taken as 0.6 em, mathematical text left whole)."""
+    import textwrap
+
+    # the handle (1.5 em), its pad (0.8), the borders (0.4 each) and the pads to the Axes
+    # (0.3 each), in em
+    text = width / size - 1.5 - 0.8 - 2 * 0.4 - 2 * 0.3
+    chars = max(8, int(text / 0.6))
+    if "$" in label or len(label) <= chars:
+        return label
+    return "\n".join(textwrap.wrap(label, chars, break_on_hyphens=False))
+
+
+def _legend_height(labels: Sequence[str], size: float) -> float:
+    """The height in pt of a legend of ``labels`` at ``size`` pt: lines of 1.2 em, 0.5 em
+    between entries, borders of 0.4 em and pads to the Axes of 0.3 em."""
+    lines = sum(label.count("\n") + 1 for label in labels)
+    return size * (1.2 * lines + 0.5 * (len(labels) - 1) + 2 * 0.4 + 2 * 0.3)
 
 
 def note_handle(label: str) -> Any:

@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from ._common import _pyplot, legend_outside, one_axes, panel_axes
+from ._common import _pyplot, one_axes, panel_axes, place_legend
 
 #: The side view of the cut shows the wetted region, widened by this share of its length
 #: (and the draft by this share of its depth, above and below).
@@ -111,7 +111,7 @@ def plot_sections(hull: Any, sections: Any, title: str | None = None, *, ax: Any
         f"{np.degrees(sections.pitch):.3g} deg, {len(xs)} stations{note}",
         fontsize=10,
     )
-    legend_outside(ax1)
+    place_legend(ax1, created)
     if ax2 is not None:
         for i, col in zip(stations, colors, strict=True):
             for contour in sections.polygons[i]:

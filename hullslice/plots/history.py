@@ -11,10 +11,10 @@ from ._common import (
     FLAGGED_LABEL,
     FLAGGED_MARK,
     _pyplot,
-    legend_outside,
     note_handle,
     one_axes,
     panel_axes,
+    place_legend,
     spans,
 )
 
@@ -101,9 +101,7 @@ def plot_history(history: Any, title: str | None = None, *, ax: Any = None) -> A
     if len(t) and flagged.all():
         handles.append(note_handle(f"every instant: {FLAGGED_LABEL}"))
         labels.append(handles[-1].get_label())
-    if handles:
-        top.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0),
-                   borderaxespad=0.0, fontsize=8)  # fmt: skip
+    place_legend(top, created, handles, labels)
     drawn = [a for a in axes if a is not None]
     drawn[-1].set_xlabel("time [s]")
     if title:
@@ -163,7 +161,7 @@ def plot_footprint(
     ax.set_xlabel("time [s]")
     ax.set_title("Wetted footprint: aft and fore ends of the wetted part")
     ax.grid(True, alpha=0.3)
-    legend_outside(ax)
+    place_legend(ax, created)
     if created:
         fig.tight_layout()
     return fig

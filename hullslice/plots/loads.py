@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ._common import one_axes
+from ._common import one_axes, place_legend
 
 __all__ = ["plot_face_pressure", "plot_frame_loads"]
 
@@ -90,7 +90,7 @@ def plot_frame_loads(frame_loads: Any, title: str | None = None, *, bays: int = 
     ax.set_xlabel("t (s)")
     ax.set_ylabel("vertical load (kN)")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="best", fontsize=7)
+    place_legend(ax, created)
     if title:
         ax.set_title(title)
     if created:

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ._common import _pyplot, legend_outside, note_handle, one_axes, panel_axes
+from ._common import _pyplot, note_handle, one_axes, panel_axes, place_legend
 
 
 def plot_convergence(
@@ -61,7 +61,7 @@ def plot_convergence(
     ax.set_ylabel("vertical force [N]")
     ax.margins(x=0.1, y=0.12)
     ax.grid(True, alpha=0.3)
-    legend_outside(ax)
+    place_legend(ax, created)
     ax.set_title(title or "Convergence in the slice thickness")
     if created:
         fig.tight_layout()
@@ -111,8 +111,7 @@ def plot_force_distribution(result: Any, title: str | None = None, *, ax: Any = 
     if len(bad) and bad.all():
         handles.append(note_handle("every slice is outside the validity range"))
         labels.append(handles[-1].get_label())
-    ax1.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.01, 1.0),
-               borderaxespad=0.0, fontsize=8)  # fmt: skip
+    place_legend(ax1, created, handles, labels)
     ax1.set_title(title or f"Total {result.total:.4f} N over {len(s)} slices")
     if ax2 is None:
         ax1.set_xlabel("x along the body [m]")

@@ -25,10 +25,10 @@ from typing import IO, Any
 
 import numpy as np
 
-from ..errors import MissingDependencyError
+from ..extras import need as _need
 from .base import MAX_UNPACKED_BYTES, NO_CONVENTIONS, Conventions, FormatError, Reader
 
-__all__ = ["EXTRA_READERS", "need", "to_trimesh", "trimesh_arrays"]
+__all__ = ["EXTRA_READERS", "need", "require_format", "to_trimesh", "trimesh_arrays"]
 
 #: What each format of the extra needs, by extension.
 _NEEDS = {
@@ -49,14 +49,22 @@ def need(module: str, what: str) -> ModuleType:
     MissingDependencyError
         ``module`` is not installed.
     """
-    import importlib
+    return _need("formats", module, what)
 
-    try:
-        return importlib.import_module(module)
-    except ImportError:
-        raise MissingDependencyError(
-            f"{what} needs {module}: pip install 'hullslice[formats]' (or pip install {module})"
-        ) from None
+
+def require_format(ext: str, writing: bool = False) -> None:
+    """Import every library a format of the extra needs (none for STL, OBJ and .tri), or
+    raise the one-line hint: before any work, for a file to read or (``writing``) write.
+
+    Raises
+    ------
+    MissingDependencyError
+        A library of the format is not installed.
+    """
+    key = ext.strip().lower().lstrip(".")
+    what = "Gmsh .msh files" if key == "msh" else f"{key.upper()} files"
+    for module in _NEEDS.get(key, ()):
+        need(module, f"{'writing' if writing else 'reading'} {what}")
 
 
 def _data(fh: IO[bytes], size: int) -> bytes:

@@ -155,16 +155,9 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
 
 
 def _meshfix():
-    try:
-        import pymeshfix
-    except ImportError:
-        from ..errors import MissingDependencyError
+    from ..extras import need
 
-        raise MissingDependencyError(
-            "repair close needs pymeshfix: pip install 'hullslice[repair]' (or pip install "
-            "pymeshfix)"
-        ) from None
-    return pymeshfix
+    return need("repair", "pymeshfix", "repair close")
 
 
 def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):

@@ -11,11 +11,13 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager, nullcontext
 from typing import Any
 
-from ..errors import InputError, MissingDependencyError
+from ..errors import InputError
+from ..extras import need
 from .plan import Plan
 from .run import HullState, _mass_key, run_batch
 
@@ -42,15 +44,10 @@ TAIL_TASK_CASES = 2
 
 
 def require(*modules: str) -> None:
-    import importlib
-
+    """Import the libraries of the extra ``hullslice[sweep]`` a sweep will use, or raise
+    the one-line hint naming what to install."""
     for m in modules:
-        try:
-            importlib.import_module(m)
-        except ImportError:
-            raise MissingDependencyError(
-                f"sweeps need {m}, which is not installed: pip install 'hullslice[sweep]'"
-            ) from None
+        need("sweep", m, "a sweep")
 
 
 def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
@@ -106,20 +103,34 @@ def _client(client, workers: int | None, timeout: float):
     return local_client(workers or os.cpu_count() or 1), True
 
 
+#: Where a sweep's own cluster serves its HTTP routes (health and metrics; the dashboard is
+#: off): this machine only, on a free port, so that a port already taken (Dask's 8787 by
+#: another cluster) is no conflict and no warning.
+HTTP_ADDRESS = "127.0.0.1:0"
+
+
 def local_client(workers: int):
     """A Dask client of a cluster of ``workers`` processes on this machine, one thread each,
     made as a sweep makes its own (:data:`UNSET_WORKER_ENVIRON` unset in the workers; a
     worker started again later, after a crash, inherits this process's environment: see
-    :func:`worker_environ`, which a sweep holds for as long as its cluster runs)."""
+    :func:`worker_environ`, which a sweep holds for as long as its cluster runs).
+
+    The cluster starts quietly: no dashboard, its HTTP server on a free port
+    (:data:`HTTP_ADDRESS`), its logs silenced below CRITICAL, and the warnings Dask's own
+    modules give while it starts (its notes on ports and start-up times, for a programmer
+    running Dask, not for a sweep's user) are not shown; hullslice's are.
+    """
     require("distributed")
     from distributed import Client, LocalCluster
 
-    with worker_environ():
+    with worker_environ(), warnings.catch_warnings():
+        warnings.filterwarnings("ignore", module=r"(distributed|dask)(\.|$)")
         cluster = LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
             processes=True,
             dashboard_address=None,
+            scheduler_kwargs={"dashboard": False, "dashboard_address": HTTP_ADDRESS},
             silence_logs=50,
         )
         try:
