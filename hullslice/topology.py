@@ -19,10 +19,14 @@ __all__ = [
     "edge_use",
     "flipped",
     "group",
+    "manifold_arrays",
     "merge_close",
     "merge_exact_copies",
+    "mesh_arrays",
     "orient_consistently",
     "second_moment",
+    "shell_sizes",
+    "shell_volumes",
     "signed_volume",
     "to_manifold",
     "unique_edges",
@@ -153,6 +157,32 @@ def signed_volume(v: np.ndarray, f: np.ndarray) -> float:
     return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
 
 
+def shell_volumes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """(n,) float: the signed volume each shell (faces labelled ``0 .. n - 1``) encloses,
+    about its own mean corner (exact for a closed shell, whatever its distance from the
+    origin or from the other shells)."""
+    counts = np.maximum(np.bincount(labels, minlength=n), 1) * 3.0
+    tri = v[f]
+    centre = np.stack(
+        [np.bincount(labels, weights=tri[:, :, k].sum(axis=1), minlength=n) for k in range(3)],
+        axis=1,
+    ) / counts[:, None]
+    o = centre[labels]
+    a, b, c = tri[:, 0] - o, tri[:, 1] - o, tri[:, 2] - o
+    return np.bincount(labels, weights=np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0, minlength=n)
+
+
+def shell_sizes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """(n,) float: the diagonal of each shell's bounding box."""
+    corners = v[f].reshape(-1, 3)
+    owner = np.repeat(labels, 3)
+    lo = np.full((n, 3), np.inf)
+    hi = np.full((n, 3), -np.inf)
+    np.minimum.at(lo, owner, corners)
+    np.maximum.at(hi, owner, corners)
+    return np.linalg.norm(hi - lo, axis=1)
+
+
 def check_finite(v: np.ndarray, name: str) -> None:
     bad = ~np.isfinite(v)
     if bad.any():
@@ -163,16 +193,36 @@ def check_finite(v: np.ndarray, name: str) -> None:
         )
 
 
+def manifold_arrays(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The arrays as manifold3d takes them: fresh, owned, writeable, C-contiguous copies,
+    float64 ``(n, 3)`` vertices and uint64 ``(m, 3)`` faces.
+
+    Every array handed to manifold3d goes through here. manifold3d (nanobind) refuses a
+    read-only array, one of another dtype or a strided view; the hull's own arrays are
+    read-only, what manifold3d hands back are views of its memory, and
+    ``np.ascontiguousarray`` returns such an array uncopied when it is already contiguous.
+    """
+    vc = np.array(np.reshape(v, (-1, 3)), dtype=np.float64, order="C", copy=True)
+    fc = np.array(np.reshape(f, (-1, 3)), dtype=np.uint64, order="C", copy=True)
+    return vc, fc
+
+
+def mesh_arrays(manifold) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices (float64 ``(n, 3)``) and faces (int64 ``(m, 3)``) of a manifold3d
+    ``Manifold``, as owned, writeable copies (not views of manifold3d's memory)."""
+    mesh = manifold.to_mesh64()
+    v = np.array(np.asarray(mesh.vert_properties)[:, :3], dtype=np.float64, order="C", copy=True)
+    f = np.array(np.reshape(mesh.tri_verts, (-1, 3)), dtype=np.int64, order="C", copy=True)
+    return v, f
+
+
 def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
+    """A manifold3d ``Manifold`` of the arrays (copied by :func:`manifold_arrays`), refused
+    with a ``MeshError`` when manifold3d refuses it."""
     import manifold3d
 
-    # fresh writeable copies: manifold3d (nanobind) refuses a read-only array, and
-    # np.ascontiguousarray hands one back uncopied when it is already contiguous
-    mesh = manifold3d.Mesh64(
-        vert_properties=np.array(v, dtype=np.float64, order="C", copy=True),
-        tri_verts=np.array(f, dtype=np.uint64, order="C", copy=True),
-    )
-    man = manifold3d.Manifold(mesh)
+    vc, fc = manifold_arrays(v, f)
+    man = manifold3d.Manifold(manifold3d.Mesh64(vert_properties=vc, tri_verts=fc))
     status = man.status()
     if status != manifold3d.Error.NoError:
         raise MeshError(
@@ -236,10 +286,8 @@ def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
 
 def flipped(manifold):
     """The same surface with every face reversed (a cavity turned into a solid)."""
-    mesh = manifold.to_mesh64()
-    v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    f = np.asarray(mesh.tri_verts, dtype=np.int64)[:, ::-1]
-    return to_manifold(v, f, "cavity")
+    v, f = mesh_arrays(manifold)
+    return to_manifold(v, f[:, ::-1], "cavity")
 
 
 def unique_edges(faces: np.ndarray, n: int) -> np.ndarray:
