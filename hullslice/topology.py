@@ -163,10 +163,13 @@ def shell_volumes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> n
     origin or from the other shells)."""
     counts = np.maximum(np.bincount(labels, minlength=n), 1) * 3.0
     tri = v[f]
-    centre = np.stack(
-        [np.bincount(labels, weights=tri[:, :, k].sum(axis=1), minlength=n) for k in range(3)],
-        axis=1,
-    ) / counts[:, None]
+    centre = (
+        np.stack(
+            [np.bincount(labels, weights=tri[:, :, k].sum(axis=1), minlength=n) for k in range(3)],
+            axis=1,
+        )
+        / counts[:, None]
+    )
     o = centre[labels]
     a, b, c = tri[:, 0] - o, tri[:, 1] - o, tri[:, 2] - o
     return np.bincount(labels, weights=np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0, minlength=n)

@@ -71,7 +71,9 @@ def light_aircraft(seed: int = 7, parts: int = 60) -> tuple[np.ndarray, np.ndarr
     pieces.append((av, af))
     # a closed wing through the fuselage, wound inside out (a mirrored part)
     wing = trimesh.creation.box(extents=(1.2, 9.0, 0.15))
-    pieces.append((np.asarray(wing.vertices) + [3.2, 0.0, 0.2], np.asarray(wing.faces)[:, ::-1]))
+    pieces.append(
+        (np.asarray(wing.vertices) + np.array([3.2, 0.0, 0.2]), np.asarray(wing.faces)[:, ::-1])
+    )
     for i in range(parts):  # small open parts around the aircraft
         centre = rng.uniform((-1.0, -5.0, -0.5), (8.0, 5.0, 2.0))
         kind = i % 3
