@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .constants import TOL
 from .errors import MeshError
 
 __all__ = [
@@ -22,11 +23,14 @@ __all__ = [
     "manifold_arrays",
     "merge_close",
     "merge_exact_copies",
+    "merge_groups",
     "mesh_arrays",
+    "moves_within_rounding",
     "orient_consistently",
     "second_moment",
     "shell_sizes",
     "shell_volumes",
+    "shortest_edges",
     "signed_volume",
     "to_manifold",
     "unique_edges",
@@ -96,15 +100,49 @@ def unique_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 MAX_MERGE_PAIRS = 8
 
 
+def shortest_edges(v: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """(n,) float: the length of the shortest edge at each vertex (inf for a vertex no
+    face uses)."""
+    e = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    length = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
+    out = np.full(len(v), np.inf)
+    np.minimum.at(out, e[:, 0], length)
+    np.minimum.at(out, e[:, 1], length)
+    return out
+
+
+def merge_groups(v: np.ndarray, pairs: np.ndarray) -> tuple[int, np.ndarray, np.ndarray]:
+    """Vertices linked by ``pairs`` (k, 2) as groups: their number, the group of every
+    vertex, and each group's first vertex (its representative)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(v)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    ncomp, labels = connected_components(graph, directed=False)
+    first = np.full(ncomp, n, dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(n))
+    return ncomp, labels, first
+
+
+def moves_within_rounding(v: np.ndarray, f: np.ndarray, target: np.ndarray) -> bool:
+    """True when moving every vertex ``i`` onto ``target[i]`` moves none by more than
+    ``TOL.merge_edge`` of its shortest edge (a merge of copies that differ by rounding)."""
+    moved = np.flatnonzero(target != np.arange(len(v)))
+    if not len(moved):
+        return True
+    shift = np.linalg.norm(v[moved] - v[target[moved]], axis=1)
+    return bool(np.all(shift <= TOL.merge_edge * shortest_edges(v, f)[moved]))
+
+
 def merge_close(
     v: np.ndarray, f: np.ndarray, tol: float
 ) -> tuple[np.ndarray, np.ndarray, int] | None:
     """Merge vertices closer than ``tol``; returns new arrays and the number merged, or
     None when the vertices within ``tol`` of one another are not copies of a vertex: more
     pairs than :data:`MAX_MERGE_PAIRS` per vertex (counted before any is listed, so that
-    memory stays in proportion to the mesh), or a face with two corners among them."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
+    memory stays in proportion to the mesh), a face with two corners among them, or a
+    vertex moved by more than ``TOL.merge_edge`` of its shortest edge."""
     from scipy.spatial import cKDTree
 
     tree = cKDTree(v)
@@ -114,16 +152,13 @@ def merge_close(
     pairs = tree.query_pairs(tol, output_type="ndarray")
     if len(pairs) == 0:
         return v, f, 0
-    n = len(v)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    ncomp, labels = connected_components(graph, directed=False)
-    # representative: the first vertex of each group
-    first = np.full(ncomp, n, dtype=np.int64)
-    np.minimum.at(first, labels, np.arange(n))
+    ncomp, labels, first = merge_groups(v, pairs)
     g = labels[f]
     if np.any((g[:, 0] == g[:, 1]) | (g[:, 1] == g[:, 2]) | (g[:, 2] == g[:, 0])):
         return None  # a face would collapse: the distance is larger than some edge
-    return v[first], g, n - ncomp
+    if not moves_within_rounding(v, f, first[labels]):
+        return None  # not rounding: a vertex would move by a fair part of its edges
+    return v[first], g, len(v) - ncomp
 
 
 def drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:

@@ -5,8 +5,10 @@ repair reports what it did (:class:`CloseReport`, one :class:`~hullslice.errors.
 MeshRepairWarning`). The passes, each with its own figures:
 
 1. **Stitch.** Copies of one vertex that differ by rounding are merged, over the smallest
-   distance of the loader's ladder (``TOL.merge`` to ``TOL.merge_max`` of the mesh's size)
-   that leaves the fewest edges with a single face.
+   distance of the loader's ladder (``TOL.merge`` to ``TOL.merge_max`` of the mesh's size,
+   whatever its distance from the origin) that leaves the fewest edges with a single face;
+   no vertex moves by more than ``TOL.merge_edge`` of its shortest edge (farther is not
+   rounding).
 2. **Fill.** Every hole (a loop of edges with a single face) is filled by MeshFix's hole
    filler (``pymeshfix``, the optional extra ``hullslice[repair]``): a triangulation of the
    loop, refined and smoothed to the surrounding faces' size. Only the fill is used, not
@@ -31,7 +33,14 @@ import numpy as np
 from ..constants import TOL
 from ..errors import MeshError
 from ..parts import face_labels, open_faces
-from ..topology import drop_repeated_faces, drop_unused_vertices, edge_use, unique_rows
+from ..topology import (
+    drop_repeated_faces,
+    drop_unused_vertices,
+    edge_use,
+    merge_groups,
+    moves_within_rounding,
+    unique_rows,
+)
 
 __all__ = ["CloseReport", "close_mesh"]
 
@@ -112,10 +121,10 @@ def _open_count(f: np.ndarray) -> tuple[int, int]:
 
 
 def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """Merge copies of the vertices on open edges over the ladder's distance that leaves the
-    fewest open edges (only those vertices: a fine part elsewhere is never collapsed)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
+    """Merge copies of the vertices on open edges over the ladder's distance (relative to
+    the mesh's size, not to its distance from the origin) that leaves the fewest open edges,
+    moving no vertex by more than ``TOL.merge_edge`` of its shortest edge (only the rim's
+    vertices: a fine part elsewhere is never collapsed)."""
     from scipy.spatial import cKDTree
 
     n_open, n_many = _open_count(f)
@@ -126,20 +135,18 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
     rim = np.unique(directed[counts[inverse.reshape(-1)] == 1])  # vertices on open edges
     tree = cKDTree(v[rim])
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
-    scale = max(size, float(np.abs(v).max()))
+    scale = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     best = (n_open, f, 0)
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
         pairs = tree.query_pairs(tol, output_type="ndarray")
         if len(pairs):
             k = len(rim)
-            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(k, k))
-            ncomp, labels = connected_components(graph, directed=False)
-            first = np.full(ncomp, k, dtype=np.int64)
-            np.minimum.at(first, labels, np.arange(k))
+            ncomp, labels, first = merge_groups(v[rim], pairs)
             target = np.arange(len(v))
             target[rim] = rim[first[labels]]
+            if not moves_within_rounding(v, f, target):
+                break  # past rounding: a larger distance would only move more
             f2 = target[f]
             deg = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
             f2, _ = drop_repeated_faces(f2[~deg])

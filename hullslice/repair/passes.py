@@ -215,12 +215,14 @@ def _drop_repeated_faces(s: MeshState) -> str | None:
 def _merge_close_vertices(s: MeshState) -> str | None:
     """Closes an open surface whose vertices that should be shared differ by rounding:
     merges them over the smallest distance (``TOL.merge`` to ``TOL.merge_max`` of the
-    mesh's size, by tens) that closes it; reports how many and the distance."""
+    mesh's size, by tens, whatever its distance from the origin) that closes it, moving no
+    vertex by more than ``TOL.merge_edge`` of its shortest edge; reports how many and the
+    distance."""
     counts, _ = s.edge_use()
     if not (counts == 1).any():
         return None
     v, f = s.vertices, s.faces
-    scale = max(s.size, float(np.abs(v).max()))
+    scale = s.size
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
         merged = merge_close(v, f, tol)
