@@ -3,8 +3,9 @@
 :func:`light_aircraft` builds, in metres, a 7 m fuselage shell (the generic fuselage of
 :func:`hullslice.shapes.fuselage` at 7/37.6 scale) with a few holes (windows, a hatch), an
 antenna welded to its crown at one vertex (an open cone sharing a vertex of the skin, as
-exporters write parts that touch), a closed wing wound inside out that passes through the
-fuselage, and many small open parts around it (single triangles, open boxes, open tubes).
+exporters write parts that touch), a fin sheet welded to it along one edge, a closed wing
+wound inside out that passes through the fuselage, and many small open parts around it
+(single triangles, open boxes, open tubes).
 """
 
 from __future__ import annotations
@@ -69,6 +70,13 @@ def light_aircraft(seed: int = 7, parts: int = 60) -> tuple[np.ndarray, np.ndarr
     av = np.vstack([ring, tip])
     af = np.array([[i, (i + 1) % 8, 8] for i in range(8)])
     pieces.append((av, af))
+    # a fin: a flat sheet welded to the crown along one edge of the skin (that edge then
+    # has three faces, and the fuselage does not close together with it)
+    centre = v[f].mean(axis=1)
+    crown = f[np.argmax(centre[:, 2] - 10.0 * np.abs(centre[:, 0] - 1.0))]
+    a, b = v[crown[0]], v[crown[1]]
+    up = np.array([0.0, 0.0, 0.5])
+    pieces.append((np.array([a, b, a + up, b + up]), np.array([[0, 1, 2], [1, 3, 2]])))
     # a closed wing through the fuselage, wound inside out (a mirrored part)
     wing = trimesh.creation.box(extents=(1.2, 9.0, 0.15))
     pieces.append(
