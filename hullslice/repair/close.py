@@ -256,9 +256,7 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
         volume_before=float(sum(was_closed)) if was_closed else None,
         volume_after=float(sum(o.volume or 0.0 for o in kept)),
         seconds=time.perf_counter() - start,
-        largest_dropped=tuple(
-            (*(float(e) for e in o.extents), len(o.faces), o.open_edges) for o in largest
-        ),
+        largest_dropped=tuple(_described(o) for o in largest),
         split=sum(o.split for o in kept),
     )
     return np.vstack(pieces_v), np.vstack(pieces_f), report
@@ -266,6 +264,11 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
 
 def _count(n: int, what: str) -> str:
     return f"{n} {what}{'' if n == 1 else 's'}"
+
+
+def _described(o) -> tuple[float, float, float, int, int]:
+    e = o.extents
+    return (float(e[0]), float(e[1]), float(e[2]), len(o.faces), o.open_edges)
 
 
 def _diagonal(o) -> float:

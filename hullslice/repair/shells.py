@@ -69,7 +69,7 @@ class Outcome:
 
     @property
     def area_added(self) -> float:
-        if self.closed_faces is None or self.holes == 0:
+        if self.closed_vertices is None or self.closed_faces is None or self.holes == 0:
             return 0.0
         return _area(self.closed_vertices, self.closed_faces) - _area(self.vertices, self.faces)
 
