@@ -33,6 +33,7 @@ __all__ = [
     "shortest_edges",
     "signed_volume",
     "to_manifold",
+    "triangle_outline",
     "unique_edges",
     "unique_rows",
     "volume_centroid",
@@ -268,6 +269,22 @@ def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
             "consistently oriented 2-manifold; repair it in your CAD tool"
         )
     return man
+
+
+def triangle_outline(tri: np.ndarray):
+    """A manifold3d ``CrossSection``: the union of the 2D triangles ``tri`` (m, 3, 2), each
+    turned counter-clockwise (the outline of a surface projected on a plane, open or not);
+    the contours are handed over as copies (:func:`manifold_arrays`'s rule)."""
+    import manifold3d
+
+    t = np.array(tri, dtype=np.float64, order="C", copy=True)
+    d1, d2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    t = t[cross != 0.0]
+    cw = cross[cross != 0.0] < 0.0
+    t[cw] = t[cw][:, ::-1]
+    contours = [np.array(c, dtype=np.float64, order="C", copy=True) for c in t]
+    return manifold3d.CrossSection(contours, manifold3d.FillRule.Positive)
 
 
 def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:

@@ -47,7 +47,7 @@ from ..topology import (
 )
 from .shells import close_each
 
-__all__ = ["CloseReport", "close_mesh"]
+__all__ = ["CloseReport", "close_mesh", "shell_outcomes"]
 
 
 @dataclass(frozen=True)
@@ -228,6 +228,27 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     # each shell on its own (closed ones as they are, turned outward if need be), so that
     # the holes and the surface added are counted on the shells that are kept
     outcomes = list(close_each(v, f, pymeshfix))
+    return _assemble(name, outcomes, n_open, stitched, start)
+
+
+def shell_outcomes(vertices: np.ndarray, faces: np.ndarray) -> tuple[list, int, bool]:
+    """What ``repair="close"`` would do with each shell, without doing it: the outcomes
+    (:class:`~hullslice.repair.shells.Outcome`, after the stitch), the vertices merged by
+    the stitch, and whether the fill could be tried (pymeshfix installed; without it the
+    open shells are reported open)."""
+    v = np.asarray(vertices, dtype=np.float64)
+    f = np.asarray(faces, dtype=np.int64)
+    v, f, stitched = _stitch(v, f)
+    v, f = drop_unused_vertices(v, f)
+    try:
+        pymeshfix = _meshfix()
+    except ImportError:
+        pymeshfix = None
+    return list(close_each(v, f, pymeshfix)), stitched, pymeshfix is not None
+
+
+def _assemble(name: str, outcomes: list, n_open: int, stitched: int, start: float):
+    """The closed shells of ``outcomes`` as one mesh, and the report."""
     kept = [o for o in outcomes if o.closes]
     dropped = [o for o in outcomes if not o.closes]
     was_closed = [o.volume for o in outcomes if o.open_edges == 0 and o.volume is not None]

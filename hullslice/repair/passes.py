@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..constants import TOL
-from ..errors import MeshError, MeshRepairWarning
+from ..errors import MeshError, MeshRepairWarning, OpenMeshError
 from ..integrity import check_sections_match_volume
 from ..topology import (
     check_finite,
@@ -140,14 +140,14 @@ def _check_closed(s: MeshState) -> None:
     name = s.name
     open_edges = int((counts == 1).sum())
     if open_edges:
-        raise MeshError(
+        raise OpenMeshError(
             f"mesh {name!r} is open: {open_edges} edges belong to a single face (holes in "
             "the surface); load it with --repair close (repair='close') to fill them and "
             "drop what cannot be closed, or close them in your CAD tool"
         )
     nonmanifold = int((counts > 2).sum())
     if nonmanifold:
-        raise MeshError(
+        raise OpenMeshError(
             f"mesh {name!r} is not manifold: {nonmanifold} edges are shared by more than two "
             "faces; separate the touching bodies or remesh"
         )
