@@ -115,3 +115,75 @@ def test_the_repaired_export_ditches_to_its_end_as_the_fuselage_alone(export, ca
     # and hatch, above the water, and the closing's rounding)
     assert pa["peak"]["force"] == pytest.approx(alone["peak"]["force"], rel=1e-3)
     assert pa["peak"]["t"] == pytest.approx(alone["peak"]["t"], abs=1e-12)
+
+
+def test_info_lists_the_shells_of_the_open_export_without_repair(export, capsys):
+    pytest.importorskip("pymeshfix")
+    reference = hs.load_hull(export / "fuselage.stl")
+    out = export / "shells.json"
+    views = export / "views.png"
+    code = main(["info", str(export / "pa.stl"), "--format", "json", "-o", str(out),
+                 "--plot", str(views)])  # fmt: skip
+    err = capsys.readouterr().err
+    assert code == 0, err
+    assert "warning" not in err and "error" not in err  # nothing refused, nothing repaired
+    data = json.loads(out.read_text())
+    assert data["loaded"] is False and data["open_edges"] == 662
+    assert data["nonmanifold_edges"] == 1  # the fin's edge on the crown
+    shells = data["shells"]
+    # 64 shells: the fuselage, antenna and fin apart (welded), the wing, 60 small parts
+    assert len(shells) == 64
+    fuselage, wing = shells[0], shells[1]
+    assert fuselage["number"] == 1 and fuselage["closes"] is True
+    assert fuselage["volume"] == pytest.approx(reference.volume, rel=0.01)
+    # its three holes' rims: the faces whose centre is within a hole's radius are missing
+    assert fuselage["open_edges"] == 31
+    np.testing.assert_allclose(fuselage["extents"], reference.extents, rtol=1e-6)
+    # the closed wing, inside out: 1.2 x 9 x 0.15 m
+    assert wing["number"] == 2 and wing["inside_out"] is True and wing["open_edges"] == 0
+    assert wing["volume"] == pytest.approx(1.2 * 9.0 * 0.15, rel=1e-6)  # float32 STL
+    # the fin would be dropped: 2 faces, 4 open edges, 0.5 m high
+    fin = next(s for s in shells if s["number"] is None and s["faces"] == 2)
+    assert fin["closes"] is False and fin["open_edges"] == 4
+    assert fin["extents"][2] == pytest.approx(0.5, abs=1e-3)  # and the skin edge's 0.3 mm slope
+    # the numbers are those --repair close --keep N gives: body 2 is the wing
+    hull = _load_quietly(export / "pa.stl", repair="close", keep=2)
+    assert hull.volume == pytest.approx(wing["volume"], rel=1e-9)
+    assert views.stat().st_size > 10_000
+
+
+def test_the_views_of_an_open_mesh_are_its_faces_outline(export):
+    pytest.importorskip("matplotlib")
+    from hullslice import plots
+    from hullslice.survey import survey_mesh
+
+    s = survey_mesh(export / "pa.stl")
+    fig = plots.plot_views(s, "+x", "+z")
+    tri = s.vertices[s.faces]
+    # side (x, z), front (y, z) and top (x, y), in the figure's order: each outline spans
+    # the box of the faces seen in that view (a face seen edge-on has no outline)
+    for ax, (i, j) in zip(fig.axes[:3], [(0, 2), (1, 2), (0, 1)], strict=True):
+        p = tri[:, :, [i, j]]
+        d1, d2 = p[:, 1] - p[:, 0], p[:, 2] - p[:, 0]
+        seen = p[d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0] != 0.0].reshape(-1, 2)
+        (patch,) = ax.patches
+        pts = patch.get_path().vertices
+        np.testing.assert_allclose(pts.min(axis=0), seen.min(axis=0), atol=1e-6 * 10)
+        np.testing.assert_allclose(pts.max(axis=0), seen.max(axis=0), atol=1e-6 * 10)
+    plots._pyplot().close(fig)
+
+
+def test_info_without_pymeshfix_says_which_shells_are_unknown(export, capsys, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "pymeshfix", None)
+    out = export / "unknown.json"
+    code = main(["info", str(export / "pa.stl"), "--format", "json", "-o", str(out)])
+    assert code == 0, capsys.readouterr().err
+    shells = json.loads(out.read_text())["shells"]
+    # only the wing was closed before: it alone is numbered
+    assert [s["number"] for s in shells if s["number"] is not None] == [1]
+    assert shells[0]["volume"] == pytest.approx(1.2 * 9.0 * 0.15, rel=1e-6)
+    assert {s["closes"] for s in shells[1:]} == {None}
+    code = main(["info", str(export / "pa.stl")])
+    assert "pip install 'hullslice[repair]'" in capsys.readouterr().out
