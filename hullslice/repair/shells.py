@@ -88,7 +88,8 @@ def _volume(v: np.ndarray, f: np.ndarray) -> float:
 def fill(pymeshfix, v: np.ndarray, f: np.ndarray, size: float):
     """The shell ``v, f`` with its holes filled by MeshFix: ``(vertices, faces, holes,
     volume)`` with the signed volume, or None when the result is open, not manifold, or
-    encloses no volume (under ``1e3 * TOL.flat`` of the cube of ``size``)."""
+    encloses no volume (under ``1e3 * TOL.flat`` of the cube of ``size``, the shell's own
+    box's diagonal)."""
     tm = pymeshfix.PyTMesh()
     tm.set_quiet(1)
     # MeshFix works about the shell's own centre: its result does not depend on where the
@@ -139,7 +140,11 @@ def edge_shells(f: np.ndarray) -> tuple[int, np.ndarray]:
     return connected_components(graph, directed=False)
 
 
-def _outcome(pymeshfix, v, f, size, split: bool = False) -> Outcome:
+def _outcome(pymeshfix, v, f, split: bool = False) -> Outcome:
+    """One shell closed, or not: its volume is judged against its own size, not against
+    the whole mesh's (a part far away does not make a small shell flat)."""
+    used = v[np.unique(f)]
+    size = float(np.linalg.norm(used.max(axis=0) - used.min(axis=0)))
     n_open = int((np.bincount(_edge_groups(f)) == 1).sum())
     if n_open == 0 and not open_faces(f).any():
         vol = _volume(v, f)
@@ -165,13 +170,12 @@ def _edge_groups(f: np.ndarray) -> np.ndarray:
 def close_each(v: np.ndarray, f: np.ndarray, pymeshfix) -> Iterator[Outcome]:
     """The outcome of every shell of ``v, f`` (copies of vertices merged), closed shells as
     they are; ``pymeshfix`` None fills nothing (every open shell is reported open)."""
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     n, labels = face_labels(v, f)
     order = np.argsort(labels, kind="stable")
     bounds = np.searchsorted(labels[order], np.arange(n + 1))
     for s in range(n):
         sv, sf = drop_unused_vertices(v, f[order[bounds[s] : bounds[s + 1]]])
-        whole = _outcome(pymeshfix, sv, sf, size)
+        whole = _outcome(pymeshfix, sv, sf)
         if whole.closes:
             yield whole
             continue
@@ -181,4 +185,4 @@ def close_each(v: np.ndarray, f: np.ndarray, pymeshfix) -> Iterator[Outcome]:
             continue
         for p in range(k):
             pv, pf = drop_unused_vertices(sv, sf[parts == p])
-            yield _outcome(pymeshfix, pv, pf, size, split=True)
+            yield _outcome(pymeshfix, pv, pf, split=True)
