@@ -65,11 +65,12 @@ class CloseReport:
     area_added : float
         Surface added by the fill (mesh units squared).
     shells : int
-        Shells (after the stitch).
+        Shells (after the stitch, a shell that did not close with the parts welded to it
+        counted as its parts).
     dropped : int
         Open shells dropped (still open after the fill, or enclosing no volume).
     flipped : int
-        Filled shells turned outward.
+        Shells turned outward (wound inside out: a negative volume once closed).
     volume_before : float or None
         Volume of the shells that were closed before the repair (mesh units cubed), None if
         none was.
