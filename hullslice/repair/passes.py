@@ -143,7 +143,8 @@ def _check_closed(s: MeshState) -> None:
         raise OpenMeshError(
             f"mesh {name!r} is open: {open_edges} edges belong to a single face (holes in "
             "the surface); load it with --repair close (repair='close') to fill them and "
-            "drop what cannot be closed, or close them in your CAD tool"
+            "drop what cannot be closed ('hullslice info MESH' lists the shells and which "
+            "would close), or close them in your CAD tool"
         )
     nonmanifold = int((counts > 2).sum())
     if nonmanifold:
