@@ -77,11 +77,15 @@ class Tolerances:
         Two coordinates closer than this are the same point. manifold3d returns its cross
         sections in single precision (about 1.2e-7 relative), so this must be larger.
     merge, merge_max : float
-        Distances, relative to the mesh's largest coordinate or size, over which the
-        vertices of an open mesh are merged on loading to close it (an STL is a triangle
-        soup whose copies of one vertex may differ by rounding): ``merge`` first, then ten
-        times more up to ``merge_max``, until the surface closes. An ASCII STL written with
-        6 significant digits rounds two copies of a vertex up to 1e-5 apart (relative).
+        Distances, relative to the mesh's own size (never to its distance from the origin),
+        over which the vertices of an open mesh are merged on loading to close it (an STL
+        is a triangle soup whose copies of one vertex may differ by rounding): ``merge``
+        first, then ten times more up to ``merge_max``, until the surface closes. An ASCII
+        STL written with 6 significant digits rounds two copies of a vertex up to 1e-5
+        apart (relative).
+    merge_edge : float
+        A merge moves no vertex by more than this fraction of its shortest edge: farther,
+        the two points are not copies that differ by rounding but different points.
     volume : float
         Relative difference of volumes treated as equal (overlapping-shell detection).
     flat : float
@@ -92,6 +96,7 @@ class Tolerances:
     coordinate: float = 1e-6
     merge: float = 1e-9
     merge_max: float = 1e-4
+    merge_edge: float = 0.05
     volume: float = 1e-6
     flat: float = 1e-12
 

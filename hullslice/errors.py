@@ -16,6 +16,7 @@ __all__ = [
     "MeshError",
     "MeshRepairWarning",
     "MissingDependencyError",
+    "OpenMeshError",
     "OrientationWarning",
     "PluginError",
     "PluginWarning",
@@ -35,6 +36,11 @@ class InputError(ValueError, HullsliceError):
 
 class MeshError(ValueError, HullsliceError):
     """A mesh file cannot be read or does not describe a closed body."""
+
+
+class OpenMeshError(MeshError):
+    """A mesh is not one closed surface: edges with a single face (holes) or with more than
+    two (parts welded together). ``hullslice info`` then lists its shells."""
 
 
 class CaseError(InputError):

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError, MeshError
+from .topology import mesh_arrays
 
 __all__ = ["Body", "box_note", "cut_to_box", "find_bodies", "keep_faces", "parse_box", "parse_keep"]
 
@@ -270,9 +271,7 @@ def cut_to_box(vertices: np.ndarray, faces: np.ndarray, manifold, box, name: str
             f"of mesh {name!r}, which spans {spans} m (body frame, after scaling): give a box "
             "that overlaps it"
         )
-    mesh = part.to_mesh64()
-    v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3].copy()
-    f = np.asarray(mesh.tri_verts, dtype=np.int64).copy()
+    v, f = mesh_arrays(part)
     if len(f) == 0:
         raise MeshError(f"mesh {name!r}: the box cut left no faces")
     return v, f, float(part.volume()), float(manifold.volume())

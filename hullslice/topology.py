@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from .constants import TOL
 from .errors import MeshError
 
 __all__ = [
@@ -19,12 +20,20 @@ __all__ = [
     "edge_use",
     "flipped",
     "group",
+    "manifold_arrays",
     "merge_close",
     "merge_exact_copies",
+    "merge_groups",
+    "mesh_arrays",
+    "moves_within_rounding",
     "orient_consistently",
     "second_moment",
+    "shell_sizes",
+    "shell_volumes",
+    "shortest_edges",
     "signed_volume",
     "to_manifold",
+    "triangle_outline",
     "unique_edges",
     "unique_rows",
     "volume_centroid",
@@ -92,15 +101,49 @@ def unique_rows(v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 MAX_MERGE_PAIRS = 8
 
 
+def shortest_edges(v: np.ndarray, f: np.ndarray) -> np.ndarray:
+    """(n,) float: the length of the shortest edge at each vertex (inf for a vertex no
+    face uses)."""
+    e = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
+    length = np.linalg.norm(v[e[:, 0]] - v[e[:, 1]], axis=1)
+    out = np.full(len(v), np.inf)
+    np.minimum.at(out, e[:, 0], length)
+    np.minimum.at(out, e[:, 1], length)
+    return out
+
+
+def merge_groups(v: np.ndarray, pairs: np.ndarray) -> tuple[int, np.ndarray, np.ndarray]:
+    """Vertices linked by ``pairs`` (k, 2) as groups: their number, the group of every
+    vertex, and each group's first vertex (its representative)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(v)
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
+    ncomp, labels = connected_components(graph, directed=False)
+    first = np.full(ncomp, n, dtype=np.int64)
+    np.minimum.at(first, labels, np.arange(n))
+    return ncomp, labels, first
+
+
+def moves_within_rounding(v: np.ndarray, f: np.ndarray, target: np.ndarray) -> bool:
+    """True when moving every vertex ``i`` onto ``target[i]`` moves none by more than
+    ``TOL.merge_edge`` of its shortest edge (a merge of copies that differ by rounding)."""
+    moved = np.flatnonzero(target != np.arange(len(v)))
+    if not len(moved):
+        return True
+    shift = np.linalg.norm(v[moved] - v[target[moved]], axis=1)
+    return bool(np.all(shift <= TOL.merge_edge * shortest_edges(v, f)[moved]))
+
+
 def merge_close(
     v: np.ndarray, f: np.ndarray, tol: float
 ) -> tuple[np.ndarray, np.ndarray, int] | None:
     """Merge vertices closer than ``tol``; returns new arrays and the number merged, or
     None when the vertices within ``tol`` of one another are not copies of a vertex: more
     pairs than :data:`MAX_MERGE_PAIRS` per vertex (counted before any is listed, so that
-    memory stays in proportion to the mesh), or a face with two corners among them."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
+    memory stays in proportion to the mesh), a face with two corners among them, or a
+    vertex moved by more than ``TOL.merge_edge`` of its shortest edge."""
     from scipy.spatial import cKDTree
 
     tree = cKDTree(v)
@@ -110,16 +153,13 @@ def merge_close(
     pairs = tree.query_pairs(tol, output_type="ndarray")
     if len(pairs) == 0:
         return v, f, 0
-    n = len(v)
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(n, n))
-    ncomp, labels = connected_components(graph, directed=False)
-    # representative: the first vertex of each group
-    first = np.full(ncomp, n, dtype=np.int64)
-    np.minimum.at(first, labels, np.arange(n))
+    ncomp, labels, first = merge_groups(v, pairs)
     g = labels[f]
     if np.any((g[:, 0] == g[:, 1]) | (g[:, 1] == g[:, 2]) | (g[:, 2] == g[:, 0])):
         return None  # a face would collapse: the distance is larger than some edge
-    return v[first], g, n - ncomp
+    if not moves_within_rounding(v, f, first[labels]):
+        return None  # not rounding: a vertex would move by a fair part of its edges
+    return v[first], g, len(v) - ncomp
 
 
 def drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:
@@ -153,6 +193,35 @@ def signed_volume(v: np.ndarray, f: np.ndarray) -> float:
     return float(np.einsum("ij,ij->", a, np.cross(b, c)) / 6.0)
 
 
+def shell_volumes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """(n,) float: the signed volume each shell (faces labelled ``0 .. n - 1``) encloses,
+    about its own mean corner (exact for a closed shell, whatever its distance from the
+    origin or from the other shells)."""
+    counts = np.maximum(np.bincount(labels, minlength=n), 1) * 3.0
+    tri = v[f]
+    centre = (
+        np.stack(
+            [np.bincount(labels, weights=tri[:, :, k].sum(axis=1), minlength=n) for k in range(3)],
+            axis=1,
+        )
+        / counts[:, None]
+    )
+    o = centre[labels]
+    a, b, c = tri[:, 0] - o, tri[:, 1] - o, tri[:, 2] - o
+    return np.bincount(labels, weights=np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0, minlength=n)
+
+
+def shell_sizes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> np.ndarray:
+    """(n,) float: the diagonal of each shell's bounding box."""
+    corners = v[f].reshape(-1, 3)
+    owner = np.repeat(labels, 3)
+    lo = np.full((n, 3), np.inf)
+    hi = np.full((n, 3), -np.inf)
+    np.minimum.at(lo, owner, corners)
+    np.maximum.at(hi, owner, corners)
+    return np.linalg.norm(hi - lo, axis=1)
+
+
 def check_finite(v: np.ndarray, name: str) -> None:
     bad = ~np.isfinite(v)
     if bad.any():
@@ -163,16 +232,36 @@ def check_finite(v: np.ndarray, name: str) -> None:
         )
 
 
+def manifold_arrays(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The arrays as manifold3d takes them: fresh, owned, writeable, C-contiguous copies,
+    float64 ``(n, 3)`` vertices and uint64 ``(m, 3)`` faces.
+
+    Every array handed to manifold3d goes through here. manifold3d (nanobind) refuses a
+    read-only array, one of another dtype or a strided view; the hull's own arrays are
+    read-only, what manifold3d hands back are views of its memory, and
+    ``np.ascontiguousarray`` returns such an array uncopied when it is already contiguous.
+    """
+    vc = np.array(np.reshape(v, (-1, 3)), dtype=np.float64, order="C", copy=True)
+    fc = np.array(np.reshape(f, (-1, 3)), dtype=np.uint64, order="C", copy=True)
+    return vc, fc
+
+
+def mesh_arrays(manifold) -> tuple[np.ndarray, np.ndarray]:
+    """The vertices (float64 ``(n, 3)``) and faces (int64 ``(m, 3)``) of a manifold3d
+    ``Manifold``, as owned, writeable copies (not views of manifold3d's memory)."""
+    mesh = manifold.to_mesh64()
+    v = np.array(np.asarray(mesh.vert_properties)[:, :3], dtype=np.float64, order="C", copy=True)
+    f = np.array(np.reshape(mesh.tri_verts, (-1, 3)), dtype=np.int64, order="C", copy=True)
+    return v, f
+
+
 def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
+    """A manifold3d ``Manifold`` of the arrays (copied by :func:`manifold_arrays`), refused
+    with a ``MeshError`` when manifold3d refuses it."""
     import manifold3d
 
-    # fresh writeable copies: manifold3d (nanobind) refuses a read-only array, and
-    # np.ascontiguousarray hands one back uncopied when it is already contiguous
-    mesh = manifold3d.Mesh64(
-        vert_properties=np.array(v, dtype=np.float64, order="C", copy=True),
-        tri_verts=np.array(f, dtype=np.uint64, order="C", copy=True),
-    )
-    man = manifold3d.Manifold(mesh)
+    vc, fc = manifold_arrays(v, f)
+    man = manifold3d.Manifold(manifold3d.Mesh64(vert_properties=vc, tri_verts=fc))
     status = man.status()
     if status != manifold3d.Error.NoError:
         raise MeshError(
@@ -180,6 +269,22 @@ def to_manifold(v: np.ndarray, f: np.ndarray, name: str):
             "consistently oriented 2-manifold; repair it in your CAD tool"
         )
     return man
+
+
+def triangle_outline(tri: np.ndarray):
+    """A manifold3d ``CrossSection``: the union of the 2D triangles ``tri`` (m, 3, 2), each
+    turned counter-clockwise (the outline of a surface projected on a plane, open or not);
+    the contours are handed over as copies (:func:`manifold_arrays`'s rule)."""
+    import manifold3d
+
+    t = np.array(tri, dtype=np.float64, order="C", copy=True)
+    d1, d2 = t[:, 1] - t[:, 0], t[:, 2] - t[:, 0]
+    cross = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0]
+    t = t[cross != 0.0]
+    cw = cross[cross != 0.0] < 0.0
+    t[cw] = t[cw][:, ::-1]
+    contours = [np.array(c, dtype=np.float64, order="C", copy=True) for c in t]
+    return manifold3d.CrossSection(contours, manifold3d.FillRule.Positive)
 
 
 def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
@@ -236,10 +341,8 @@ def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
 
 def flipped(manifold):
     """The same surface with every face reversed (a cavity turned into a solid)."""
-    mesh = manifold.to_mesh64()
-    v = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3]
-    f = np.asarray(mesh.tri_verts, dtype=np.int64)[:, ::-1]
-    return to_manifold(v, f, "cavity")
+    v, f = mesh_arrays(manifold)
+    return to_manifold(v, f[:, ::-1], "cavity")
 
 
 def unique_edges(faces: np.ndarray, n: int) -> np.ndarray:

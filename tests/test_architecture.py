@@ -49,6 +49,7 @@ LAYERS: dict[str, int] = {
     "hullslice.orientation": 2,
     "hullslice.mass": 2,
     "hullslice.shapes": 2,
+    "hullslice.survey": 2,
     # 3 cut: frames, caches of cuts, the slicing API
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,

@@ -339,3 +339,46 @@ def test_read_only_arrays_are_handed_to_manifold3d_as_writeable_copies():
     man = to_manifold(v, f, "read-only")
     # a 1 m prism of a 30-degree wedge 0.2 m wide: half the beam times its height
     assert man.volume() == pytest.approx(0.1 * 0.1 * np.tan(np.radians(30.0)), rel=1e-12)
+
+
+def test_every_array_for_manifold3d_is_an_owned_writeable_copy_of_its_dtype():
+    # a read-only, strided, float32 / int32 pair: what a reader or a cache may hand on
+    import numpy as np
+
+    from hullslice import shapes
+    from hullslice.topology import manifold_arrays, mesh_arrays, to_manifold
+
+    v, f = shapes.wedge_prism()
+    wide = np.zeros((len(v), 6), dtype=np.float32)
+    wide[:, ::2] = v
+    vs, fs = wide[:, ::2], np.asarray(f, dtype=np.int32)[:, [0, 1, 2]]
+    vs.flags.writeable = False
+    fs.flags.writeable = False
+    for a, dtype in zip(manifold_arrays(vs, fs), (np.float64, np.uint64), strict=True):
+        assert a.dtype == dtype and a.flags.owndata and a.flags.writeable
+        assert a.flags.c_contiguous
+    man = to_manifold(vs, fs, "strided")
+    back_v, back_f = mesh_arrays(man)
+    assert back_v.flags.owndata and back_v.flags.writeable and back_f.dtype == np.int64
+    # the float32 wedge: half the 0.2 m beam times the keel depth, to float32 rounding
+    assert man.volume() == pytest.approx(0.1 * 0.1 * np.tan(np.radians(30.0)), rel=1e-6)
+
+
+@pytest.mark.parametrize("reverse_both", [False, True])
+def test_overlapping_shells_one_inside_out_are_taken_as_their_union(reverse_both):
+    # two 1 m wedge prisms overlapping by 0.45 m, the second wound inside out (or both):
+    # the body is one 1.55 m prism, not the first with the second's volume taken away
+    import numpy as np
+
+    from hullslice import shapes
+
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    second = f[:, ::-1] + len(v)
+    faces = np.vstack([f[:, ::-1] if reverse_both else f, second])
+    with pytest.warns(hs.MeshRepairWarning) as record:
+        hull = hs.Hull.from_arrays(np.vstack([v, v + np.array([0.55, 0.0, 0.0])]), faces)
+    assert "inside out" in str(record[0].message) or "inside-out" in str(record[0].message)
+    assert "2 shells overlap" in str(record[-1].message)
+    h30 = 0.1 * np.tan(np.radians(30.0))
+    assert hull.volume == pytest.approx(1.55 * 0.1 * h30, rel=1e-9)
+    np.testing.assert_allclose(hull.extents, (1.55, 0.2, h30), rtol=1e-9)

@@ -8,9 +8,11 @@ from pathlib import Path
 import numpy as np
 
 from .. import plots
+from ..errors import OpenMeshError
 from ..paths import printable
 from ..study import InfoResult, Study, StudyResult
 from ..textout import Column, coordinate_text, significant, table_text
+from . import shells
 from .common import (
     Outcome,
     add_mesh_options,
@@ -49,7 +51,10 @@ def add_parser(sub) -> None:
         help="a mesh's size, volume, mass properties and sectional area curve",
         description="Read a hull mesh as the other commands do (units, axes, checks and "
         "repairs) and describe it: bounding box, faces, volume, the mass properties with "
-        "--mass or --mass-distribution, and the sectional area curve.",
+        "--mass or --mass-distribution, and the sectional area curve. A mesh that is not "
+        "one closed surface (holes, parts welded together) is described shell by shell "
+        "without --repair: faces, extent, open edges, whether --repair close would close "
+        "it and the volume it would then enclose, and its views.",
     )
     add_mesh_options(p)
     p.add_argument(
@@ -98,8 +103,15 @@ def check_mesh_output(out: str, study: Study, save_case: str | None = None) -> N
 
 def run_study(study: Study, save_case: str | None = None, write_mesh: str | None = None) -> int:
     """Execute ``study`` and give its outputs; ``save_case`` also writes its case file,
-    ``write_mesh`` the checked and repaired mesh (m, body frame), all or none."""
-    result = compute(study, save_case, write_mesh=write_mesh)
+    ``write_mesh`` the checked and repaired mesh (m, body frame), all or none. A mesh
+    that is not one closed surface, read without ``--repair``, is described shell by shell
+    (:mod:`hullslice.cli.shells`)."""
+    try:
+        result = compute(study, save_case, write_mesh=write_mesh)
+    except OpenMeshError as exc:
+        if write_mesh or study.repair not in (None, "none"):
+            raise
+        return finish(study, shells.outcome(study, shells.survey(study, str(exc))), save_case)
     extra = []
     if write_mesh:
         mesh_path = write_mesh

@@ -18,6 +18,20 @@ _VIEWS = (
 )
 
 
+def _outline(body: Any, rows: np.ndarray):
+    """The body's outline seen along the third of ``rows`` (its view axes first): the
+    projection of its manifold3d body, or, for a mesh that is not one closed surface (a
+    :class:`~hullslice.survey.Survey`), the union of its projected triangles."""
+    manifold = getattr(body, "manifold", None)
+    if manifold is not None:
+        m = np.zeros((3, 4))
+        m[:, :3] = rows
+        return manifold.transform(m).project()
+    from ..topology import triangle_outline
+
+    return triangle_outline((body.vertices @ rows[:2].T)[body.faces])
+
+
 def plot_views(
     hull: Any, forward: str = "+x", up: str = "+z", nose: str | None = None, *, ax: Any = None
 ) -> Any:
@@ -25,7 +39,9 @@ def plot_views(
 
     Parameters
     ----------
-    hull : Hull
+    hull : Hull or Survey
+        The body; or a mesh that is not one closed surface, as ``hullslice info`` describes
+        it (:func:`hullslice.survey.survey_mesh`), drawn as the outline of its faces.
     forward, up : str
         The mesh file's axes given as forward and up, for the labels.
     nose : str, optional
@@ -63,9 +79,7 @@ def plot_views(
     for a, (title, xlabel, ylabel, rows) in zip(axes[:3], _VIEWS, strict=True):
         if a is None:
             continue
-        m = np.zeros((3, 4))
-        m[:, :3] = np.array(rows, dtype=float)
-        outline = hull.manifold.transform(m).project()
+        outline = _outline(hull, np.array(rows, dtype=float))
         verts: list[list[float]] = []
         codes: list[Any] = []
         for poly in outline.to_polygons():

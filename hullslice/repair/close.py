@@ -5,14 +5,22 @@ repair reports what it did (:class:`CloseReport`, one :class:`~hullslice.errors.
 MeshRepairWarning`). The passes, each with its own figures:
 
 1. **Stitch.** Copies of one vertex that differ by rounding are merged, over the smallest
-   distance of the loader's ladder (``TOL.merge`` to ``TOL.merge_max`` of the mesh's size)
-   that leaves the fewest edges with a single face.
+   distance of the loader's ladder (``TOL.merge`` to ``TOL.merge_max`` of the mesh's size,
+   whatever its distance from the origin) that leaves the fewest edges with a single face;
+   no vertex moves by more than ``TOL.merge_edge`` of its shortest edge (farther is not
+   rounding).
 2. **Fill.** Every hole (a loop of edges with a single face) is filled by MeshFix's hole
    filler (``pymeshfix``, the optional extra ``hullslice[repair]``): a triangulation of the
    loop, refined and smoothed to the surrounding faces' size. Only the fill is used, not
    MeshFix's whole clean-up, which takes away sharp tips and small parts of a good hull.
+   Each shell (faces sharing vertices) is filled on its own; one that does not close as a
+   whole, because parts are welded to it at a vertex or an edge, is split into the
+   surfaces that hang together across edges of two faces and each is filled on its own
+   (:mod:`hullslice.repair.shells`): a shell that closes alone is never dropped because
+   another welded to it does not.
 3. **Drop.** A shell that is still open, or encloses no volume (a single sheet, a loose
-   triangle) is dropped; a shell wound inside out is turned outward.
+   triangle) is dropped, and the warning names the largest dropped ones with their size;
+   a shell wound inside out (a negative volume once closed) is turned outward.
 
 What was measured (``tests/test_aircraft_meshes.py``, ``benchmarks/repair.py``): the
 generic fuselage (``hullslice.shapes.fuselage``, 2 m radius) with holes of 0.3 to 0.8 m
@@ -30,10 +38,16 @@ import numpy as np
 
 from ..constants import TOL
 from ..errors import MeshError
-from ..parts import face_labels, open_faces
-from ..topology import drop_repeated_faces, drop_unused_vertices, edge_use, unique_rows
+from ..topology import (
+    drop_repeated_faces,
+    drop_unused_vertices,
+    edge_use,
+    merge_groups,
+    moves_within_rounding,
+)
+from .shells import close_each
 
-__all__ = ["CloseReport", "close_mesh"]
+__all__ = ["CloseReport", "close_mesh", "shell_outcomes"]
 
 
 @dataclass(frozen=True)
@@ -51,11 +65,12 @@ class CloseReport:
     area_added : float
         Surface added by the fill (mesh units squared).
     shells : int
-        Shells (after the stitch).
+        Shells (after the stitch, a shell that did not close with the parts welded to it
+        counted as its parts).
     dropped : int
         Open shells dropped (still open after the fill, or enclosing no volume).
     flipped : int
-        Filled shells turned outward.
+        Shells turned outward (wound inside out: a negative volume once closed).
     volume_before : float or None
         Volume of the shells that were closed before the repair (mesh units cubed), None if
         none was.
@@ -63,6 +78,11 @@ class CloseReport:
         Volume of the kept shells after it.
     seconds : float
         Time taken.
+    largest_dropped : tuple of (length, beam, height, faces, open edges)
+        The largest shells dropped (by the diagonal of their box, mesh units), up to three.
+    split : int
+        Shells kept that are parts of a shell that did not close as a whole (parts welded
+        to one another at a vertex or an edge), each closed on its own.
     """
 
     holes: int
@@ -75,6 +95,8 @@ class CloseReport:
     volume_before: float | None
     volume_after: float
     seconds: float
+    largest_dropped: tuple[tuple[float, float, float, int, int], ...] = ()
+    split: int = 0
 
     def message(self, scale: float = 1.0) -> str:
         """One line for the warning, lengths times ``scale`` (m per mesh unit)."""
@@ -85,13 +107,24 @@ class CloseReport:
         ]
         if self.stitched:
             parts.append(f"merged {self.stitched} vertices that differed by rounding")
+        if self.split:
+            one = self.split == 1
+            parts.append(
+                f"closed {self.split} shell{'' if one else 's'} on {'its' if one else 'their'} "
+                f"own that did not close with the parts welded to {'it' if one else 'them'}"
+            )
         if self.dropped:
+            largest = ", ".join(
+                f"{_extent_text((a, b, c), scale)} ({_count(nf, 'face')}, "
+                f"{_count(ne, 'open edge')})"
+                for a, b, c, nf, ne in self.largest_dropped
+            )
             parts.append(
                 f"dropped {self.dropped} of {self.shells} shells that could not be closed "
-                "(open sheets or no volume)"
+                f"(open sheets or no volume; the largest: {largest})"
             )
         if self.flipped:
-            parts.append(f"turned {self.flipped} inside-out shells outward")
+            parts.append(f"turned {_count(self.flipped, 'inside-out shell')} outward")
         before = (
             f"{self.volume_before * scale**3:.6g} m^3 in the shells closed before"
             if self.volume_before is not None
@@ -101,21 +134,16 @@ class CloseReport:
         return "repair close: " + "; ".join(parts) + f" ({self.seconds:.2f} s)"
 
 
-def _area(v: np.ndarray, f: np.ndarray) -> float:
-    cross = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
-    return float(np.linalg.norm(cross, axis=1).sum() / 2)
-
-
 def _open_count(f: np.ndarray) -> tuple[int, int]:
     counts, _ = edge_use(f)
     return int((counts == 1).sum()), int((counts > 2).sum())
 
 
 def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
-    """Merge copies of the vertices on open edges over the ladder's distance that leaves the
-    fewest open edges (only those vertices: a fine part elsewhere is never collapsed)."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
+    """Merge copies of the vertices on open edges over the ladder's distance (relative to
+    the mesh's size, not to its distance from the origin) that leaves the fewest open edges,
+    moving no vertex by more than ``TOL.merge_edge`` of its shortest edge (only the rim's
+    vertices: a fine part elsewhere is never collapsed)."""
     from scipy.spatial import cKDTree
 
     n_open, n_many = _open_count(f)
@@ -126,20 +154,18 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
     rim = np.unique(directed[counts[inverse.reshape(-1)] == 1])  # vertices on open edges
     tree = cKDTree(v[rim])
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
-    scale = max(size, float(np.abs(v).max()))
+    scale = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
     best = (n_open, f, 0)
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
         pairs = tree.query_pairs(tol, output_type="ndarray")
         if len(pairs):
             k = len(rim)
-            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(k, k))
-            ncomp, labels = connected_components(graph, directed=False)
-            first = np.full(ncomp, k, dtype=np.int64)
-            np.minimum.at(first, labels, np.arange(k))
+            ncomp, labels, first = merge_groups(v[rim], pairs)
             target = np.arange(len(v))
             target[rim] = rim[first[labels]]
+            if not moves_within_rounding(v, f, target):
+                break  # past rounding: a larger distance would only move more
             f2 = target[f]
             deg = (f2[:, 0] == f2[:, 1]) | (f2[:, 1] == f2[:, 2]) | (f2[:, 2] == f2[:, 0])
             f2, _ = drop_repeated_faces(f2[~deg])
@@ -192,91 +218,77 @@ def close_mesh(vertices: np.ndarray, faces: np.ndarray, name: str = "hull"):
     if n_open == 0 and not stitched:
         return v, f, None
     v, f = drop_unused_vertices(v, f)
-    n0, labels0 = face_labels(v, f)
-    before_closed = _closed_shell_volume(v, f, labels0, n0)
-    open_shell = np.bincount(labels0, weights=open_faces(f), minlength=n0) > 0
-    # the closed shells stay as they are; each open one is filled on its own, so that the
-    # holes and the surface added are counted on the shells that are kept
-    pieces_v = [v]
-    pieces_f = [f[~open_shell[labels0]]]
-    offset = len(v)
-    holes = 0
-    area_added = 0.0
-    dropped = 0
-    flipped = 0
-    volume_after = before_closed or 0.0
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
-    order = np.argsort(labels0, kind="stable")
-    bounds = np.searchsorted(labels0[order], np.arange(n0 + 1))
-    if open_shell.any():
+    pymeshfix = _meshfix() if n_open else None
+    # each shell on its own (closed ones as they are, turned outward if need be), so that
+    # the holes and the surface added are counted on the shells that are kept
+    outcomes = list(close_each(v, f, pymeshfix))
+    return _assemble(name, outcomes, n_open, stitched, start)
+
+
+def shell_outcomes(vertices: np.ndarray, faces: np.ndarray) -> tuple[list, int, bool]:
+    """What ``repair="close"`` would do with each shell, without doing it: the outcomes
+    (:class:`~hullslice.repair.shells.Outcome`, after the stitch), the vertices merged by
+    the stitch, and whether the fill could be tried (pymeshfix installed; without it the
+    open shells are reported open)."""
+    v = np.asarray(vertices, dtype=np.float64)
+    f = np.asarray(faces, dtype=np.int64)
+    v, f, stitched = _stitch(v, f)
+    v, f = drop_unused_vertices(v, f)
+    try:
         pymeshfix = _meshfix()
-    for s in np.flatnonzero(open_shell):
-        sv, sf = drop_unused_vertices(v, f[order[bounds[s] : bounds[s + 1]]])
-        tm = pymeshfix.PyTMesh()
-        tm.set_quiet(1)
-        tm.load_array(np.ascontiguousarray(sv), np.ascontiguousarray(sf, dtype=np.int32))
-        loops = int(tm.n_boundaries)
-        tm.fill_small_boundaries(nbe=0, refine=True)
-        fv, ff = tm.return_arrays()
-        fv = np.asarray(fv, dtype=np.float64)
-        ff = np.asarray(ff, dtype=np.int64)
-        # the fill may put a new vertex exactly on an old one, leaving triangles with a
-        # repeated corner: no area, part of the fill
-        fv, inverse = unique_rows(fv)
-        ff = inverse[ff]
-        ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 2] != ff[:, 0])]
-        vol = _volume(fv, ff)
-        if len(ff) == 0 or open_faces(ff).any() or abs(vol) <= 1e3 * TOL.flat * size**3:
-            dropped += 1
-            continue
-        if vol < 0:
-            ff = ff[:, ::-1]
-            flipped += 1
-        holes += loops
-        area_added += _area(fv, ff) - _area(sv, sf)
-        volume_after += abs(vol)
-        pieces_v.append(fv)
-        pieces_f.append(ff + offset)
-        offset += len(fv)
-    n = n0
-    if sum(len(pf) for pf in pieces_f) == 0:
+    except ImportError:
+        pymeshfix = None
+    return list(close_each(v, f, pymeshfix)), stitched, pymeshfix is not None
+
+
+def _assemble(name: str, outcomes: list, n_open: int, stitched: int, start: float):
+    """The closed shells of ``outcomes`` as one mesh, and the report."""
+    kept = [o for o in outcomes if o.closes]
+    dropped = [o for o in outcomes if not o.closes]
+    was_closed = [o.volume for o in outcomes if o.open_edges == 0 and o.volume is not None]
+    if not kept:
         raise MeshError(
-            f"mesh {name!r}: repair close left nothing that encloses a volume ({n} shells, "
-            f"{dropped} could not be closed): the surface is not a body; remesh it"
+            f"mesh {name!r}: repair close left nothing that encloses a volume "
+            f"({len(outcomes)} shells, {len(dropped)} could not be closed, the largest "
+            f"{_extent_text(max(dropped, key=_diagonal).extents)}): the surface is not a "
+            "body; remesh it"
         )
-    v, f = drop_unused_vertices(np.vstack(pieces_v), np.vstack(pieces_f))
+    pieces_v, pieces_f, offset = [], [], 0
+    for o in kept:
+        assert o.closed_vertices is not None and o.closed_faces is not None
+        pieces_v.append(o.closed_vertices)
+        pieces_f.append(o.closed_faces + offset)
+        offset += len(o.closed_vertices)
+    largest = sorted(dropped, key=_diagonal, reverse=True)[:3]
     report = CloseReport(
-        holes=holes,
+        holes=sum(o.holes for o in kept),
         open_edges=n_open,
         stitched=stitched,
-        area_added=area_added,
-        shells=n,
-        dropped=dropped,
-        flipped=flipped,
-        volume_before=before_closed,
-        volume_after=volume_after,
+        area_added=sum(o.area_added for o in kept),
+        shells=len(outcomes),
+        dropped=len(dropped),
+        flipped=sum(o.flipped for o in kept),
+        volume_before=float(sum(was_closed)) if was_closed else None,
+        volume_after=float(sum(o.volume or 0.0 for o in kept)),
         seconds=time.perf_counter() - start,
+        largest_dropped=tuple(_described(o) for o in largest),
+        split=sum(o.split for o in kept),
     )
-    return v, f, report
+    return np.vstack(pieces_v), np.vstack(pieces_f), report
 
 
-def _volume(v: np.ndarray, f: np.ndarray) -> float:
-    """Signed volume enclosed by one shell (0 for no faces)."""
-    if len(f) == 0:
-        return 0.0
-    return float(_shell_volumes(v, f, np.zeros(len(f), dtype=np.int64), 1)[0])
+def _count(n: int, what: str) -> str:
+    return f"{n} {what}{'' if n == 1 else 's'}"
 
 
-def _shell_volumes(v, f, labels, n) -> np.ndarray:
-    """Signed volume of each shell (about the mesh's mean point; exact for closed shells)."""
-    o = v.mean(axis=0)
-    a, b, c = v[f[:, 0]] - o, v[f[:, 1]] - o, v[f[:, 2]] - o
-    return np.bincount(labels, weights=np.einsum("ij,ij->i", a, np.cross(b, c)) / 6.0, minlength=n)
+def _described(o) -> tuple[float, float, float, int, int]:
+    e = o.extents
+    return (float(e[0]), float(e[1]), float(e[2]), len(o.faces), o.open_edges)
 
 
-def _closed_shell_volume(v, f, labels, n) -> float | None:
-    closed = np.bincount(labels, weights=open_faces(f), minlength=n) == 0
-    if not closed.any():
-        return None
-    vol = _shell_volumes(v, f, labels, n)
-    return float(np.abs(vol[closed]).sum())
+def _diagonal(o) -> float:
+    return float(np.linalg.norm(o.extents))
+
+
+def _extent_text(e, scale: float = 1.0) -> str:
+    return " x ".join(f"{x * scale:.3g}" for x in e) + " m"

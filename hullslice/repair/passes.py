@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from ..constants import TOL
-from ..errors import MeshError, MeshRepairWarning
+from ..errors import MeshError, MeshRepairWarning, OpenMeshError
 from ..integrity import check_sections_match_volume
 from ..topology import (
     check_finite,
@@ -33,8 +33,10 @@ from ..topology import (
     edge_use,
     flipped,
     merge_close,
+    mesh_arrays,
     orient_consistently,
-    signed_volume,
+    shell_sizes,
+    shell_volumes,
     to_manifold,
     unique_rows,
 )
@@ -138,27 +140,45 @@ def _check_closed(s: MeshState) -> None:
     name = s.name
     open_edges = int((counts == 1).sum())
     if open_edges:
-        raise MeshError(
+        raise OpenMeshError(
             f"mesh {name!r} is open: {open_edges} edges belong to a single face (holes in "
             "the surface); load it with --repair close (repair='close') to fill them and "
-            "drop what cannot be closed, or close them in your CAD tool"
+            "drop what cannot be closed ('hullslice info MESH' lists the shells and which "
+            "would close), or close them in your CAD tool"
         )
     nonmanifold = int((counts > 2).sum())
     if nonmanifold:
-        raise MeshError(
+        raise OpenMeshError(
             f"mesh {name!r} is not manifold: {nonmanifold} edges are shared by more than two "
             "faces; separate the touching bodies or remesh"
         )
 
 
 def _check_volume(s: MeshState) -> None:
-    """Refuses a flat or zero-thickness surface, and builds the manifold3d ``Manifold``
+    """Refuses a flat or zero-thickness surface (every shell encloses less than
+    ``TOL.flat`` times the cube of its own size), and builds the manifold3d ``Manifold``
     (refusing what manifold3d refuses)."""
-    vol = signed_volume(s.vertices, s.faces)
-    if abs(vol) <= TOL.flat * s.size**3:
+    from ..parts import face_labels
+
+    n, labels = face_labels(s.vertices, s.faces)
+    vols = np.abs(shell_volumes(s.vertices, s.faces, labels, n))
+    sizes = shell_sizes(s.vertices, s.faces, labels, n)
+    if not np.any(vols > TOL.flat * sizes**3):
+        vol = float(vols.sum())
         raise MeshError(
             f"mesh {s.name!r} encloses no volume ({vol:.3g} m^3 in a box of diagonal "
             f"{s.size:.6g} m): it is a flat or zero-thickness surface, not a body"
+        )
+    if vols.sum() <= TOL.flat * s.size**3:
+        # bodies, but small for the box they span: shells far apart (a stray part)
+        big = int(np.argmax(vols))
+        warnings.warn(
+            f"mesh {s.name!r}: its {n} shells spread over {s.size:.3g} m, "
+            f"{s.size / sizes[big]:.3g} times the largest ({sizes[big]:.3g} m across, "
+            f"{vols[big]:.3g} m^3): a part far from the body? --keep largest keeps the "
+            "largest alone ('hullslice info MESH' lists the shells)",
+            MeshRepairWarning,
+            stacklevel=4,
         )
     s.manifold = to_manifold(s.vertices, s.faces, s.name)
 
@@ -196,12 +216,14 @@ def _drop_repeated_faces(s: MeshState) -> str | None:
 def _merge_close_vertices(s: MeshState) -> str | None:
     """Closes an open surface whose vertices that should be shared differ by rounding:
     merges them over the smallest distance (``TOL.merge`` to ``TOL.merge_max`` of the
-    mesh's size, by tens) that closes it; reports how many and the distance."""
+    mesh's size, by tens, whatever its distance from the origin) that closes it, moving no
+    vertex by more than ``TOL.merge_edge`` of its shortest edge; reports how many and the
+    distance."""
     counts, _ = s.edge_use()
     if not (counts == 1).any():
         return None
     v, f = s.vertices, s.faces
-    scale = max(s.size, float(np.abs(v).max()))
+    scale = s.size
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):
         merged = merge_close(v, f, tol)
@@ -243,8 +265,9 @@ def _turn_outward(s: MeshState) -> str | None:
 
 
 def _union_overlapping_shells(s: MeshState) -> str | None:
-    """Takes shells that overlap one another as their union (cavities kept); reports the
-    shells' summed volume and the union's."""
+    """Takes shells that overlap one another as their union (cavities kept); a shell wound
+    inside out that is not inside the others (not a cavity) is turned outward first;
+    reports the shells' summed volume and the union's."""
     import manifold3d
 
     parts = s.manifold.decompose()
@@ -252,20 +275,38 @@ def _union_overlapping_shells(s: MeshState) -> str | None:
         return None
     vols = np.array([p.volume() for p in parts])
     shells = [p for p, vol in zip(parts, vols, strict=True) if vol > 0]
-    total = float(vols[vols > 0].sum())
+    cavities = []
+    turned = 0
+    if shells:
+        outer = manifold3d.Manifold.batch_boolean(shells, manifold3d.OpType.Add)
+    for p, vol in zip(parts, vols, strict=True):
+        if vol >= 0:
+            continue
+        solid = flipped(p)
+        # a cavity lies inside the solid shells: all of its volume is theirs too
+        inside = bool(shells) and (outer ^ solid).volume() >= -vol * (1.0 - TOL.volume)
+        if inside:
+            cavities.append(solid)
+        else:
+            shells.append(solid)
+            turned += 1
+    total = float(sum(p.volume() for p in shells))
     union = manifold3d.Manifold.batch_boolean(shells, manifold3d.OpType.Add)
-    if not (len(shells) > 1 and union.volume() < total * (1.0 - TOL.volume)):
+    if not turned and not (len(shells) > 1 and union.volume() < total * (1.0 - TOL.volume)):
         return None
-    cavities = [flipped(p) for p, vol in zip(parts, vols, strict=True) if vol < 0]
     body = union
     if cavities:
         body = manifold3d.Manifold.batch_boolean([union, *cavities], manifold3d.OpType.Subtract)
-    mesh = body.to_mesh64()
-    s.vertices = np.asarray(mesh.vert_properties, dtype=np.float64)[:, :3].copy()
-    s.faces = np.asarray(mesh.tri_verts, dtype=np.int64).copy()
+    s.vertices, s.faces = mesh_arrays(body)
     s.manifold = to_manifold(s.vertices, s.faces, s.name)
+    outward = (
+        f"{turned} inside-out shell{'s' if turned != 1 else ''} (not inside another) turned "
+        "outward; "
+        if turned
+        else ""
+    )
     return (
-        f"{len(shells)} shells overlap (their volumes add to {total:.6g} m^3, "
+        f"{outward}{len(shells)} shells overlap (their volumes add to {total:.6g} m^3, "
         f"their union is {union.volume():.6g} m^3); the body is taken as their union"
     )
 
