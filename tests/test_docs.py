@@ -47,6 +47,7 @@ SLOW = (
     "hullslice simulate meshes/fuselage_full.obj",
     "python examples/ditching.py",
     "python examples/structure_loads.py",
+    "hullslice simulate meshes/fuselage_model.obj --mass 40 --velocity=-1 --t-end 0.1",
     "python examples/drop_test.py",
     "python examples/ditching_pitch.py",
 )

@@ -128,10 +128,12 @@ def write_loads(history, hull, folder: str | os.PathLike, frames: FrameLoads | N
         "faces": n,
         "instants": [t for t, _ in entries],
         "solver": history.settings.get("solver"),
+        "solver_options": history.settings.get("solver_options"),
         "units": {"pressure": "Pa", "t": "s", "length": "m", "area": "m^2", "load": "N"},
         "mapping": "each face: the mean of its section's pressure over the face, linear "
         "between stations, plus the hydrostatic pressure where the slices hold it",
         "files": written,
     }
-    (out / MANIFEST).write_text(json.dumps(manifest, indent=1) + "\n", encoding="utf-8")
+    text = json.dumps(manifest, indent=1, default=str)
+    (out / MANIFEST).write_text(text + "\n", encoding="utf-8")
     return [*written, MANIFEST]
