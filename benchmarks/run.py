@@ -13,9 +13,9 @@ once the hull has its first region, and the cost of making that region. Then: th
 cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
 2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
 RK4 step of 4 evaluations against 0.5 ms, peak memory), the face pressures of a saved
-instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's free-fall case from
-process start to printed report, and the time of ``import hullslice`` and ``hullslice
---help``.
+instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's
+free-fall case from process start to printed report, and the time of ``import
+hullslice`` and ``hullslice --help``.
 
 Free pitch: the time step with free pitch (each of its 4 stages at a new pitch, cut
 afresh) against the same run at a held pitch, 100 steps of 0.2 ms each with 128 fixed
@@ -318,7 +318,7 @@ def bench_face_loads(table: Table, results: dict, repeat: int) -> None:
         )  # fmt: skip
         rec = SectionRecord.of(0.0, r)
         face_geometry(hull)  # kept on the hull, made once per run
-        t = median_time(lambda h=hull: face_pressures(h, rec), repeat)
+        t = median_time(lambda h=hull, s=rec: face_pressures(h, s), repeat)
         tracemalloc.start()
         fp = face_pressures(hull, rec)
         _, peak = tracemalloc.get_traced_memory()
@@ -337,7 +337,7 @@ def bench_face_loads(table: Table, results: dict, repeat: int) -> None:
             with tempfile.TemporaryDirectory() as tmp:
                 path = Path(tmp) / "p.vtu"
                 t_vtu = median_time(
-                    lambda h=hull: _vtu(meshio, h, path, {"pressure": fp.pressure}), 1
+                    lambda h=hull, f=path, p=fp.pressure: _vtu(meshio, h, f, {"pressure": p}), 1
                 )
                 table.add(
                     f"{size}: one .vtu of the face pressures",
