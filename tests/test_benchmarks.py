@@ -97,3 +97,16 @@ def test_the_sweep_study_frees_the_pitch_only_when_asked(sweep):
     assert {k: v for k, v in free.items() if k not in ("free_pitch", "title")} == {
         k: v for k, v in held.items() if k != "title"
     }
+
+
+def test_the_face_pressure_figures_come_from_a_real_mapping(run, tmp_path):
+    import hullslice as hs
+
+    pytest.importorskip("hullslice_mlm")
+    hull = hs.load_hull(run.fuselage_file(tmp_path, "10k"), mass=60000.0)
+    table = run.Table()
+    run.bench_face_loads(table, {"128k": {"hull": hull}}, 1)
+    rows = {r[0]: r for r in table.rows}
+    # the mapped loads add up to the slices' forces (the target row is judged, and met)
+    assert rows["128k: face loads against slice forces"][3] == "met"
+    assert float(rows["128k: face loads against slice forces"][1]) < 1e-3

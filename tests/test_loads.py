@@ -223,3 +223,14 @@ def test_bad_loads_outputs_are_refused_before_any_work(tmp_path, capsys, extra, 
     assert rc != 0 and words in err and len(err.strip().splitlines()) == 1
     assert not (tmp_path / "new").exists()
     assert (busy / "notes.txt").read_text() == "mine"
+
+
+def test_the_frame_loads_are_a_labelled_dataset_with_units(ditching):
+    pytest.importorskip("xarray")
+    hull, history = ditching
+    fl = history.frame_loads(hull, [1.0, 2.0])
+    ds = fl.to_xarray()
+    assert ds["vertical"].attrs["units"] == "N" and ds["t"].attrs["units"] == "s"
+    assert ds.sizes == {"t": len(history.sections), "bay": 3}
+    np.testing.assert_allclose(ds["vertical"].sum("bay").values, fl.body, rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(ds["x_fore"].values, [1.0, 2.0, hull.bounds[1, 0]])
