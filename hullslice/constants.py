@@ -11,6 +11,7 @@ __all__ = [
     "AXES",
     "LENGTH_UNITS",
     "MAX_SLICES",
+    "MAX_SLICE_STEPS",
     "MAX_STEPS",
     "NU_SEA",
     "NU_WATER",
@@ -55,6 +56,10 @@ MAX_SLICES = 100_000
 
 #: Most time steps one free-fall run may take (each step cuts the hull four times).
 MAX_STEPS = 1_000_000
+
+#: Most slices times steps (or kinematics rows) one run may compute: each is one section
+#: cut and solved (about 0.1 ms), so the bound is a few hours of work for a mistyped count.
+MAX_SLICE_STEPS = 10_000_000
 
 #: Axis names accepted for the forward and up directions of a mesh, as unit vectors.
 AXES: dict[str, tuple[float, float, float]] = {
