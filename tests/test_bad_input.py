@@ -279,6 +279,13 @@ class Bad:
     interrupt : int
         A signal sent to the run (in a process of its own) once its solver has started:
         the run must end with status 128 + the signal, one line, and no file.
+    process : bool
+        Run the command line in a process of its own (a plugin that ends or crashes its
+        process), with ``--isolate`` before the command.
+    printed : tuple of str
+        Lines a plugin prints, expected on stderr (never on stdout) before the command's own.
+    relative : bool
+        Run in the output folder with the relative ``-o result.json``.
     """
 
     id: str
@@ -294,6 +301,9 @@ class Bad:
     read: Callable[[Path], dict] | None = None
     interrupt: int = 0
     status: int = 3
+    process: bool = False
+    printed: tuple[str, ...] = ()
+    relative: bool = False
 
 
 def wedge_file(tmp: Path) -> str:
@@ -509,6 +519,53 @@ def stale_temp(tmp: Path) -> list[str]:
     out = result_of(tmp)
     (out.parent / f".{out.name}.hullslice-999999999-abcd.tmp").write_text('{"force": 1')
     return ["force", wedge_file(tmp), *STATE]
+
+
+# -- issue 27: hostile inputs of the second round ---------------------------------------------
+
+
+def stepped_hull(tmp: Path) -> str:
+    """Two 0.5 m wedge bottoms, 0.6 m apart, joined by a part whose keel is 5 cm higher
+    (two steps): at 3 cm draft the middle is dry. The raised part has stations 1 mm apart,
+    so that the keel line's facet at each step is 1 mm long."""
+
+    def prism(x0: float, x1: float, dz: float, stations: int = 11) -> manifold3d.Manifold:
+        v, f = shapes.wedge_prism(length=x1 - x0, beam=0.2, deadrise_deg=30.0, stations=stations)
+        v = v + np.array([x0 - v[:, 0].min(), 0.0, dz])
+        mesh = manifold3d.Mesh(vert_properties=v.astype(np.float32), tri_verts=f.astype(np.uint32))
+        return manifold3d.Manifold(mesh)
+
+    body = (prism(0.0, 0.5, 0.0) + prism(0.5, 1.1, 0.05, 601) + prism(1.1, 1.6, 0.0)).to_mesh()
+    return stl(tmp, "stepped.stl", np.asarray(body.vert_properties)[:, :3], body.tri_verts)
+
+
+def stepped_force(data: dict) -> None:
+    # wetted: the two 0.5 m bottoms and 0.6 of each 1 mm step facet (the water 3 cm above
+    # the keel, the facet rising 5 cm), not the 1.6 m from bow to stern
+    assert data["wetted_length"] == pytest.approx(1.0 + 2 * 0.6e-3, rel=1e-6)
+    # the force of 1 m of the wedge prism, each metre of it carrying 10 kg / 1.6 m (all
+    # three parts have the same section): the 16 slices of 0.1 m over 1.6 m, 10 of them wet
+    assert data["force"] == pytest.approx(wedge_force(MASS / 1.6), rel=1e-6)
+    assert sum(s["force"] != 0.0 for s in data["slices"]) == 10
+
+
+def constant_force(data: dict) -> None:
+    # f = M * 100 m/s^2 over the wetted 1 m, 10 kg/m: the solver's prints changed nothing
+    assert data["force"] == pytest.approx(10.0 * 100.0 * data["wetted_length"], rel=1e-9)
+    assert data["wetted_length"] == pytest.approx(1.0, rel=1e-6)
+
+
+def kinematics_rows_file(tmp: Path, rows: int) -> str:
+    # rows of a descent at 5 m/s, 0.1 ms apart (t and draft in steps of 1e-4 s and 5e-4 m)
+    i = np.arange(rows)
+    body = "\n".join(f"{k * 1e-4:.4f},{k * 5e-4:.4f},-5" for k in i.tolist())
+    return kinematics(tmp, "t,draft,velocity\n" + body + "\n")
+
+
+def many_rows(tmp: Path) -> str:
+    # one row more than simulate's step limit, written fast (the same row repeated: the
+    # count is refused before any row is read)
+    return kinematics(tmp, "t,draft,velocity\n" + "0,0,-5\n" * 1_000_001)
 
 
 CATALOGUE: tuple[Bad, ...] = (
@@ -1578,6 +1635,169 @@ CATALOGUE: tuple[Bad, ...] = (
         plugins=("hangs",),
         interrupt=signal.SIGTERM,
     ),
+    # -- issue 27: silent wrong results
+    Bad(
+        "kinematics-draft-disagrees",
+        "a kinematics CSV whose draft falls while its velocity says sinking",
+        "error: kinematics draft disagrees with velocity: the velocity integrated from t = ... "
+        "moves the body ... m down, the draft column by ... m (more than 2 % of the largest "
+        "draft); the velocity is negative down and the draft positive down",
+        simulate_kinematics("t,draft,velocity\n0,0.01,-5\n0.001,0.005,-5\n0.002,0,-5\n"),
+        error="kinematics draft disagrees with velocity: the velocity integrated from t = 0 s "
+        "to t = 0.002 s moves the body 0.01 m down, the draft column by -0.01 m",
+    ),
+    Bad(
+        "kinematics-repeated-column",
+        "a kinematics CSV naming a column twice (`t,draft,velocity,draft`)",
+        "error: kinematics file '...' repeats the column 'draft' (its header: ...): give each "
+        "column once (every table)",
+        simulate_kinematics("t,draft,velocity,draft\n0,0,-5,0\n0.001,0.005,-5,0.1\n"),
+        error="repeats the column 'draft' (its header: t, draft, velocity, draft): give each "
+        "column once",
+    ),
+    Bad(
+        "mass-table-both-forms",
+        "a mass distribution with both `mass_per_metre` and point-mass (`z`, `mass`) columns",
+        "error: mass distribution file '...' has both a mass_per_metre column (a line "
+        "density) and a mass column (point masses): a table holds one form",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            "--mass-distribution",
+            text(t, "m.csv", "x,mass_per_metre,z,mass\n0,10,0,1\n1,10,0,1\n"),
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+        ],
+        error="has both a mass_per_metre column (a line density) and a mass column (point "
+        "masses): a table holds one form",
+    ),
+    Bad(
+        "solver-total-overflows",
+        "a solver returning finite forces per metre (1e308 N/m) whose total is infinite",
+        "error: solver '...' returned finite force per metre values whose total over the N "
+        "slices is not a finite number (the largest: ...)",
+        lambda t: ["force", wedge_file(t), *STATE, "--scale", "2", "--solver", "huge"],
+        error="returned finite force per metre values whose total over the 8 slices is not a "
+        "finite number (the largest: 1e+308 N/m at x = 0.125 m)",
+        plugins=("huge",),
+    ),
+    Bad(
+        "stepped-hull-wetted-length",
+        "a stepped hull whose middle is dry (two 0.5 m bottoms 1.6 m from bow to stern)",
+        "result: wetted length 1.0 m, the wetted bottoms only (the slices still span 1.6 m)",
+        lambda t: [
+            "force",
+            stepped_hull(t),
+            "--mass",
+            "10",
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+            "--slices",
+            "16",
+        ],
+        check=stepped_force,
+    ),
+    Bad(
+        "mass-overflows",
+        "`--mass 1e308` (a density no float holds)",
+        "error: hull '...': mass 1e+308 kg in a volume of ... m^3 is a density that overflows "
+        "a float: give the body's mass in kg",
+        lambda t: ["force", wedge_file(t), "--mass", "1e308", *STATE[2:]],
+        error="mass 1e+308 kg in a volume of 0.0057735 m^3 is a density that overflows a float",
+    ),
+    # -- issue 27: plugins and outputs
+    Bad(
+        "solver-prints",
+        "a solver that prints while it computes",
+        "result: its lines on stderr, stdout (`--format json` without `-o`) holds the result only",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "prints"],
+        printed=("debug: section_loads called",),
+        check=constant_force,
+        plugins=("prints",),
+    ),
+    Bad(
+        "solver-changes-folder",
+        "a solver that changes the working folder (`os.chdir('/')`), `-o result.json`",
+        "result: written where the command was started (the folder is restored after each "
+        "call of plugin code)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "chdir"],
+        relative=True,
+        output=False,
+        check=constant_force,
+        plugins=("chdir",),
+    ),
+    Bad(
+        "solver-os-exit",
+        "a solver that ends its process (`os._exit(0)`), `hullslice --isolate`",
+        "error: the command's process ended with status 0 while solver '...' ran before it "
+        "gave its result (without `--isolate`: status 0 and no output, docs/plugins.md)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hard-exit"],
+        error="the command's process ended with status 0 while solver 'hard-exit' ran before "
+        "it gave its result",
+        plugins=("hard-exit",),
+        process=True,
+    ),
+    Bad(
+        "solver-segfault",
+        "a solver that crashes its process (SIGSEGV), `hullslice --isolate`",
+        "error: the command's process was killed by SIGSEGV while solver '...' ran (without "
+        "`--isolate`: status 139 and no message)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "crashes"],
+        error="the command's process was killed by SIGSEGV while solver 'crashes' ran",
+        plugins=("crashes",),
+        process=True,
+    ),
+    # -- issue 27: resources
+    Bad(
+        "kinematics-too-many-rows",
+        "a kinematics CSV of more rows than simulate's 1e6 steps",
+        "error: kinematics file '...' has N rows, more than the 1000000 hullslice allows (the "
+        "step limit of simulate): give every k-th row",
+        lambda t: ["simulate", wedge_file(t), "--mass", "10", "--kinematics", many_rows(t)],
+        error="has 1000001 rows, more than the 1000000 hullslice allows (the step limit of "
+        "simulate; each row is one cut of the body)",
+    ),
+    Bad(
+        "kinematics-rows-times-slices",
+        "101 kinematics rows at 1e5 slices (1e7 section solutions)",
+        "error: 101 kinematics rows times 100000 slices is 1.01e+07 section solutions, more "
+        "than the 1e+07 hullslice allows in one run",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--slices",
+            "100000",
+            "--kinematics",
+            kinematics_rows_file(t, 101),
+        ],
+        error="101 kinematics rows times 100000 slices is 1.01e+07 section solutions, more "
+        "than the 1e+07 hullslice allows in one run",
+    ),
+    Bad(
+        "simulate-steps-times-slices",
+        "`simulate` of 1e5 steps at 2e4 slices",
+        "error: ... steps times N slices is ... section solutions, more than the 1e+07 "
+        "hullslice allows in one run: give fewer slices, or fewer steps",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--velocity=-5",
+            "--t-end",
+            "1",
+            "--dt",
+            "1e-5",
+            "--slices",
+            "20000",
+        ],
+        error="100000 steps times 20000 slices is 2e+09 section solutions, more than the "
+        "1e+07 hullslice allows in one run",
+    ),
     # -- case files (library: hullslice.load_case)
     Bad(
         "case-unknown-key",
@@ -1731,6 +1951,11 @@ FAKE_SOLVERS = {
     "exits-on-start": "ExitOnStartSolver",
     "table": "TableSolver",
     "hangs": "HangingSolver",
+    "huge": "HugeSolver",
+    "prints": "PrintingSolver",
+    "chdir": "ChdirSolver",
+    "hard-exit": "HardExitSolver",
+    "crashes": "CrashingSolver",
 }
 
 
@@ -1761,12 +1986,17 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
     if bad.plugins:
         request.getfixturevalue("fake_entry_points")(fake_eps(bad.plugins))
     argv = bad.argv(work)
-    if bad.output:
+    if bad.relative:
+        request.getfixturevalue("monkeypatch").chdir(out_dir)
+        argv += ["--format", "json", "-o", out.name]
+    elif bad.output:
         argv += ["--format", "json", "-o", str(out)]
     before = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
 
-    if bad.interrupt:
-        code, stdout, stderr = run_interrupted(argv, bad.plugins, bad.interrupt, tmp_path)
+    if bad.interrupt or bad.process:
+        code, stdout, stderr = run_interrupted(
+            ["--isolate", *argv] if bad.process else argv, bad.plugins, bad.interrupt, tmp_path
+        )
     else:
         code = main(argv)
         stdout, stderr = capsys.readouterr()
@@ -1790,11 +2020,12 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert list(out_dir.iterdir()) == []  # no file, complete or partial
         return
     assert code == 0, stderr
-    expected = [f"wrote {out}"]
+    expected = [*bad.printed, f"wrote {out.name if bad.relative else out}"]
     if bad.warning:
-        assert len(lines) == 2, stderr
+        assert len(lines) == 2 + len(bad.printed), stderr
         assert lines[0].startswith("hullslice: warning: ") and bad.warning in lines[0]
         expected.insert(0, lines[0])
+    assert stdout == ""  # the result is in its file; a plugin's prints went to stderr
     if bad.read is not None:  # a report folder names its page
         assert lines[-1].startswith(expected[-1]), stderr
         expected[-1] = lines[-1]
@@ -1807,7 +2038,8 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
 
 def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
     """Run the command line in a process of its own with the fake solvers ``plugins``, send
-    it ``sig`` once its solver has started, and return its status, stdout and stderr."""
+    it ``sig`` once its solver has started (none when ``sig`` is 0: the run ends by itself),
+    and return its status, stdout and stderr."""
     started = tmp / "solver-started"
     program = (
         "import signal, sys\n"
@@ -1833,12 +2065,13 @@ def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
         text=True,
     )
     try:
-        deadline = time.monotonic() + 120
-        while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.02)
-        assert started.exists(), proc.communicate(timeout=10)
-        proc.send_signal(sig)
-        stdout, stderr = proc.communicate(timeout=60)
+        if sig:
+            deadline = time.monotonic() + 120
+            while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
+                time.sleep(0.02)
+            assert started.exists(), proc.communicate(timeout=10)
+            proc.send_signal(sig)
+        stdout, stderr = proc.communicate(timeout=120)
     finally:
         if proc.poll() is None:
             proc.kill()
