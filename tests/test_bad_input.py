@@ -286,6 +286,10 @@ class Bad:
         Lines a plugin prints, expected on stderr (never on stdout) before the command's own.
     relative : bool
         Run in the output folder with the relative ``-o result.json``.
+    out_name : str
+        The output's file name (a sweep writes ``result.nc``).
+    fixture : str
+        A fixture of this module the entry needs (a Dask scheduler), set up before ``argv``.
     """
 
     id: str
@@ -304,6 +308,8 @@ class Bad:
     process: bool = False
     printed: tuple[str, ...] = ()
     relative: bool = False
+    out_name: str = "result.json"
+    fixture: str = ""
 
 
 def wedge_file(tmp: Path) -> str:
@@ -566,6 +572,81 @@ def many_rows(tmp: Path) -> str:
     # one row more than simulate's step limit, written fast (the same row repeated: the
     # count is refused before any row is read)
     return kinematics(tmp, "t,draft,velocity\n" + "0,0,-5\n" * 1_000_001)
+
+
+SWEEP_CASE = (
+    'mesh = "wedge.stl"\nmass = 10.0\nvelocity = -4.0\nt_end = 0.01\ndt = 0.001\n'
+    "slices = [8]\n\n[sweep]\nvelocity = [-3.0, -4.0]\n"
+)
+
+
+def sweep_case(tmp: Path, grid: str = "") -> str:
+    """A sweep of the wedge prism at two velocities in ``tmp/case``, or of ``grid``."""
+    path = Path(case_file(tmp))
+    body = SWEEP_CASE if not grid else SWEEP_CASE.split("[sweep]")[0] + "[sweep]\n" + grid
+    path.write_text(body, encoding="utf-8")
+    return str(path)
+
+
+def sweep_out(tmp: Path) -> Path:
+    return tmp.parent / "out" / "result.nc"
+
+
+def resumable(tmp: Path, spoil: Callable[[Path], None] = lambda folder: None) -> list[str]:
+    """A sweep's partial folder with both its cases finished, spoiled by ``spoil``, and the
+    command line that resumes it."""
+    case = sweep_case(tmp)
+    folder = Path(str(sweep_out(tmp)) + ".partial")
+    hs.sweep(case, workers=1, partial=folder)
+    spoil(folder)
+    return ["sweep", case, "-o", str(sweep_out(tmp)), "--workers", "1", "--resume"]
+
+
+def edit_peak(folder: Path) -> None:
+    # the first case's peak force set to 1e9 N in its record, the checksum left as it was
+    path = folder / "case-0.json"
+    data = json.loads(path.read_text())
+    record = json.loads(data["record"])
+    record["peak_force"] = 1e9
+    data["record"] = json.dumps(record, sort_keys=True)
+    path.write_text(json.dumps(data))
+
+
+def malformed(folder: Path) -> None:
+    # the files of a record that is no record, and of []
+    (folder / "case-0.json").write_text('{"peak_force": 1}')
+    (folder / "case-1.json").write_text("[]")
+
+
+def read_sweep(out: Path) -> dict:
+    from hullslice.xarray_io import read_dataset
+
+    ds = read_dataset(out)
+    return {"peak_force": ds["peak_force"].values.tolist(), "failed": ds.attrs["failed"]}
+
+
+def sweep_peaks(data: dict) -> None:
+    # each case's peak force as the case run alone by simulate (the reference), none failed
+    hull = hs.load_hull(ROOT / "meshes" / "wedge_prism.stl", mass=10.0)
+    for v, got in zip((-3.0, -4.0), data["peak_force"], strict=True):
+        ref = hs.simulate(hull, v, 0.01, dt=0.001, slices=8).peak["force"]
+        assert got == pytest.approx(ref, rel=1e-6)
+    assert data["failed"] == 0
+
+
+#: The address of a Dask scheduler without workers, while an entry that needs it runs.
+EMPTY_SCHEDULER: list[str] = []
+
+
+@pytest.fixture
+def empty_scheduler():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=0, processes=False, dashboard_address=None, silence_logs=50
+    ) as cluster:
+        EMPTY_SCHEDULER[:] = [cluster.scheduler_address]
+        yield cluster.scheduler_address
+        EMPTY_SCHEDULER.clear()
 
 
 CATALOGUE: tuple[Bad, ...] = (
@@ -1707,6 +1788,29 @@ CATALOGUE: tuple[Bad, ...] = (
         lambda t: ["force", wedge_file(t), "--mass", "1e308", *STATE[2:]],
         error="mass 1e+308 kg in a volume of 0.0057735 m^3 is a density that overflows a float",
     ),
+    Bad(
+        "resume-edited-record",
+        "`sweep --resume` on a partial folder whose saved case was edited (peak force 1e9 N)",
+        "repaired, warning: 1 saved case(s) in '...' failed their check (edited, malformed, or "
+        "computed by another hullslice or solver version): they run again",
+        lambda t: resumable(t, edit_peak),
+        warning="1 saved case(s) in",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
+    Bad(
+        "resume-malformed-records",
+        '`sweep --resume` on saved cases that are no records (`{"peak_force": 1}`, `[]`)',
+        "repaired, warning: 2 saved case(s) in '...' failed their check ...: they run again",
+        lambda t: resumable(t, malformed),
+        warning="2 saved case(s) in",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
     # -- issue 27: plugins and outputs
     Bad(
         "solver-prints",
@@ -1750,6 +1854,44 @@ CATALOGUE: tuple[Bad, ...] = (
         process=True,
     ),
     # -- issue 27: resources
+    Bad(
+        "sweep-too-many-cases",
+        "a sweep grid of 1e6 cases (1000 velocities x 1000 pitches)",
+        "error: case file '...': [sweep] has N cases (...), more than the 100000 hullslice "
+        "runs in one sweep: give fewer values, or split it into sweeps",
+        lambda t: [
+            "sweep",
+            sweep_case(
+                t,
+                f"velocity = {[-1.0 - k / 1000 for k in range(1000)]}\n"
+                f"pitch = {[k / 1000 for k in range(1000)]}\n",
+            ),
+        ],
+        error="[sweep] has 1000000 cases (1000 velocity x 1000 pitch), more than the 100000 "
+        "hullslice runs in one sweep",
+        output=False,
+    ),
+    Bad(
+        "sweep-workers-above-cores",
+        "`sweep --workers 1000` (here on a sweep resumed with every case done: no cluster)",
+        "warning: workers 1000 is more than 4 per core (N cores here): the sweep starts 4 N",
+        lambda t: [*resumable(t)[:-3], "--workers", "1000", "--resume"],
+        warning="workers 1000 is more than 4 per core",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
+    Bad(
+        "sweep-scheduler-without-workers",
+        "`sweep --scheduler ADDRESS` of a scheduler that has no workers",
+        "error: the Dask scheduler at '...' has no workers (none joined within 10 s): start "
+        "some ('dask worker ADDRESS'), or leave out --scheduler",
+        lambda t: ["sweep", sweep_case(t), "--scheduler", EMPTY_SCHEDULER[0]],
+        error="has no workers (none joined within 10 s)",
+        output=False,
+        fixture="empty_scheduler",
+    ),
     Bad(
         "kinematics-too-many-rows",
         "a kinematics CSV of more rows than simulate's 1e6 steps",
@@ -1977,7 +2119,9 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
     work.mkdir()
     out_dir = tmp_path / "out"
     out_dir.mkdir()
-    out = out_dir / "result.json"
+    out = out_dir / bad.out_name
+    if bad.fixture:
+        request.getfixturevalue(bad.fixture)
     if bad.call is not None:
         with pytest.raises(hs.HullsliceError) as info:
             bad.call(work)
@@ -2030,7 +2174,7 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert lines[-1].startswith(expected[-1]), stderr
         expected[-1] = lines[-1]
     assert lines == expected
-    assert [p.name for p in out_dir.iterdir()] == ["result.json"]
+    assert [p.name for p in out_dir.iterdir()] == [bad.out_name]
     data = json.loads(out.read_text()) if bad.read is None else bad.read(out)
     assert bad.check is not None
     bad.check(data)
