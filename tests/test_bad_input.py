@@ -649,6 +649,39 @@ def empty_scheduler():
         EMPTY_SCHEDULER.clear()
 
 
+#: A Gmsh file of 71 bytes whose $Nodes section declares 2e9 nodes.
+GMSH_2E9 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2000000000\n1 0 0 0\n$EndNodes\n"
+
+
+def full_device(tmp: Path) -> list[str]:
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full on this system")
+    return ["force", wedge_file(tmp), *STATE, "--format", "json", "-o", "/dev/full"]
+
+
+#: A legal file name of 255 bytes (the longest most file systems take).
+LONG_NAME = "r" * 250 + ".json"
+
+
+def zeros_3mf(tmp: Path, name: str, mib: int, declared: int | None = None) -> str:
+    """A 3MF whose model part is ``mib`` MiB of zeros (deflated to a few hundred KB), and
+    whose zip directory claims ``declared`` bytes for it when given."""
+    import io
+    import zipfile
+
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        with z.open("3D/3dmodel.model", "w") as member:
+            block = b"\0" * 2**20
+            for _ in range(mib):
+                member.write(block)
+    data = bytearray(buf.getvalue())
+    if declared is not None:  # the member's size in its local header and in the directory
+        struct.pack_into("<I", data, 22, declared)
+        struct.pack_into("<I", data, data.find(b"PK\x01\x02") + 24, declared)
+    return text(tmp, name, bytes(data))
+
+
 CATALOGUE: tuple[Bad, ...] = (
     # -- files
     Bad(
@@ -1853,6 +1886,32 @@ CATALOGUE: tuple[Bad, ...] = (
         plugins=("crashes",),
         process=True,
     ),
+    Bad(
+        "gmsh-declares-more-than-it-holds",
+        "a 71-byte Gmsh file whose `$Nodes` declares 2e9 nodes",
+        "error: its $Nodes section declares 2000000000 nodes, at least 16000000000 bytes, but "
+        "the file has 71 bytes: it is cut short, or its counts are wrong",
+        lambda t: ["sections", text(t, "big.msh", GMSH_2E9), "--draft", "0.01"],
+        error="its $Nodes section declares 2000000000 nodes, at least 16000000000 bytes, but "
+        "the file has 71 bytes: it is cut short, or its counts are wrong",
+    ),
+    Bad(
+        "output-full-device",
+        "`-o /dev/full` (a device that takes no data)",
+        "error: cannot write '/dev/full' (--output): No space left on device (`> /dev/full`: "
+        "cannot write the result to stdout)",
+        full_device,
+        error="cannot write '/dev/full' (--output): No space left on device",
+        output=False,
+    ),
+    Bad(
+        "output-name-255-bytes",
+        "`-o` a legal file name of 255 bytes",
+        "result: written (its temporary carries a shortened name and a hash of it)",
+        lambda t: ["force", wedge_file(t), *STATE],
+        check=same_force,
+        out_name=LONG_NAME,
+    ),
     # -- issue 27: resources
     Bad(
         "sweep-too-many-cases",
@@ -1891,6 +1950,22 @@ CATALOGUE: tuple[Bad, ...] = (
         error="has no workers (none joined within 10 s)",
         output=False,
         fixture="empty_scheduler",
+    ),
+    Bad(
+        "3mf-directory-understates",
+        "a 3MF whose zip directory claims 100 bytes for a 64 MiB member",
+        "error: ... is corrupt (Bad CRC-32 ...): a member gives other data than its directory "
+        "entry says (inflated in blocks, counted: no more than the 100 bytes is inflated)",
+        lambda t: ["sections", zeros_3mf(t, "lie.3mf", 64, declared=100), "--draft", "0.01"],
+        error="a member gives other data than its directory entry says",
+    ),
+    Bad(
+        "3mf-model-too-large",
+        "a 3MF of 129 MiB of model XML (under the 4 GiB it may unpack to)",
+        "error: its model XML is 129 MiB, more than the 128 MiB hullslice parses (about 1.5 "
+        "million triangles; ...): export the mesh as binary STL, or decimate it",
+        lambda t: ["sections", zeros_3mf(t, "big.3mf", 129), "--draft", "0.01"],
+        error="its model XML is 129 MiB, more than the 128 MiB hullslice parses",
     ),
     Bad(
         "kinematics-too-many-rows",
@@ -2284,6 +2359,26 @@ def test_a_run_stopped_while_writing_leaves_no_file(
     assert code == status
     assert capsys.readouterr().err.splitlines() == [line]
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
+
+
+def test_a_full_stdout_is_one_line(tmp_path):
+    # the result printed to a device that takes no data: one line naming stdout, status 3
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full on this system")
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]),
+    }
+    with open("/dev/full", "w") as full:
+        proc = subprocess.run(
+            [sys.executable, "-m", "hullslice", "force", wedge_file(tmp_path), *STATE],
+            stdout=full, stderr=subprocess.PIPE, text=True, env=env, timeout=120,
+        )  # fmt: skip
+    assert proc.returncode == 3
+    assert proc.stderr.splitlines() == [
+        "hullslice: error: cannot write the result to stdout: No space left on device; free "
+        "some space, or give -o PATH"
+    ]
 
 
 def test_sigterm_raises_where_the_run_is(tmp_path):
