@@ -18,6 +18,7 @@ import contextlib
 import os
 import signal
 import sys
+import threading
 from collections.abc import Callable, Sequence
 
 from .. import safety
@@ -26,6 +27,9 @@ __all__ = ["run_isolated"]
 
 #: Exit status of a child that ended without its result.
 FAILED = 3
+
+#: Seconds the parent waits, once the child has ended, for the rest of its reports.
+READ_TIMEOUT = 5.0
 
 
 def _child(run: Callable[[Sequence[str]], int], argv: Sequence[str], fd: int) -> None:
@@ -42,27 +46,37 @@ def _child(run: Callable[[Sequence[str]], int], argv: Sequence[str], fd: int) ->
         os._exit(code)
 
 
-def _read_all(fd: int) -> bytes:
-    chunks: list[bytes] = []
-    while True:
-        try:
-            chunk = os.read(fd, 65536)
-        except InterruptedError:  # pragma: no cover - retried by Python itself
-            continue
-        if not chunk:
-            return b"".join(chunks)
-        chunks.append(chunk)
+class _Watch:
+    """The parent's reader of the child's reports: what plugin code it is in, and whether
+    it said "done" (only the state is kept, however much the child reports)."""
 
+    def __init__(self, fd: int) -> None:
+        self.fd = fd
+        self.where = ""
+        self.finished = False
+        self._rest = b""
+        self.thread = threading.Thread(target=self._run, daemon=True)
+        self.thread.start()
 
-def _running(report: bytes) -> str:
-    """The plugin code the child was in when it ended, from its reports ("" if none)."""
-    where = ""
-    for line in report.decode("utf-8", "replace").splitlines():
-        if line.startswith("in "):
-            where = line[3:]
+    def _run(self) -> None:
+        while True:
+            try:
+                chunk = os.read(self.fd, 65536)
+            except OSError:
+                return
+            if not chunk:
+                return
+            *lines, self._rest = (self._rest + chunk).split(b"\n")
+            for line in lines:
+                self._line(line.decode("utf-8", "replace"))
+
+    def _line(self, line: str) -> None:
+        if line == "done":
+            self.finished = True
+        elif line.startswith("in "):
+            self.where = line[3:]
         elif line == "out":
-            where = ""
-    return where
+            self.where = ""
 
 
 def run_isolated(run: Callable[[Sequence[str]], int], argv: Sequence[str]) -> int:
@@ -90,15 +104,17 @@ def run_isolated(run: Callable[[Sequence[str]], int], argv: Sequence[str]) -> in
             os.kill(pid, signum)
 
     previous_term = signal.signal(signal.SIGTERM, pass_on)
+    watch = _Watch(read_fd)
     try:
-        report = _read_all(read_fd)
         _, status = os.waitpid(pid, 0)
+        # the rest of the reports; a process the child started may still hold the pipe
+        watch.thread.join(timeout=READ_TIMEOUT)
     finally:
-        os.close(read_fd)
         signal.signal(signal.SIGINT, previous)
         signal.signal(signal.SIGTERM, previous_term)
-    finished = report.endswith(b"done\n")
-    where = _running(report)
+    if not watch.thread.is_alive():
+        os.close(read_fd)
+    finished, where = watch.finished, watch.where
     who = f" while {where} ran" if where else ""
     if os.WIFSIGNALED(status):
         sig = os.WTERMSIG(status)
