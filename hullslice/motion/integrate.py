@@ -386,8 +386,9 @@ def _check_work(steps: float, slices: object, what: str) -> None:
     if work > MAX_SLICE_STEPS:
         raise InputError(
             f"{what} times {slices} slices is {work:.3g} section solutions, more than the "
-            f"{MAX_SLICE_STEPS:.0e} hullslice allows in one run (hours of work): give fewer "
-            f"slices, or fewer steps (at most {MAX_SLICE_STEPS // slices} with {slices} slices)"
+            f"{MAX_SLICE_STEPS:.0e} hullslice allows in one run (hours of work on a fine "
+            f"mesh): give fewer slices, or fewer steps (at most {MAX_SLICE_STEPS // slices} "
+            f"with {slices} slices)"
         )
 
 
