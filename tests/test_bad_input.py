@@ -11,7 +11,9 @@ command takes it:
 - a **result** is a run that works although the input looks odd, checked the same way.
 
 Entries marked as library calls (case files, before ``hullslice run`` exists) raise the
-same errors from the Python API. The "Bad input" table of docs/meshes.md is this catalogue:
+same errors from the Python API. An entry about a plugin that ends or crashes its process
+runs in a process of its own, with ``hullslice --isolate``; one about a sweep writes
+``result.nc`` (read back with xarray). The "Bad input" table of docs/meshes.md is this catalogue:
 ``python -m tests.test_bad_input`` prints it, and a test checks that the two agree.
 """
 
