@@ -2375,6 +2375,14 @@ def test_an_isolated_run_gives_what_the_run_gives(tmp_path):
     assert len(stderr.splitlines()) == 1 and USAGE.match(stderr)
 
 
+def test_an_isolated_run_stopped_with_sigterm_stops_its_child(tmp_path):
+    # kill PID of the parent: passed on to the child, which stops as a run does (one line,
+    # status 143); the parent adds nothing
+    argv = ["--isolate", "force", wedge_file(tmp_path), *STATE, "--solver", "hangs"]
+    code, stdout, stderr = run_interrupted(argv, ("hangs",), signal.SIGTERM, tmp_path)
+    assert (code, stdout, stderr.splitlines()) == (143, "", ["hullslice: terminated"])
+
+
 def test_a_full_stdout_is_one_line(tmp_path):
     # the result printed to a device that takes no data: one line naming stdout, status 3
     if not os.path.exists("/dev/full"):
