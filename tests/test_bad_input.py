@@ -628,7 +628,8 @@ def read_sweep(out: Path) -> dict:
 
 
 def sweep_peaks(data: dict) -> None:
-    # each case's peak force as the case run alone by simulate (the reference), none failed
+    # each case's peak force as the case run alone by simulate (the reference, on the
+    # bundled meshes/wedge_prism.stl: the same prism in single precision), none failed
     hull = hs.load_hull(ROOT / "meshes" / "wedge_prism.stl", mass=10.0)
     for v, got in zip((-3.0, -4.0), data["peak_force"], strict=True):
         ref = hs.simulate(hull, v, 0.01, dt=0.001, slices=8).peak["force"]
