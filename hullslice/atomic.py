@@ -29,11 +29,30 @@ def _umask() -> int:
     return mask
 
 
+#: Longest target name, in bytes, kept whole in its temporary's name: the temporary adds
+#: about 35 bytes (``.``, ``.hullslice-PID-``, 8 random characters, ``.tmp``) and a name may
+#: have 255 bytes.
+_NAME_IN_TEMP = 200
+
+
+def _stem(name: str) -> str:
+    """``name`` as its temporaries carry it: whole when short, else its first bytes and a
+    hash of the whole name, so that a legal 255-byte name gets a legal temporary."""
+    raw = name.encode("utf-8", "surrogateescape")
+    if len(raw) <= _NAME_IN_TEMP:
+        return name
+    import hashlib
+
+    head = raw[: _NAME_IN_TEMP - 20].decode("utf-8", "ignore")  # whole characters only
+    return f"{head}~{hashlib.sha256(raw).hexdigest()[:12]}"
+
+
 def temp_prefix(name: str) -> str:
     """Prefix of the temporary files and folders written for the target ``name``: hidden,
     and naming this process, so that one left by a killed run is recognised and removed by
-    the next write to the same target (:func:`remove_stale`)."""
-    return f".{name}.hullslice-{os.getpid()}-"
+    the next write to the same target (:func:`remove_stale`). A name too long to be carried
+    whole is shortened with a hash of it (:data:`_NAME_IN_TEMP`)."""
+    return f".{_stem(name)}.hullslice-{os.getpid()}-"
 
 
 def remove_stale(parent: Path, name: str) -> None:
@@ -41,7 +60,7 @@ def remove_stale(parent: Path, name: str) -> None:
     ended (a run killed with SIGKILL cannot clean up after itself)."""
     import shutil
 
-    pattern = re.compile(re.escape(f".{name}.hullslice-") + r"(\d+)-[^/]*$")
+    pattern = re.compile(re.escape(f".{_stem(name)}.hullslice-") + r"(\d+)-[^/]*$")
     try:
         entries = list(os.scandir(parent))
     except OSError:
@@ -205,7 +224,10 @@ def _place(staged: list[_Staged]) -> None:
             placed.append((s, backup, existed))
         for s in staged:
             if s.tmp is None:
-                _write_direct(s.target, s.data)
+                try:
+                    _write_direct(s.target, s.data)
+                except OSError as exc:  # a full device (/dev/full): named as asked for
+                    raise _named(exc, s.path) from None
     except BaseException:
         for s, backup, existed in reversed(placed):
             try:

@@ -11,6 +11,7 @@ __all__ = [
     "AXES",
     "LENGTH_UNITS",
     "MAX_SLICES",
+    "MAX_SLICE_STEPS",
     "MAX_STEPS",
     "NU_SEA",
     "NU_WATER",
@@ -55,6 +56,12 @@ MAX_SLICES = 100_000
 
 #: Most time steps one free-fall run may take (each step cuts the hull four times).
 MAX_STEPS = 1_000_000
+
+#: Most slices times steps (or kinematics rows) one run may compute: each is one section
+#: cut and solved (20 to 80 us on the 1 m wedge prism, more on a fine mesh), so the bound is
+#: minutes to hours of work for a mistyped count; a converged run needs far fewer (256
+#: slices over 1500 steps is 4e5).
+MAX_SLICE_STEPS = 10_000_000
 
 #: Axis names accepted for the forward and up directions of a mesh, as unit vectors.
 AXES: dict[str, tuple[float, float, float]] = {

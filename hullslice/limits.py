@@ -167,8 +167,16 @@ _UNIT_NAMES = {
 def check_density(mass: float, volume: float, units: str, name: str) -> None:
     """Warn (:class:`~hullslice.errors.UnitsWarning`) when ``mass`` (kg) in ``volume``
     (m^3) is not a plausible density for a body, naming the file units that would make it
-    one (``units`` is the unit the mesh was read in)."""
-    rho = mass / volume
+    one (``units`` is the unit the mesh was read in). A mass whose density overflows a
+    float (``1e308`` kg) is refused (:class:`InputError`): no section could carry it."""
+    with np.errstate(over="ignore", divide="ignore"):
+        rho = float(np.float64(mass) / np.float64(volume))
+    if not math.isfinite(rho):
+        raise InputError(
+            f"hull {name!r}: mass {mass:g} kg in a volume of {volume:.6g} m^3 is a density "
+            "that overflows a float (infinite mass per metre): give the body's mass in kg "
+            "(a real body's is below 1e12)"
+        )
     lo, hi = _PLAUSIBLE_DENSITY
     if lo <= rho <= hi:
         return

@@ -333,6 +333,9 @@ def read_mass_distribution(path: str | os.PathLike) -> MassDistribution:
     - ``x,z,mass[,length]``: point masses (kg) at (x, z) (m), each spread over ``length`` m
       along x (default: :data:`POINT_SPREAD` of the length of the body that takes it).
 
+    A header with both ``mass_per_metre`` and ``mass`` is refused: its rows would be read
+    as one form and the other column ignored.
+
     Returns
     -------
     MassDistribution
@@ -346,6 +349,13 @@ def read_mass_distribution(path: str | os.PathLike) -> MassDistribution:
             )
     data = column_values(rows, range(len(header)), header, where)
     col = {h: data[:, i] for i, h in enumerate(header)}
+    if "mass_per_metre" in col and "mass" in col:
+        raise CaseError(
+            f"{where} has both a mass_per_metre column (a line density) and a mass column "
+            "(point masses): a table holds one form; give x,mass_per_metre or "
+            "x,z,mass[,length], or both forms together through the library "
+            "(MassDistribution(x=..., mass_per_metre=..., points=...))"
+        )
     try:
         if "mass_per_metre" in col and "x" in col:
             return MassDistribution(x=col["x"], mass_per_metre=col["mass_per_metre"])

@@ -6,6 +6,10 @@
   ``froude_min``).
 - :func:`failure` describes an exception raised by plugin code, including ``SystemExit``
   (a plugin that calls ``sys.exit()`` must not end hullslice, least of all with status 0).
+- :func:`plugin_code` is the frame plugin code runs in: what it prints goes to stderr (stdout
+  carries the result, ``--format json`` without ``-o``), and a change of the working folder
+  is undone when it returns (a relative ``-o``, ``--plot`` or input path keeps meaning the
+  folder the command was started in).
 - :func:`terminated_cleanly` turns ``SIGTERM`` (``kill PID``) into an exception, so that a
   run stopped that way removes its temporary files as after an error.
 """
@@ -14,13 +18,22 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 import signal
+import sys
 from collections.abc import Iterator, Mapping
 from typing import Any
 
 from .errors import InputError
 
-__all__ = ["Terminated", "check_options", "failure", "non_finite", "terminated_cleanly"]
+__all__ = [
+    "Terminated",
+    "check_options",
+    "failure",
+    "non_finite",
+    "plugin_code",
+    "terminated_cleanly",
+]
 
 
 def non_finite(value: Any) -> float | None:
@@ -92,6 +105,39 @@ def failure(exc: BaseException) -> str:
             "raise an exception instead"
         )
     return f"{type(exc).__name__}: {exc}"
+
+
+#: A pipe's file descriptor that :func:`plugin_code` reports to ("in LABEL", "out"), set
+#: in the child process of ``hullslice --isolate`` (:mod:`hullslice.cli.isolate`); None
+#: otherwise.
+WATCH: int | None = None
+
+
+def _report(line: str) -> None:
+    if WATCH is not None:
+        with contextlib.suppress(OSError):
+            os.write(WATCH, (line.replace("\n", " ") + "\n").encode("utf-8", "replace"))
+
+
+@contextlib.contextmanager
+def plugin_code(label: str = "plugin code") -> Iterator[None]:
+    """Run plugin code (a solver's import, construction or call) with ``sys.stdout`` sent to
+    ``sys.stderr``, and the working folder it started in restored after it. ``label`` names
+    the code (``solver 'wagner'``) to the parent of an isolated run (:data:`WATCH`)."""
+    _report(f"in {label}")
+    try:
+        cwd: str | None = os.getcwd()
+    except OSError:  # the folder was removed: nothing to restore
+        cwd = None
+    try:
+        with contextlib.redirect_stdout(sys.stderr):
+            yield
+    finally:
+        if cwd is not None:
+            with contextlib.suppress(OSError):
+                if os.getcwd() != cwd:
+                    os.chdir(cwd)
+        _report("out")
 
 
 class Terminated(BaseException):  # a signal, like KeyboardInterrupt

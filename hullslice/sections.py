@@ -215,7 +215,7 @@ def sections_at(
         fr,
         pose=pose,
         level=level,
-        length=length,
+        length=fr.keel.wet_length(level, x0, x1) if length > 0.0 else 0.0,
         rel=rel,
         dx=dx,
         props=props,

@@ -45,7 +45,9 @@ def _decode(data: bytes, what: str, name: str) -> str:
         ) from None
 
 
-def read_csv(path: str | os.PathLike, what: str) -> tuple[list[str], list[tuple[int, list[str]]]]:
+def read_csv(
+    path: str | os.PathLike, what: str, max_rows: int | None = None, why: str = ""
+) -> tuple[list[str], list[tuple[int, list[str]]]]:
     """The header (names stripped, lower case) and the rows (with their line numbers).
 
     Parameters
@@ -54,12 +56,17 @@ def read_csv(path: str | os.PathLike, what: str) -> tuple[list[str], list[tuple[
         The CSV file.
     what : str
         What the table is, for messages (``"kinematics"``).
+    max_rows : int, optional
+        Most rows the table may have (counted before any row is parsed); ``why`` says why,
+        for the message.
 
     Raises
     ------
     CaseError
         The file is missing, not a file, larger than :data:`MAX_TABLE_BYTES`, not text in
-        one of the encodings above, holds binary data, or has no header line.
+        one of the encodings above, holds binary data, has more than ``max_rows`` rows, has
+        no header line, or its header
+        names a column twice (which of the two is meant cannot be known).
     """
     p = Path(path)
     name = printable(p)
@@ -79,6 +86,13 @@ def read_csv(path: str | os.PathLike, what: str) -> tuple[list[str], list[tuple[
     text = _decode(data, what, name)
     if "\0" in text:
         raise CaseError(f"{what} file {name!r} holds binary data: give a CSV text file")
+    if max_rows is not None and text.count("\n") > max_rows:
+        rows = sum(1 for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#"))
+        if rows - 1 > max_rows:
+            raise CaseError(
+                f"{what} file {name!r} has {rows - 1} rows, more than the {max_rows} hullslice "
+                f"allows{why}: give every k-th row"
+            )
     numbered = [
         (i, row)
         for i, line in enumerate(text.splitlines(), start=1)
@@ -88,6 +102,12 @@ def read_csv(path: str | os.PathLike, what: str) -> tuple[list[str], list[tuple[
     if not numbered:
         raise CaseError(f"{what} file {name!r} is empty")
     header = [h.strip().lower() for h in numbered[0][1]]
+    repeated = next((h for i, h in enumerate(header) if h and h in header[:i]), None)
+    if repeated is not None and _NAME.match(repeated):
+        raise CaseError(
+            f"{what} file {name!r} repeats the column {repeated!r} ({header_text(header)}): "
+            "give each column once"
+        )
     return header, numbered[1:]
 
 

@@ -128,3 +128,54 @@ class HangingSolver(ConstantSolver):
         Path(os.environ["HULLSLICE_TEST_HANGING"]).touch()
         while True:
             time.sleep(0.01)
+
+
+class HugeSolver(ConstantSolver):
+    """A finite force per metre, 1e308 N/m, whose total over the slices overflows."""
+
+    name = "huge"
+
+    def section_loads(self, sections, velocity, fluid):
+        loads = super().section_loads(sections, velocity, fluid)
+        return SectionLoads(np.full(len(sections), 1e308), loads.valid, loads.reason)
+
+
+class PrintingSolver(ConstantSolver):
+    """Prints a line (on stdout) while it computes, and computes f = M * 100 m/s^2."""
+
+    name = "prints"
+
+    def section_loads(self, sections, velocity, fluid):
+        print("debug: section_loads called")
+        return super().section_loads(sections, velocity, fluid)
+
+
+class ChdirSolver(ConstantSolver):
+    """Changes the working directory to / while it computes (f = M * 100 m/s^2)."""
+
+    name = "chdir"
+
+    def section_loads(self, sections, velocity, fluid):
+        os.chdir("/")
+        return super().section_loads(sections, velocity, fluid)
+
+
+class HardExitSolver(ConstantSolver):
+    """Ends its process with os._exit(0) while it computes: no clean-up, no exception."""
+
+    name = "hard-exit"
+
+    def section_loads(self, sections, velocity, fluid):
+        os._exit(0)
+
+
+class CrashingSolver(ConstantSolver):
+    """Crashes its process (SIGSEGV, as a broken C extension does) while it computes."""
+
+    name = "crashes"
+
+    def section_loads(self, sections, velocity, fluid):
+        import signal
+
+        os.kill(os.getpid(), signal.SIGSEGV)
+        time.sleep(10)

@@ -11,7 +11,9 @@ command takes it:
 - a **result** is a run that works although the input looks odd, checked the same way.
 
 Entries marked as library calls (case files, before ``hullslice run`` exists) raise the
-same errors from the Python API. The "Bad input" table of docs/meshes.md is this catalogue:
+same errors from the Python API. An entry about a plugin that ends or crashes its process
+runs in a process of its own, with ``hullslice --isolate``; one about a sweep writes
+``result.nc`` (read back with xarray). The "Bad input" table of docs/meshes.md is this catalogue:
 ``python -m tests.test_bad_input`` prints it, and a test checks that the two agree.
 """
 
@@ -282,6 +284,17 @@ class Bad:
     interrupt : int
         A signal sent to the run (in a process of its own) once its solver has started:
         the run must end with status 128 + the signal, one line, and no file.
+    process : bool
+        Run the command line in a process of its own (a plugin that ends or crashes its
+        process), with ``--isolate`` before the command.
+    printed : tuple of str
+        Lines a plugin prints, expected on stderr (never on stdout) before the command's own.
+    relative : bool
+        Run in the output folder with the relative ``-o result.json``.
+    out_name : str
+        The output's file name (a sweep writes ``result.nc``).
+    fixture : str
+        A fixture of this module the entry needs (a Dask scheduler), set up before ``argv``.
     """
 
     id: str
@@ -298,6 +311,11 @@ class Bad:
     interrupt: int = 0
     status: int = 3
     more_warnings: tuple[str, ...] = ()
+    process: bool = False
+    printed: tuple[str, ...] = ()
+    relative: bool = False
+    out_name: str = "result.json"
+    fixture: str = ""
 
 
 def wedge_file(tmp: Path) -> str:
@@ -573,6 +591,162 @@ def stale_temp(tmp: Path) -> list[str]:
     out = result_of(tmp)
     (out.parent / f".{out.name}.hullslice-999999999-abcd.tmp").write_text('{"force": 1')
     return ["force", wedge_file(tmp), *STATE]
+
+
+# -- hostile inputs of the second round ---------------------------------------------
+
+
+def stepped_hull(tmp: Path) -> str:
+    """Two 0.5 m wedge bottoms, 0.6 m apart, joined by a part whose keel is 5 cm higher
+    (two steps): at 3 cm draft the middle is dry. The raised part has stations 1 mm apart,
+    so that the keel line's facet at each step is 1 mm long."""
+
+    def prism(x0: float, x1: float, dz: float, stations: int = 11) -> manifold3d.Manifold:
+        v, f = shapes.wedge_prism(length=x1 - x0, beam=0.2, deadrise_deg=30.0, stations=stations)
+        v = v + np.array([x0 - v[:, 0].min(), 0.0, dz])
+        mesh = manifold3d.Mesh(vert_properties=v.astype(np.float32), tri_verts=f.astype(np.uint32))
+        return manifold3d.Manifold(mesh)
+
+    body = (prism(0.0, 0.5, 0.0) + prism(0.5, 1.1, 0.05, 601) + prism(1.1, 1.6, 0.0)).to_mesh()
+    return stl(tmp, "stepped.stl", np.asarray(body.vert_properties)[:, :3], body.tri_verts)
+
+
+def stepped_force(data: dict) -> None:
+    # wetted: the two 0.5 m bottoms and 0.6 of each 1 mm step facet (the water 3 cm above
+    # the keel, the facet rising 5 cm), not the 1.6 m from bow to stern
+    assert data["wetted_length"] == pytest.approx(1.0 + 2 * 0.6e-3, rel=1e-6)
+    # the force of 1 m of the wedge prism, each metre of it carrying 10 kg / 1.6 m (all
+    # three parts have the same section): the 16 slices of 0.1 m over 1.6 m, 10 of them wet
+    assert data["force"] == pytest.approx(wedge_force(MASS / 1.6), rel=1e-6)
+    assert sum(s["force"] != 0.0 for s in data["slices"]) == 10
+
+
+def constant_force(data: dict) -> None:
+    # f = M * 100 m/s^2 over the wetted 1 m, 10 kg/m: the solver's prints changed nothing
+    assert data["force"] == pytest.approx(10.0 * 100.0 * data["wetted_length"], rel=1e-9)
+    assert data["wetted_length"] == pytest.approx(1.0, rel=1e-6)
+
+
+def kinematics_rows_file(tmp: Path, rows: int) -> str:
+    # rows of a descent at 5 m/s, 0.1 ms apart (t and draft in steps of 1e-4 s and 5e-4 m)
+    i = np.arange(rows)
+    body = "\n".join(f"{k * 1e-4:.4f},{k * 5e-4:.4f},-5" for k in i.tolist())
+    return kinematics(tmp, "t,draft,velocity\n" + body + "\n")
+
+
+def many_rows(tmp: Path) -> str:
+    # one row more than simulate's step limit, written fast (the same row repeated: the
+    # count is refused before any row is read)
+    return kinematics(tmp, "t,draft,velocity\n" + "0,0,-5\n" * 1_000_001)
+
+
+SWEEP_CASE = (
+    'mesh = "wedge.stl"\nmass = 10.0\nvelocity = -4.0\nt_end = 0.01\ndt = 0.001\n'
+    "slices = [8]\n\n[sweep]\nvelocity = [-3.0, -4.0]\n"
+)
+
+
+def sweep_case(tmp: Path, grid: str = "") -> str:
+    """A sweep of the wedge prism at two velocities in ``tmp/case``, or of ``grid``."""
+    path = Path(case_file(tmp))
+    body = SWEEP_CASE if not grid else SWEEP_CASE.split("[sweep]")[0] + "[sweep]\n" + grid
+    path.write_text(body, encoding="utf-8")
+    return str(path)
+
+
+def sweep_out(tmp: Path) -> Path:
+    return tmp.parent / "out" / "result.nc"
+
+
+def resumable(tmp: Path, spoil: Callable[[Path], None] = lambda folder: None) -> list[str]:
+    """A sweep's partial folder with both its cases finished, spoiled by ``spoil``, and the
+    command line that resumes it."""
+    case = sweep_case(tmp)
+    folder = Path(str(sweep_out(tmp)) + ".partial")
+    hs.sweep(case, workers=1, partial=folder)
+    spoil(folder)
+    return ["sweep", case, "-o", str(sweep_out(tmp)), "--workers", "1", "--resume"]
+
+
+def edit_peak(folder: Path) -> None:
+    # the first case's peak force set to 1e9 N in its record, the checksum left as it was
+    path = folder / "case-0.json"
+    data = json.loads(path.read_text())
+    record = json.loads(data["record"])
+    record["peak_force"] = 1e9
+    data["record"] = json.dumps(record, sort_keys=True)
+    path.write_text(json.dumps(data))
+
+
+def malformed(folder: Path) -> None:
+    # the files of a record that is no record, and of []
+    (folder / "case-0.json").write_text('{"peak_force": 1}')
+    (folder / "case-1.json").write_text("[]")
+
+
+def read_sweep(out: Path) -> dict:
+    from hullslice.xarray_io import read_dataset
+
+    ds = read_dataset(out)
+    return {"peak_force": ds["peak_force"].values.tolist(), "failed": ds.attrs["failed"]}
+
+
+def sweep_peaks(data: dict) -> None:
+    # each case's peak force as the case run alone by simulate (the reference, on the
+    # bundled meshes/wedge_prism.stl: the same prism in single precision), none failed
+    hull = hs.load_hull(ROOT / "meshes" / "wedge_prism.stl", mass=10.0)
+    for v, got in zip((-3.0, -4.0), data["peak_force"], strict=True):
+        ref = hs.simulate(hull, v, 0.01, dt=0.001, slices=8).peak["force"]
+        assert got == pytest.approx(ref, rel=1e-6)
+    assert data["failed"] == 0
+
+
+#: The address of a Dask scheduler without workers, while an entry that needs it runs.
+EMPTY_SCHEDULER: list[str] = []
+
+
+@pytest.fixture
+def empty_scheduler():
+    distributed = pytest.importorskip("distributed")
+    with distributed.LocalCluster(
+        n_workers=0, processes=False, dashboard_address=None, silence_logs=50
+    ) as cluster:
+        EMPTY_SCHEDULER[:] = [cluster.scheduler_address]
+        yield cluster.scheduler_address
+        EMPTY_SCHEDULER.clear()
+
+
+#: A Gmsh file of 71 bytes whose $Nodes section declares 2e9 nodes.
+GMSH_2E9 = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2000000000\n1 0 0 0\n$EndNodes\n"
+
+
+def full_device(tmp: Path) -> list[str]:
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full on this system")
+    return ["force", wedge_file(tmp), *STATE, "--format", "json", "-o", "/dev/full"]
+
+
+#: A legal file name of 255 bytes (the longest most file systems take).
+LONG_NAME = "r" * 250 + ".json"
+
+
+def zeros_3mf(tmp: Path, name: str, mib: int, declared: int | None = None) -> str:
+    """A 3MF whose model part is ``mib`` MiB of zeros (deflated to a few hundred KB), and
+    whose zip directory claims ``declared`` bytes for it when given."""
+    import io
+    import zipfile
+
+    buf = io.BytesIO()
+    with zipfile.ZipFile(buf, "w", zipfile.ZIP_DEFLATED) as z:
+        with z.open("3D/3dmodel.model", "w") as member:
+            block = b"\0" * 2**20
+            for _ in range(mib):
+                member.write(block)
+    data = bytearray(buf.getvalue())
+    if declared is not None:  # the member's size in its local header and in the directory
+        struct.pack_into("<I", data, 22, declared)
+        struct.pack_into("<I", data, data.find(b"PK\x01\x02") + 24, declared)
+    return text(tmp, name, bytes(data))
 
 
 CATALOGUE: tuple[Bad, ...] = (
@@ -1642,6 +1816,272 @@ CATALOGUE: tuple[Bad, ...] = (
         plugins=("hangs",),
         interrupt=signal.SIGTERM,
     ),
+    # -- second round: silent wrong results
+    Bad(
+        "kinematics-draft-disagrees",
+        "a kinematics CSV whose draft falls while its velocity says sinking",
+        "error: kinematics draft disagrees with velocity: the velocity integrated from t = ... "
+        "moves the body ... m down, the draft column by ... m (more than 2 % of the largest "
+        "draft); the velocity is negative down and the draft positive down",
+        simulate_kinematics("t,draft,velocity\n0,0.01,-5\n0.001,0.005,-5\n0.002,0,-5\n"),
+        error="kinematics draft disagrees with velocity: the velocity integrated from t = 0 s "
+        "to t = 0.002 s moves the body 0.01 m down, the draft column by -0.01 m",
+    ),
+    Bad(
+        "kinematics-repeated-column",
+        "a kinematics CSV naming a column twice (`t,draft,velocity,draft`)",
+        "error: kinematics file '...' repeats the column 'draft' (its header: ...): give each "
+        "column once (every table)",
+        simulate_kinematics("t,draft,velocity,draft\n0,0,-5,0\n0.001,0.005,-5,0.1\n"),
+        error="repeats the column 'draft' (its header: t, draft, velocity, draft): give each "
+        "column once",
+    ),
+    Bad(
+        "mass-table-both-forms",
+        "a mass distribution with both `mass_per_metre` and point-mass (`z`, `mass`) columns",
+        "error: mass distribution file '...' has both a mass_per_metre column (a line "
+        "density) and a mass column (point masses): a table holds one form",
+        lambda t: [
+            "force",
+            wedge_file(t),
+            "--mass-distribution",
+            text(t, "m.csv", "x,mass_per_metre,z,mass\n0,10,0,1\n1,10,0,1\n"),
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+        ],
+        error="has both a mass_per_metre column (a line density) and a mass column (point "
+        "masses): a table holds one form",
+    ),
+    Bad(
+        "solver-total-overflows",
+        "a solver returning finite forces per metre (1e308 N/m) whose total is infinite",
+        "error: solver '...' returned finite force per metre values whose total over the N "
+        "slices is not a finite number (the largest: ...)",
+        lambda t: ["force", wedge_file(t), *STATE, "--scale", "2", "--solver", "huge"],
+        error="returned finite force per metre values whose total over the 8 slices is not a "
+        "finite number (the largest: 1e+308 N/m at x = 0.125 m)",
+        plugins=("huge",),
+    ),
+    Bad(
+        "stepped-hull-wetted-length",
+        "a stepped hull whose middle is dry (two 0.5 m bottoms 1.6 m from bow to stern)",
+        "result: wetted length 1.0 m, the wetted bottoms only (the slices still span 1.6 m)",
+        lambda t: [
+            "force",
+            stepped_hull(t),
+            "--mass",
+            "10",
+            "--draft",
+            "0.03",
+            "--velocity=-5",
+            "--slices",
+            "16",
+        ],
+        check=stepped_force,
+    ),
+    Bad(
+        "mass-overflows",
+        "`--mass 1e308` (a density no float holds)",
+        "error: hull '...': mass 1e+308 kg in a volume of ... m^3 is a density that overflows "
+        "a float: give the body's mass in kg",
+        lambda t: ["force", wedge_file(t), "--mass", "1e308", *STATE[2:]],
+        error="mass 1e+308 kg in a volume of 0.0057735 m^3 is a density that overflows a float",
+    ),
+    Bad(
+        "resume-edited-record",
+        "`sweep --resume` on a partial folder whose saved case was edited (peak force 1e9 N)",
+        "repaired, warning: 1 saved case(s) in '...' failed their check (edited, malformed, or "
+        "computed by another hullslice or solver version): they run again",
+        lambda t: resumable(t, edit_peak),
+        warning="1 saved case(s) in",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
+    Bad(
+        "resume-malformed-records",
+        '`sweep --resume` on saved cases that are no records (`{"peak_force": 1}`, `[]`)',
+        "repaired, warning: 2 saved case(s) in '...' failed their check ...: they run again",
+        lambda t: resumable(t, malformed),
+        warning="2 saved case(s) in",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
+    # -- second round: plugins and outputs
+    Bad(
+        "solver-prints",
+        "a solver that prints while it computes",
+        "result: its lines on stderr, stdout (`--format json` without `-o`) holds the result only",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "prints"],
+        printed=("debug: section_loads called",),
+        check=constant_force,
+        plugins=("prints",),
+    ),
+    Bad(
+        "solver-changes-folder",
+        "a solver that changes the working folder (`os.chdir('/')`), `-o result.json`",
+        "result: written where the command was started (the folder is restored after each "
+        "call of plugin code)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "chdir"],
+        relative=True,
+        output=False,
+        check=constant_force,
+        plugins=("chdir",),
+    ),
+    Bad(
+        "solver-os-exit",
+        "a solver that ends its process (`os._exit(0)`), `hullslice --isolate`",
+        "error: the command's process ended with status 0 while solver '...' ran before it "
+        "gave its result (without `--isolate`: status 0 and no output, docs/plugins.md)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "hard-exit"],
+        error="the command's process ended with status 0 while solver 'hard-exit' ran before "
+        "it gave its result",
+        plugins=("hard-exit",),
+        process=True,
+    ),
+    Bad(
+        "solver-segfault",
+        "a solver that crashes its process (SIGSEGV), `hullslice --isolate`",
+        "error: the command's process was killed by SIGSEGV while solver '...' ran (without "
+        "`--isolate`: status 139 and no message)",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "crashes"],
+        error="the command's process was killed by SIGSEGV while solver 'crashes' ran",
+        plugins=("crashes",),
+        process=True,
+    ),
+    Bad(
+        "gmsh-declares-more-than-it-holds",
+        "a 71-byte Gmsh file whose `$Nodes` declares 2e9 nodes",
+        "error: its $Nodes section declares 2000000000 nodes, at least 16000000000 bytes, but "
+        "the file has 71 bytes: it is cut short, or its counts are wrong",
+        lambda t: ["sections", text(t, "big.msh", GMSH_2E9), "--draft", "0.01"],
+        error="its $Nodes section declares 2000000000 nodes, at least 16000000000 bytes, but "
+        "the file has 71 bytes: it is cut short, or its counts are wrong",
+    ),
+    Bad(
+        "output-full-device",
+        "`-o /dev/full` (a device that takes no data)",
+        "error: cannot write '/dev/full' (--output): No space left on device (`> /dev/full`: "
+        "cannot write the result to stdout)",
+        full_device,
+        error="cannot write '/dev/full' (--output): No space left on device",
+        output=False,
+    ),
+    Bad(
+        "output-name-255-bytes",
+        "`-o` a legal file name of 255 bytes",
+        "result: written (its temporary carries a shortened name and a hash of it)",
+        lambda t: ["force", wedge_file(t), *STATE],
+        check=same_force,
+        out_name=LONG_NAME,
+    ),
+    # -- second round: resources
+    Bad(
+        "sweep-too-many-cases",
+        "a sweep grid of 1e6 cases (1000 velocities x 1000 pitches)",
+        "error: case file '...': [sweep] has N cases (...), more than the 100000 hullslice "
+        "runs in one sweep: give fewer values, or split it into sweeps",
+        lambda t: [
+            "sweep",
+            sweep_case(
+                t,
+                f"velocity = {[-1.0 - k / 1000 for k in range(1000)]}\n"
+                f"pitch = {[k / 1000 for k in range(1000)]}\n",
+            ),
+        ],
+        error="[sweep] has 1000000 cases (1000 velocity x 1000 pitch), more than the 100000 "
+        "hullslice runs in one sweep",
+        output=False,
+    ),
+    Bad(
+        "sweep-workers-above-cores",
+        "`sweep --workers 1000` (here on a sweep resumed with every case done: no cluster)",
+        "warning: workers 1000 is more than 4 per core (N cores here): the sweep starts 4 N",
+        lambda t: [*resumable(t)[:-3], "--workers", "1000", "--resume"],
+        warning="workers 1000 is more than 4 per core",
+        check=sweep_peaks,
+        read=read_sweep,
+        output=False,
+        out_name="result.nc",
+    ),
+    Bad(
+        "sweep-scheduler-without-workers",
+        "`sweep --scheduler ADDRESS` of a scheduler that has no workers",
+        "error: the Dask scheduler at '...' has no workers (none joined within 10 s): start "
+        "some ('dask worker ADDRESS'), or leave out --scheduler",
+        lambda t: ["sweep", sweep_case(t), "--scheduler", EMPTY_SCHEDULER[0]],
+        error="has no workers (none joined within 10 s)",
+        output=False,
+        fixture="empty_scheduler",
+    ),
+    Bad(
+        "3mf-directory-understates",
+        "a 3MF whose zip directory claims 100 bytes for a 64 MiB member",
+        "error: ... is corrupt (Bad CRC-32 ...): a member gives other data than its directory "
+        "entry says (inflated in blocks, counted: no more than the 100 bytes is inflated)",
+        lambda t: ["sections", zeros_3mf(t, "lie.3mf", 64, declared=100), "--draft", "0.01"],
+        error="a member gives other data than its directory entry says",
+    ),
+    Bad(
+        "3mf-model-too-large",
+        "a 3MF of 129 MiB of model XML (under the 4 GiB it may unpack to)",
+        "error: its model XML is 129 MiB, more than the 128 MiB hullslice parses (about 1.5 "
+        "million triangles; ...): export the mesh as binary STL, or decimate it",
+        lambda t: ["sections", zeros_3mf(t, "big.3mf", 129), "--draft", "0.01"],
+        error="its model XML is 129 MiB, more than the 128 MiB hullslice parses",
+    ),
+    Bad(
+        "kinematics-too-many-rows",
+        "a kinematics CSV of more rows than simulate's 1e6 steps",
+        "error: kinematics file '...' has N rows, more than the 1000000 hullslice allows (the "
+        "step limit of simulate): give every k-th row",
+        lambda t: ["simulate", wedge_file(t), "--mass", "10", "--kinematics", many_rows(t)],
+        error="has 1000001 rows, more than the 1000000 hullslice allows (the step limit of "
+        "simulate; each row is one cut of the body)",
+    ),
+    Bad(
+        "kinematics-rows-times-slices",
+        "101 kinematics rows at 1e5 slices (1e7 section solutions)",
+        "error: 101 kinematics rows times 100000 slices is 1.01e+07 section solutions, more "
+        "than the 1e+07 hullslice allows in one run",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--slices",
+            "100000",
+            "--kinematics",
+            kinematics_rows_file(t, 101),
+        ],
+        error="101 kinematics rows times 100000 slices is 1.01e+07 section solutions, more "
+        "than the 1e+07 hullslice allows in one run",
+    ),
+    Bad(
+        "simulate-steps-times-slices",
+        "`simulate` of 1e5 steps at 2e4 slices",
+        "error: ... steps times N slices is ... section solutions, more than the 1e+07 "
+        "hullslice allows in one run: give fewer slices, or fewer steps",
+        lambda t: [
+            "simulate",
+            wedge_file(t),
+            "--mass",
+            "10",
+            "--velocity=-5",
+            "--t-end",
+            "1",
+            "--dt",
+            "1e-5",
+            "--slices",
+            "20000",
+        ],
+        error="100000 steps times 20000 slices is 2e+09 section solutions, more than the "
+        "1e+07 hullslice allows in one run",
+    ),
     # -- case files (library: hullslice.load_case)
     Bad(
         "case-unknown-key",
@@ -1858,6 +2298,11 @@ FAKE_SOLVERS = {
     "exits-on-start": "ExitOnStartSolver",
     "table": "TableSolver",
     "hangs": "HangingSolver",
+    "huge": "HugeSolver",
+    "prints": "PrintingSolver",
+    "chdir": "ChdirSolver",
+    "hard-exit": "HardExitSolver",
+    "crashes": "CrashingSolver",
 }
 
 
@@ -1879,7 +2324,9 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
     work.mkdir()
     out_dir = tmp_path / "out"
     out_dir.mkdir()
-    out = out_dir / "result.json"
+    out = out_dir / bad.out_name
+    if bad.fixture:
+        request.getfixturevalue(bad.fixture)
     if bad.call is not None:
         with pytest.raises(hs.HullsliceError) as info:
             bad.call(work)
@@ -1888,12 +2335,17 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
     if bad.plugins:
         request.getfixturevalue("fake_entry_points")(fake_eps(bad.plugins))
     argv = bad.argv(work)
-    if bad.output:
+    if bad.relative:
+        request.getfixturevalue("monkeypatch").chdir(out_dir)
+        argv += ["--format", "json", "-o", out.name]
+    elif bad.output:
         argv += ["--format", "json", "-o", str(out)]
     before = {p: p.read_bytes() for p in work.rglob("*") if p.is_file()}
 
-    if bad.interrupt:
-        code, stdout, stderr = run_interrupted(argv, bad.plugins, bad.interrupt, tmp_path)
+    if bad.interrupt or bad.process:
+        code, stdout, stderr = run_interrupted(
+            ["--isolate", *argv] if bad.process else argv, bad.plugins, bad.interrupt, tmp_path
+        )
     else:
         code = main(argv)
         stdout, stderr = capsys.readouterr()
@@ -1917,18 +2369,19 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
         assert list(out_dir.iterdir()) == []  # no file, complete or partial
         return
     assert code == 0, stderr
-    expected = [f"wrote {out}"]
+    expected = [*bad.printed, f"wrote {out.name if bad.relative else out}"]
     if bad.warning:
         warned = (bad.warning, *bad.more_warnings)
-        assert len(lines) == len(warned) + 1, stderr
+        assert len(lines) == len(warned) + 1 + len(bad.printed), stderr
         for line, part in zip(lines, warned, strict=False):
             assert line.startswith("hullslice: warning: ") and part in line, stderr
         expected[:0] = lines[: len(warned)]
+    assert stdout == ""  # the result is in its file; a plugin's prints went to stderr
     if bad.read is not None:  # a report folder names its page
         assert lines[-1].startswith(expected[-1]), stderr
         expected[-1] = lines[-1]
     assert lines == expected
-    assert [p.name for p in out_dir.iterdir()] == ["result.json"]
+    assert [p.name for p in out_dir.iterdir()] == [bad.out_name]
     data = json.loads(out.read_text()) if bad.read is None else bad.read(out)
     assert bad.check is not None
     bad.check(data)
@@ -1936,7 +2389,8 @@ def test_bad_input(bad: Bad, tmp_path, capsys, request):
 
 def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
     """Run the command line in a process of its own with the fake solvers ``plugins``, send
-    it ``sig`` once its solver has started, and return its status, stdout and stderr."""
+    it ``sig`` once its solver has started (none when ``sig`` is 0: the run ends by itself),
+    and return its status, stdout and stderr."""
     started = tmp / "solver-started"
     program = (
         "import signal, sys\n"
@@ -1962,12 +2416,13 @@ def run_interrupted(argv, plugins, sig: int, tmp: Path) -> tuple[int, str, str]:
         text=True,
     )
     try:
-        deadline = time.monotonic() + 120
-        while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
-            time.sleep(0.02)
-        assert started.exists(), proc.communicate(timeout=10)
-        proc.send_signal(sig)
-        stdout, stderr = proc.communicate(timeout=60)
+        if sig:
+            deadline = time.monotonic() + 120
+            while not started.exists() and proc.poll() is None and time.monotonic() < deadline:
+                time.sleep(0.02)
+            assert started.exists(), proc.communicate(timeout=10)
+            proc.send_signal(sig)
+        stdout, stderr = proc.communicate(timeout=120)
     finally:
         if proc.poll() is None:
             proc.kill()
@@ -2038,6 +2493,46 @@ def test_a_run_stopped_while_writing_leaves_no_file(
     assert sorted(p.name for p in tmp_path.iterdir()) == ["wedge.stl"]
 
 
+def test_an_isolated_run_gives_what_the_run_gives(tmp_path):
+    # --isolate: the result on stdout and the status of the run in its child; a refused
+    # input is its one line and status 3, once (not repeated by the parent)
+    argv = ["force", wedge_file(tmp_path), *STATE, "--format", "json"]
+    code, stdout, stderr = run_interrupted(["--isolate", *argv], (), 0, tmp_path)
+    assert code == 0 and stderr == ""
+    assert json.loads(stdout)["force"] == pytest.approx(wedge_force(), rel=1e-9)
+    code, stdout, stderr = run_interrupted(["--isolate", *argv, "--slices", "0"], (), 0, tmp_path)
+    assert code == 2 and stdout == ""
+    assert len(stderr.splitlines()) == 1 and USAGE.match(stderr)
+
+
+def test_an_isolated_run_stopped_with_sigterm_stops_its_child(tmp_path):
+    # kill PID of the parent: passed on to the child, which stops as a run does (one line,
+    # status 143); the parent adds nothing
+    argv = ["--isolate", "force", wedge_file(tmp_path), *STATE, "--solver", "hangs"]
+    code, stdout, stderr = run_interrupted(argv, ("hangs",), signal.SIGTERM, tmp_path)
+    assert (code, stdout, stderr.splitlines()) == (143, "", ["hullslice: terminated"])
+
+
+def test_a_full_stdout_is_one_line(tmp_path):
+    # the result printed to a device that takes no data: one line naming stdout, status 3
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full on this system")
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")]),
+    }
+    with open("/dev/full", "w") as full:
+        proc = subprocess.run(
+            [sys.executable, "-m", "hullslice", "force", wedge_file(tmp_path), *STATE],
+            stdout=full, stderr=subprocess.PIPE, text=True, env=env, timeout=120,
+        )  # fmt: skip
+    assert proc.returncode == 3
+    assert proc.stderr.splitlines() == [
+        "hullslice: error: cannot write the result to stdout: No space left on device; free "
+        "some space, or give -o PATH"
+    ]
+
+
 def test_sigterm_raises_where_the_run_is(tmp_path):
     # the handler main() installs turns SIGTERM into an exception in the main thread
     with terminated_cleanly(), pytest.raises(Terminated):
@@ -2102,6 +2597,18 @@ def test_the_catalogue_covers_the_issue_list():
         "overlapping-inside-out", "far-away-shell",
     }  # fmt: skip
     assert exports <= ids
+    # the second round: silent wrong results, resources, plugins and messages
+    second = {
+        "kinematics-draft-disagrees", "kinematics-repeated-column", "mass-table-both-forms",
+        "solver-total-overflows", "stepped-hull-wetted-length", "mass-overflows",
+        "resume-edited-record", "resume-malformed-records", "solver-prints",
+        "solver-changes-folder", "solver-os-exit", "solver-segfault",
+        "gmsh-declares-more-than-it-holds", "output-full-device", "output-name-255-bytes",
+        "sweep-too-many-cases", "sweep-workers-above-cores", "sweep-scheduler-without-workers",
+        "3mf-directory-understates", "3mf-model-too-large", "kinematics-too-many-rows",
+        "kinematics-rows-times-slices", "simulate-steps-times-slices",
+    }  # fmt: skip
+    assert second <= ids
     assert len(ids) == len(CATALOGUE)
     assert {kind(b) for b in CATALOGUE} == {"error", "repair", "result"}
 

@@ -219,3 +219,26 @@ def test_a_sweep_whose_every_case_fails_exits_with_the_bad_input_status(tmp_path
     assert main(["sweep", str(case), "--workers", "1"]) == 3
     err = capsys.readouterr().err
     assert "deeper than the body's height" in err and "every case of the sweep failed" in err
+
+
+def test_workers_above_four_per_core_start_four_per_core(tmp_path, monkeypatch):
+    # --workers 9 on 2 cores: a warning, and a cluster of 8 workers (4 per core) is asked for
+    import os
+
+    from hullslice.sweeps import engine
+
+    asked: list[int] = []
+
+    def local_client(workers: int):
+        asked.append(workers)
+        raise hs.InputError("no cluster in this test")
+
+    monkeypatch.setattr(engine, "local_client", local_client)
+    monkeypatch.setattr(os, "cpu_count", lambda: 2)
+    case = case_file(tmp_path, "velocity = [-3.0, -4.0]")
+    with (
+        pytest.warns(hs.HullsliceWarning, match=r"workers 9 is more than 4 per core \(2 cores"),
+        pytest.raises(hs.InputError, match="no cluster in this test"),
+    ):
+        hs.sweep(case, workers=9)
+    assert asked == [8]

@@ -79,6 +79,13 @@ def build_parser() -> Parser:
         ),
     )
     parser.add_argument("--version", action="version", version=f"hullslice {__version__}")
+    parser.add_argument(
+        "--isolate",
+        action="store_true",
+        help="run the command in a child process and report one that ends without its "
+        "result (a plugin calling os._exit, a crash in a C extension); give it before the "
+        "command: hullslice --isolate force ...",
+    )
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
     for cmd in COMMANDS:
@@ -104,6 +111,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         warnings.filterwarnings("always", category=HullsliceWarning)
         try:
             args = build_parser().parse_args(argv)
+            if args.isolate:
+                from .isolate import run_isolated
+
+                rest = list(sys.argv[1:] if argv is None else argv)
+                rest.remove("--isolate")
+                return run_isolated(main, rest)
             return int(args.func(args) or 0)
         except SystemExit as exc:  # --help and --version; or code that exits with a message
             if exc.code is None or isinstance(exc.code, int):

@@ -11,6 +11,7 @@ from ..errors import InputError
 from ..paths import check_not_an_input
 from ..progress import terminal_case_progress
 from .common import check_path, out_path, positive_int, write_error
+from .outputs import print_result
 
 #: Shown by a terminal table of cases: result, heading, unit, format.
 TABLE = (
@@ -166,7 +167,7 @@ def run(args: argparse.Namespace) -> int:
             file=sys.stderr,
         )
     else:
-        sys.stdout.write(_table(plan, ds) + "\n")
+        print_result(_table(plan, ds))
     if failures and len(failures) == len(plan.cases):
         # every case failed: the results are written (each with its error), and the exit
         # status says the inputs were refused (3), as for a single run

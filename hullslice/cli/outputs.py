@@ -130,8 +130,23 @@ def finish(
     check_output(study, save_case, *(path for option, path, _ in extra))
     write_together(writers)
     if not study.output:
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        print_result(text)
     return 0
+
+
+def print_result(text: str) -> None:
+    """Write a command's result to stdout, a line break at its end; a stdout that cannot
+    take it (a full disk, ``> /dev/full``) is an :class:`InputError` naming it."""
+    try:
+        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        sys.stdout.flush()
+    except BrokenPipeError:
+        raise  # the reader went away (| head): not an error
+    except OSError as exc:
+        raise InputError(
+            f"cannot write the result to stdout: {exc.strerror or exc}; free some space, or "
+            "give -o PATH"
+        ) from None
 
 
 def write_together(writers: Sequence[Extra]) -> None:
@@ -291,4 +306,4 @@ def emit(target: Any, text: str) -> None:
         check_path(output, target)
         write_together([("--output", output, lambda: write_atomic(output, text))])
     else:
-        sys.stdout.write(text if text.endswith("\n") else text + "\n")
+        print_result(text)

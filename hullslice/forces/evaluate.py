@@ -14,10 +14,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..errors import HullsliceError, SolverError
+from ..errors import HullsliceError, InputError, SolverError
 from ..kernel.keel import END_FACE_SLOPE
 from ..limits import no_mass
-from ..safety import failure
+from ..safety import failure, plugin_code
 from ..sections import Sections
 from ..solvers.base import AddedMass, MomentumFormSolver, SectionLoads, SolverBase
 from ..solvers.registry import describe
@@ -93,7 +93,7 @@ def _flat_clamped(sections: Sections, wet: np.ndarray) -> tuple[Sections, np.nda
 def _call(solver: SolverBase, method, sections: Sections, velocity, fluid: Fluid):
     """Call a solver's method on wetted sections, turning every escape into a SolverError."""
     try:
-        with np.errstate(all="ignore"):
+        with np.errstate(all="ignore"), plugin_code(f"solver {solver.name!r}"):
             return method(sections, velocity, fluid)
     except HullsliceError:
         raise
@@ -159,6 +159,14 @@ def evaluate(
     velocity = _readonly_velocity(velocity, n)
     wet = sections.wetted
     if wet.any() and not np.all(np.isfinite(sections.mass_per_metre[wet])):
+        mpm = sections.mass_per_metre[wet]
+        if np.any(np.isinf(mpm)):  # a mass so large its share per metre overflows
+            i = int(np.flatnonzero(np.isinf(mpm))[0])
+            raise InputError(
+                f"the mass per metre at x = {sections.x[wet][i]:.6g} m overflows to infinity: "
+                "the body's mass is too large for a float over its volume; give the mass in kg "
+                "(a real body's is below 1e12)"
+            )
         raise no_mass()
     # a wetted section that carries no mass (between a distribution's point masses, or
     # beyond its line) is in no free fall: it gets no force, flagged
@@ -249,9 +257,28 @@ def _check_loads(solver: SolverBase, loads: object, sections: Sections, velocity
             f"per metre {sections.mass_per_metre[i]:.6g} kg/m, velocity {velocity[i]:.6g} m/s); "
             "check these inputs, or use another solver"
         )
+    if not problem:
+        problem = _total_problem(loads.force_per_metre, sections, "force per metre", "N")  # type: ignore[attr-defined]
     if problem:
         # naming the plugin reads its distribution's metadata: only when there is a fault
         raise SolverError(f"solver {describe(solver)} returned {problem}")
+
+
+def _total_problem(per_metre: np.ndarray, sections: Sections, what: str, unit: str) -> str:
+    """What is wrong with finite per-metre values whose slices or total are not finite
+    (``1e308`` N/m over 0.1 m slices): "" when nothing is."""
+    with np.errstate(all="ignore"):
+        per_slice = per_metre * sections.dx
+        total = per_slice.sum()
+        size = np.abs(per_slice).sum()
+    if np.isfinite(total) and np.isfinite(size):
+        return ""
+    i = int(np.argmax(np.abs(per_metre)))
+    return (
+        f"finite {what} values whose total over the {len(sections)} slices is not a finite "
+        f"number (the largest: {per_metre[i]:.6g} {unit}/m at x = {sections.x[i]:.6g} m): "
+        "no load a body can take; check the solver's units, or use another solver"
+    )
 
 
 def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> None:
@@ -285,6 +312,12 @@ def _check_added_mass(solver: SolverBase, out: object, sections: Sections) -> No
                         f"{sections.penetration[i]:.6g} m, deadrise "
                         f"{sections.deadrise_deg[i]:.4g} deg)"
                     )
+                    break
+        if not problem:
+            for name, unit in (("added_mass", "kg"), ("rate", "kg/s"), ("extra", "N"),
+                               ("vertical", "N")):  # fmt: skip
+                problem = _total_problem(getattr(out, name), sections, name.replace("_", " "), unit)
+                if problem:
                     break
         if not problem and np.any(out.added_mass < 0):
             i = int(np.flatnonzero(out.added_mass < 0)[0])

@@ -115,6 +115,34 @@ class KeelLine:
         hi = crossing(last) if last < len(z) - 1 else float(x[-1])
         return min(lo, float(x[first])), max(hi, float(x[last]))
 
+    def wet_length(self, level: float, lo: float, hi: float) -> float:
+        """The length of ``x`` in ``[lo, hi]`` where the keel is below ``level`` (relative):
+        the wetted length of a bottom that leaves the water between ``lo`` and ``hi`` (the
+        dry part behind a step, a gap between parts) counts only where it is wet."""
+        x, z = self.x, self.z
+        a, b = np.clip(x[:-1], lo, hi), np.clip(x[1:], lo, hi)
+        za, zb = z[:-1], z[1:]
+        finite = np.isfinite(za) & np.isfinite(zb) & (b > a)
+        if not finite.any():
+            return 0.0
+        x0, x1 = x[:-1][finite], x[1:][finite]
+        za, zb, a, b = za[finite], zb[finite], a[finite], b[finite]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            # the keel's height at the clipped ends of each facet, linear along it
+            t = np.where(x1 > x0, 1.0 / (x1 - x0), 0.0)
+            ha = za + (zb - za) * (a - x0) * t
+            hb = za + (zb - za) * (b - x0) * t
+            under_a, under_b = ha < level, hb < level
+            # where the facet meets the level, as a share of its clipped part
+            cross = np.where(hb != ha, (level - ha) / (hb - ha), 0.0)
+        span = b - a
+        wet = np.where(
+            under_a & under_b,
+            span,
+            np.where(under_a, cross * span, np.where(under_b, (1.0 - cross) * span, 0.0)),
+        )
+        return float(np.clip(wet, 0.0, span).sum())
+
     def bottom(self, level: float) -> tuple[float, float] | None:
         """The ``x`` range where the keel is below ``level`` (relative), without an end face
         that the water crosses at an end of it: a pitched transom's face dips under the

@@ -38,7 +38,7 @@ from typing import cast
 import numpy as np
 
 from ..aero import Aerodynamics, aero_model
-from ..constants import MAX_STEPS
+from ..constants import MAX_SLICE_STEPS, MAX_STEPS
 from ..errors import InputError
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_bounded
 from ..forces.friction import Friction
@@ -288,6 +288,7 @@ def simulate(
             f"{MAX_STEPS} hullslice allows: give a longer time step (an impact is resolved "
             "with a few hundred)"
         )
+    _check_work(ratio, slices, f"{ratio:.6g} steps")
     if pose0.draft > height:
         raise InputError(
             f"initial draft {pose0.draft:g} m is deeper than the body's height {height:.6g} m"
@@ -382,6 +383,21 @@ def simulate(
     return rec.history("t_end", "free fall" if level else "free motion", settings)
 
 
+def _check_work(steps: float, slices: object, what: str) -> None:
+    """Refuse a run of more than :data:`~hullslice.constants.MAX_SLICE_STEPS` slices times
+    steps (or rows), before any cut."""
+    if not isinstance(slices, int) or isinstance(slices, bool) or slices < 1:
+        return  # the force model refuses it with its own message
+    work = steps * slices
+    if work > MAX_SLICE_STEPS:
+        raise InputError(
+            f"{what} times {slices} slices is {work:.3g} section solutions, more than the "
+            f"{MAX_SLICE_STEPS:.0e} hullslice allows in one run (hours of work on a fine "
+            f"mesh): give fewer slices, or fewer steps (at most {MAX_SLICE_STEPS // slices} "
+            f"with {slices} slices)"
+        )
+
+
 def prescribed(
     hull: Hull,
     kinematics: Mapping[str, Sequence[float] | np.ndarray],
@@ -423,6 +439,7 @@ def prescribed(
     """
     kin = check_kinematics(kinematics, hull)
     rec = Recorder(stop_on, max_flagged_share, sections_every)
+    _check_work(len(kin["t"]), slices, f"{len(kin['t'])} kinematics rows")
     model = ForceModel(
         hull,
         slices=slices,

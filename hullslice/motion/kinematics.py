@@ -24,7 +24,14 @@ differences inside the table and second-order one-sided ones at its ends
 with its value (``acceleration`` with ``velocity``, ``pitch_rate`` with ``pitch``,
 ``pitch_acceleration`` with ``pitch_rate``, ``forward_acceleration`` with
 ``forward_speed``): its trapezoidal integral from the first row may differ from the
-value's change by at most :data:`ACCELERATION_TOLERANCE` of the value's largest size.
+value's change by at most :data:`ACCELERATION_TOLERANCE` of the value's largest size. The
+draft is checked against the velocity by the same rule where the pitch is constant (the
+lowest point then moves with the centre of gravity): ``-velocity`` integrated from the first
+row must change the draft as the draft column does, within
+:data:`ACCELERATION_TOLERANCE` of the largest draft.
+
+A table has at most :data:`~hullslice.constants.MAX_STEPS` rows, the step limit of
+:func:`~hullslice.motion.integrate.simulate`: each row is one cut of the body.
 """
 
 from __future__ import annotations
@@ -36,6 +43,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from ..constants import MAX_STEPS
 from ..errors import CaseError
 from ..limits import MAX_PITCH, MAX_PITCH_DEG
 from ..mesh import Hull
@@ -155,6 +163,12 @@ def check_kinematics(
     n = len(out["t"])
     if n == 0:
         raise CaseError("the kinematics table has no rows")
+    if n > MAX_STEPS:
+        raise CaseError(
+            f"the kinematics table has {n} rows, more than the {MAX_STEPS} hullslice allows "
+            "(the step limit of simulate; each row is one cut of the body): give every k-th "
+            "row (an impact is resolved with a few hundred)"
+        )
     given = [c for c in KINEMATICS_OPTIONAL if c in kin]
     for c, default in KINEMATICS_OPTIONAL.items():
         out[c] = np.asarray(kin[c], dtype=np.float64).ravel() if c in kin else np.full(n, default)
@@ -179,6 +193,8 @@ def check_kinematics(
         for rate, value in RATES:
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
+        if np.all(out["pitch"] == out["pitch"][0]):
+            _check_draft(t, out["draft"], out["velocity"])
     p = out["draft"]
     steep = np.flatnonzero(np.abs(out["pitch"]) >= MAX_PITCH)
     if len(steep):
@@ -219,7 +235,8 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
         the module notes, angles in rad (``pitch``, ``pitch_rate``,
         ``pitch_acceleration``).
     """
-    header, rows = read_csv(path, "kinematics")  # hullslice/tables.py
+    why = " (the step limit of simulate; each row is one cut of the body)"
+    header, rows = read_csv(path, "kinematics", MAX_STEPS, why)  # hullslice/tables.py
     if "draft" in header and "penetration" in header:
         raise CaseError(
             f"kinematics file {printable(path)!r} has both a draft and a penetration column "
@@ -275,6 +292,25 @@ def _check_rate(t: np.ndarray, x: np.ndarray, rate: np.ndarray, value: str, name
             f"{value} column by {x[worst] - x[0]:.6g} {unit} (more than "
             f"{100 * ACCELERATION_TOLERANCE:g} % of its largest size, {scale:.6g} {unit}); fix "
             f"the {name} column or leave it out to derive it"
+        )
+
+
+def _check_draft(t: np.ndarray, draft: np.ndarray, velocity: np.ndarray) -> None:
+    """At a constant pitch the draft must follow the velocity: ``-velocity`` integrated in
+    time (trapezoids) changes the draft as the table does, within
+    :data:`ACCELERATION_TOLERANCE` of the largest draft."""
+    sink = -0.5 * (velocity[1:] + velocity[:-1]) * np.diff(t)
+    integral = np.concatenate([[0.0], np.cumsum(sink)])
+    miss = np.abs(integral - (draft - draft[0]))
+    scale = float(np.abs(draft).max())
+    worst = int(np.argmax(miss))
+    if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
+        raise CaseError(
+            f"kinematics draft disagrees with velocity: the velocity integrated from "
+            f"t = {t[0]:g} s to t = {t[worst]:g} s moves the body {integral[worst]:.6g} m down, "
+            f"the draft column by {draft[worst] - draft[0]:.6g} m (more than "
+            f"{100 * ACCELERATION_TOLERANCE:g} % of the largest draft, {scale:.6g} m); the "
+            "velocity is negative down and the draft positive down: fix the sign or the column"
         )
 
 

@@ -34,9 +34,7 @@ def plot_convergence(
     matplotlib.figure.Figure
     """
     fig, ax, created = one_axes(ax, (8.5, 4.2), "plot_convergence")
-    d = np.array(
-        [r.sections.wetted_length / n for r, n in zip(study.results, study.counts, strict=True)]
-    )
+    d = np.array([float(r.sections.dx.max()) if len(r.sections.dx) else 0.0 for r in study.results])
     f = study.forces
     ax.plot(d * 1e3, f, "o-", color="C0", label="2D+t force, n slices")
     for di, fi, n in zip(d, f, study.counts, strict=True):

@@ -4,7 +4,9 @@ of the optional extra ``hullslice[formats]``.
 Each reader takes the bytes of the file (bounded by the size limit) and hands them to the
 library as data, never as a path: no other file is opened (a glTF whose buffers are
 separate files is refused: export it as ``.glb``), and a 3MF archive is refused when it
-would unpack to more than :data:`~hullslice.readers.base.MAX_UNPACKED_BYTES`. The vertices
+would unpack to more than :data:`~hullslice.readers.base.MAX_UNPACKED_BYTES` (counted as
+its members are inflated, not as its directory says) or holds more model XML than
+:data:`~hullslice.readers.base.MAX_3MF_MODEL_BYTES` (which bounds the parse's memory). The vertices
 and faces are returned as in the file, without the library's own merging or repair, so that
 hullslice's checks apply to them as to any other format.
 
@@ -26,7 +28,14 @@ from typing import IO, Any
 import numpy as np
 
 from ..extras import need as _need
-from .base import MAX_UNPACKED_BYTES, NO_CONVENTIONS, Conventions, FormatError, Reader
+from .base import (
+    MAX_3MF_MODEL_BYTES,
+    MAX_UNPACKED_BYTES,
+    NO_CONVENTIONS,
+    Conventions,
+    FormatError,
+    Reader,
+)
 
 __all__ = ["EXTRA_READERS", "need", "require_format", "to_trimesh", "trimesh_arrays"]
 
@@ -75,16 +84,55 @@ def _data(fh: IO[bytes], size: int) -> bytes:
 
 
 def _check_zip(data: bytes) -> None:
-    """Refuse a 3MF archive that is not a zip file or unpacks to too much."""
+    """Refuse a 3MF archive that is not a zip file, unpacks to too much, or holds more model
+    XML than :data:`~hullslice.readers.base.MAX_3MF_MODEL_BYTES`.
+
+    The directory's sizes are checked first (a quick refusal), then every member is
+    inflated here in blocks, counting the bytes it gives and keeping none: a member that
+    gives more than its directory entry says is cut at that size and fails its CRC check,
+    so no more than the declared sizes, within the limits, is ever inflated, here or by
+    trimesh after."""
     try:
         with zipfile.ZipFile(io.BytesIO(data)) as z:
-            unpacked = sum(i.file_size for i in z.infolist())
-    except (zipfile.BadZipFile, ValueError) as exc:
-        raise FormatError(f"a 3MF is a zip archive and this one is not ({exc})") from None
-    if unpacked > MAX_UNPACKED_BYTES:
+            infos = z.infolist()
+            unpacked = sum(i.file_size for i in infos)
+            if unpacked > MAX_UNPACKED_BYTES:
+                raise FormatError(
+                    f"it unpacks to {unpacked / 1024**3:.1f} GiB, more than the "
+                    f"{MAX_UNPACKED_BYTES / 1024**3:.0f} GiB hullslice reads: decimate the mesh"
+                )
+            _check_model_size(sum(i.file_size for i in infos if _is_model(i)))
+            produced = model = 0
+            for info in infos:
+                with z.open(info) as member:
+                    while block := member.read(1 << 20):
+                        produced += len(block)
+                        model += len(block) if _is_model(info) else 0
+                        if produced > MAX_UNPACKED_BYTES:  # pragma: no cover - cut by zipfile
+                            raise FormatError("it unpacks to more than its directory says")
+                        _check_model_size(model)
+    except (zipfile.BadZipFile, zipfile.LargeZipFile) as exc:
         raise FormatError(
-            f"it unpacks to {unpacked / 1024**3:.1f} GiB, more than the "
-            f"{MAX_UNPACKED_BYTES / 1024**3:.0f} GiB hullslice reads: decimate the mesh"
+            f"a 3MF is a zip archive and this one is not, or is corrupt ({exc}): a member "
+            "gives other data than its directory entry says; export it again"
+        ) from None
+    except (ValueError, EOFError, OSError) as exc:
+        if isinstance(exc, FormatError):
+            raise
+        raise FormatError(f"a 3MF is a zip archive and this one is not ({exc})") from None
+
+
+def _is_model(info: zipfile.ZipInfo) -> bool:
+    return info.filename.lower().endswith(".model")
+
+
+def _check_model_size(size: int) -> None:
+    if size > MAX_3MF_MODEL_BYTES:
+        raise FormatError(
+            f"its model XML is {size / 1024**2:.0f} MiB, more than the "
+            f"{MAX_3MF_MODEL_BYTES / 1024**2:.0f} MiB hullslice parses (about 1.5 million "
+            "triangles; parsing takes about 17 times the XML's size in memory): export the "
+            "mesh as binary STL, or decimate it"
         )
 
 
@@ -169,12 +217,14 @@ def read_msh(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
 
     try:
         fh.fileno()  # numpy reads meshio's blocks from a real file only
-        mesh = _meshio_read(read_buffer, fh)
+        _check_msh_counts(fh, size)
+        mesh = _meshio_read(read_buffer, fh, size)
     except (OSError, AttributeError, io.UnsupportedOperation):
         with tempfile.TemporaryFile() as tmp:
             tmp.write(_data(fh, size))
             tmp.seek(0)
-            mesh = _meshio_read(read_buffer, tmp)
+            _check_msh_counts(tmp, size)
+            mesh = _meshio_read(read_buffer, tmp, size)
     tris = [c.data for c in mesh.cells if c.type == "triangle"]
     if tris:
         return np.asarray(mesh.points, dtype=np.float64), np.concatenate(tris).astype(np.int64)
@@ -185,10 +235,50 @@ def read_msh(fh: IO[bytes], size: int) -> tuple[np.ndarray, np.ndarray]:
     return v, _tet_boundary(v, np.concatenate(tets).astype(np.int64))
 
 
-def _meshio_read(read_buffer, fh) -> Any:
+#: Fewest bytes a node takes in a Gmsh file (ASCII ``1 0 0 0`` and its line break).
+_MSH_NODE_BYTES = 8
+#: Header lines looked through for ``$Nodes`` (the sections before it are short).
+_MSH_HEADER_LINES = 10_000
+#: A file below this size that meshio runs out of memory on declares more than it holds.
+_MSH_SMALL_BYTES = 64 * 1024**2
+
+
+def _check_msh_counts(fh: IO[bytes], size: int) -> None:
+    """Refuse a Gmsh file whose ``$Nodes`` section declares more nodes than its bytes can
+    hold (meshio would allocate for the declared count first)."""
+    start = fh.tell()
+    try:
+        for _ in range(_MSH_HEADER_LINES):
+            line = fh.readline(4096)
+            if not line:
+                return
+            if line.strip() == b"$Nodes":
+                head = fh.readline(4096).split()
+                try:
+                    # 2.2: the count; 4: blocks, count, smallest and largest tag
+                    n = int(head[1] if len(head) == 4 else head[0])
+                except (ValueError, IndexError):
+                    return  # meshio says what is wrong with it
+                if n * _MSH_NODE_BYTES > size:
+                    raise FormatError(
+                        f"its $Nodes section declares {n} nodes, at least "
+                        f"{n * _MSH_NODE_BYTES} bytes, but the file has {size} bytes: it is "
+                        "cut short, or its counts are wrong; export it again"
+                    )
+                return
+    finally:
+        fh.seek(start)
+
+
+def _meshio_read(read_buffer, fh, size: int) -> Any:
     try:
         return read_buffer(fh)
     except MemoryError:
+        if size < _MSH_SMALL_BYTES:  # no file of this size needs the machine's memory
+            raise FormatError(
+                f"meshio ran out of memory on {size} bytes: the file declares more nodes or "
+                "elements than it holds (cut short, or its counts are wrong); export it again"
+            ) from None
         raise
     except Exception as exc:  # a third-party parser: any failure is the file's
         raise FormatError(f"meshio cannot read it as Gmsh ({_reason(exc)})") from None

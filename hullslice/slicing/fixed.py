@@ -254,7 +254,7 @@ def fixed_sections(
         fr,
         pose=pose,
         level=level,
-        length=x1 - x0,
+        length=fr.keel.wet_length(level, x0, x1),
         rel=x,
         dx=hi - lo,
         props=sel,

@@ -27,7 +27,7 @@ from importlib.metadata import EntryPoint, entry_points
 from typing import Any, NoReturn
 
 from ..errors import HullsliceError, PluginError, PluginWarning, SolverError, UnknownSolverError
-from ..safety import failure
+from ..safety import failure, plugin_code
 from .base import SolverBase, did_you_mean
 
 __all__ = [
@@ -132,7 +132,8 @@ class _Registry:
             raise PluginError(self.broken[name])
         ep = self.winners[name]
         try:
-            obj = ep.load()
+            with plugin_code(f"solver plugin {ep.name!r} (loading)"):
+                obj = ep.load()
         except (Exception, SystemExit) as exc:  # a plugin's sys.exit() does not end hullslice
             msg = f"solver plugin {_describe(ep)} failed to load: {failure(exc)}"
             return self._broken(name, msg)
@@ -274,7 +275,8 @@ def get_solver(solver: str | type[SolverBase] | SolverBase | None = None, **opti
 def _build(cls: type[SolverBase], options: dict, who) -> SolverBase:
     """``cls(**options)``; an unexpected exception becomes a SolverError naming the plugin."""
     try:
-        return cls(**options)
+        with plugin_code(f"solver {getattr(cls, 'name', cls.__name__)!r} (starting)"):
+            return cls(**options)
     except HullsliceError:
         raise
     except (Exception, SystemExit) as exc:

@@ -9,7 +9,7 @@ from typing import Any
 
 from ..errors import InputError
 from .dataset import build, provenance
-from .engine import CONNECT_TIMEOUT, require, run_cases, session
+from .engine import CONNECT_TIMEOUT, capped_workers, require, run_cases, session
 from .plan import Plan, load_sweep, make_plan
 from .run import hull_for, load_inputs, shaping
 from .store import Partial, sha256, spec
@@ -40,7 +40,9 @@ def sweep(
     client : dask.distributed.Client or str, optional
         The Dask client, or a scheduler's address (``"tcp://host:8786"``). Without it, a
         local cluster of ``workers`` processes (default: one per core) is started and
-        stopped; ``workers=1`` runs in this process, without Dask.
+        stopped; ``workers=1`` runs in this process, without Dask. More workers than
+        :data:`~hullslice.sweeps.engine.MAX_WORKERS_PER_CORE` per core are that many, with
+        a warning. A scheduler given by address must have a worker within ``timeout``.
     keep_histories : bool
         Keep every case's history along a ``t`` dimension (variables ``history_<column>``).
     partial : path, optional
@@ -51,7 +53,8 @@ def sweep(
     progress : callable, optional
         Called as ``progress(done, total, failed)`` after each case.
     timeout : float
-        Seconds to wait for a scheduler given by address (default 10).
+        Seconds to wait for a scheduler given by address, and then for its first worker
+        (default 10).
 
     Returns
     -------
@@ -60,7 +63,8 @@ def sweep(
         message in ``error``.
     """
     require("xarray")
-    from ..solvers.registry import DEFAULT_SOLVER, get_solver
+    from .._version import __version__
+    from ..solvers.registry import DEFAULT_SOLVER, describe, get_solver
 
     if isinstance(case_or_study, Plan):
         plan = case_or_study
@@ -75,6 +79,8 @@ def sweep(
         isinstance(workers, bool) or int(workers) != workers or workers < 1
     ):
         raise InputError(f"workers {workers!r} is not a positive whole number: give 1 or more")
+    if workers is not None and client is None:
+        workers = capped_workers(int(workers))
     mesh_path = Path(base["mesh"])
     hull, inputs = load_inputs(base)
     # the base case's own mass properties are checked here, once (warnings shown once)
@@ -83,7 +89,10 @@ def sweep(
     mesh_sha = sha256(mesh_path)
     kept = (
         Partial(
-            Path(partial), spec(base, plan.grid, len(plan.cases), mesh_sha, keep_histories), resume
+            Path(partial),
+            spec(base, plan.grid, len(plan.cases), mesh_sha, keep_histories),
+            resume,
+            {"hullslice": __version__, "solver": describe(solver)},
         )
         if partial is not None
         else None

@@ -16,7 +16,7 @@ from collections.abc import Callable, Iterator, Mapping
 from contextlib import contextmanager, nullcontext
 from typing import Any
 
-from ..errors import InputError
+from ..errors import HullsliceWarning, InputError
 from ..extras import need
 from .plan import Plan
 from .run import HullState, _mass_key, run_batch
@@ -24,8 +24,12 @@ from .run import HullState, _mass_key, run_batch
 #: Called with each finished case: ``finish(index, record)``.
 Finish = Callable[[int, dict], None]
 
-#: Seconds to wait for a scheduler given by its address.
+#: Seconds to wait for a scheduler given by its address, and then for its first worker.
 CONNECT_TIMEOUT = 10.0
+
+#: Most worker processes a local cluster starts per core: a case keeps its core busy, and
+#: more processes only share the cores, each with its own memory.
+MAX_WORKERS_PER_CORE = 4
 
 #: Environment variables Dask sets in its workers that a sweep's own cluster leaves unset.
 #: ``MALLOC_TRIM_THRESHOLD_`` (glibc) also fixes the threshold above which memory comes from
@@ -82,6 +86,22 @@ def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
     return out
 
 
+def capped_workers(workers: int) -> int:
+    """``workers``, or :data:`MAX_WORKERS_PER_CORE` per core of this machine with a warning
+    when it asks for more."""
+    cores = os.cpu_count() or 1
+    cap = MAX_WORKERS_PER_CORE * cores
+    if workers <= cap:
+        return workers
+    warnings.warn(
+        f"workers {workers} is more than {MAX_WORKERS_PER_CORE} per core ({cores} cores here): "
+        f"the sweep starts {cap} (more would only share the cores, each with its own memory)",
+        HullsliceWarning,
+        stacklevel=3,
+    )
+    return cap
+
+
 def _client(client, workers: int | None, timeout: float):
     """``(client, owned)``: the Dask client to use, and whether this sweep made it."""
     require("distributed")
@@ -92,7 +112,7 @@ def _client(client, workers: int | None, timeout: float):
     if client is not None:
         address = str(client)
         try:
-            return Client(address, timeout=timeout), True
+            connected = Client(address, timeout=timeout)
         except Exception as exc:  # OSError, TimeoutError, ValueError for a bad address
             why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
             raise InputError(
@@ -100,6 +120,18 @@ def _client(client, workers: int | None, timeout: float):
                 "start one ('dask scheduler'), check the address, or leave out --scheduler "
                 "to run on this machine"
             ) from None
+        try:
+            connected.wait_for_workers(1, timeout=timeout)
+        except BaseException as exc:
+            connected.close()
+            if not isinstance(exc, Exception):
+                raise
+            raise InputError(
+                f"the Dask scheduler at {address!r} has no workers (none joined within "
+                f"{timeout:g} s): start some ('dask worker {address}'), or leave out "
+                "--scheduler to run on this machine"
+            ) from None
+        return connected, True
     return local_client(workers or os.cpu_count() or 1), True
 
 

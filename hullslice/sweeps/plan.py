@@ -30,6 +30,10 @@ MESH_KEYS = ("scale", "length")
 #: Keys of a case that a sweep does not take: it writes one dataset (``-o``), not a file
 #: per case.
 OUTPUT_KEYS = ("output", "plot", "format")
+#: Most cases one sweep may have, counted before any is listed: each case is a time history
+#: (a tenth of a second to minutes), so more is weeks of work, and a typing slip (a list of
+#: 1000 values among others) would fill the memory while the cases are listed and checked.
+MAX_SWEEP_CASES = 100_000
 
 
 class Component(NamedTuple):
@@ -249,8 +253,9 @@ def make_plan(
     CaseError
         The base case is not a ``simulate`` case, the grid is empty, a key is unknown or
         not a number key, a list is empty or holds a value that is not a number, a table
-        has a column that is not a case key; or a case of the grid is not a valid case (the
-        message names the case).
+        has a column that is not a case key, the sweep has more than
+        :data:`MAX_SWEEP_CASES` cases (counted before any is listed); or a case of the grid
+        is not a valid case (the message names the case).
     """
     where = f"case file {source!r}: " if source else "case: "
     given = [k for k in OUTPUT_KEYS if k in case]
@@ -300,6 +305,18 @@ def make_plan(
         raise CaseError(
             f"{where}[sweep] key {both[0]!r} is both a list and a column of the cases table: "
             "give it in one of them"
+        )
+    n_cases = (len(next(iter(table.values()))) if table else 1) * math.prod(
+        len(v) for v in axes.values()
+    )
+    if n_cases > MAX_SWEEP_CASES:
+        sizes = " x ".join(
+            [*([f"{len(next(iter(table.values())))} rows"] if table else []),
+             *(f"{len(v)} {k}" for k, v in axes.items())]
+        )  # fmt: skip
+        raise CaseError(
+            f"{where}[sweep] has {n_cases} cases ({sizes}), more than the {MAX_SWEEP_CASES} "
+            "hullslice runs in one sweep: give fewer values, or split it into sweeps"
         )
     dims = (("case",) if table else ()) + tuple(axes)
     coords = {k: np.asarray(v) for k, v in axes.items()}

@@ -5,6 +5,12 @@ A partial folder holds ``sweep.json`` (what the sweep is: base case, grid, numbe
 the mesh's SHA-256) and one small JSON file per finished case, each written atomically
 (:func:`~hullslice.atomic.write_atomic`): a sweep killed at any moment leaves whole files
 only, and one run again with ``resume`` skips the cases found there.
+
+A case's file holds its record as JSON text with that text's SHA-256 and the versions that
+computed it (hullslice's, and the solver's name, class and distribution version). A file
+that fails its check on resuming (an edited value, text that is not such a record, ``[]``,
+another hullslice or solver version) is not merged: its case runs again, and one warning
+says how many did.
 """
 
 from __future__ import annotations
@@ -13,6 +19,7 @@ import hashlib
 import json
 import os
 import shutil
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -20,7 +27,7 @@ from typing import Any
 import numpy as np
 
 from ..atomic import write_atomic
-from ..errors import InputError
+from ..errors import HullsliceWarning, InputError
 
 #: File of a partial sweep's description, in its folder.
 PARTIAL_SPEC = "sweep.json"
@@ -47,11 +54,37 @@ def _dump(path: Path, data: Any) -> None:
     write_atomic(path, json.dumps(data, allow_nan=True, default=str))
 
 
-class Partial:
-    """A folder with one small file per finished case, for resuming a sweep."""
+def _record_text(record: Mapping[str, Any]) -> str:
+    return json.dumps(record, allow_nan=True, default=str, sort_keys=True)
 
-    def __init__(self, folder: Path, spec: dict, resume: bool) -> None:
+
+def _checked(data: Any, versions: Mapping[str, str]) -> dict | None:
+    """The record of a case's file, or None when it fails its check (see the module notes)."""
+    if not isinstance(data, dict) or not isinstance(data.get("record"), str):
+        return None
+    text = data["record"]
+    if data.get("sha256") != hashlib.sha256(text.encode("utf-8")).hexdigest():
+        return None
+    if any(data.get(k) != v for k, v in versions.items()):
+        return None
+    try:
+        record = json.loads(text)
+    except ValueError:
+        return None
+    return record if isinstance(record, dict) else None
+
+
+class Partial:
+    """A folder with one small file per finished case, for resuming a sweep.
+
+    ``versions`` (``{"hullslice": ..., "solver": ...}``) is written with each case and must
+    match for a case to be resumed."""
+
+    def __init__(
+        self, folder: Path, spec: dict, resume: bool, versions: Mapping[str, str] | None = None
+    ) -> None:
         self.folder = folder
+        self.versions = dict(versions or {})
         self.done: dict[int, dict] = {}
         spec_file = folder / PARTIAL_SPEC
         if folder.exists():
@@ -69,14 +102,30 @@ class Partial:
                     f"the partial results in {str(folder)!r} are of another sweep (another "
                     "case, grid or mesh): remove the folder, or resume with the same case file"
                 )
+            rejected = 0
             for f in folder.glob("case-*.json"):
                 try:
                     index = int(f.stem.removeprefix("case-"))
-                    record = json.loads(f.read_text(encoding="utf-8"))
-                except (OSError, ValueError):
-                    continue  # a file cut short by the kill: the case runs again
-                if not record.pop("lost", False):
+                except ValueError:
+                    continue  # not a case's file
+                if not 0 <= index < int(spec.get("cases", 0)):
+                    continue
+                try:
+                    record = _checked(json.loads(f.read_text(encoding="utf-8")), self.versions)
+                except (OSError, ValueError, RecursionError):
+                    record = None
+                if record is None:
+                    rejected += 1  # its case runs again
+                elif not record.pop("lost", False):
                     self.done[index] = record
+            if rejected:
+                warnings.warn(
+                    f"{rejected} saved case(s) in {str(folder)!r} failed their check (edited, "
+                    "malformed, or computed by another hullslice or solver version): they "
+                    "run again",
+                    HullsliceWarning,
+                    stacklevel=3,
+                )
         self.spec = spec
 
     def create(self) -> None:
@@ -86,7 +135,12 @@ class Partial:
             _dump(self.folder / PARTIAL_SPEC, self.spec)
 
     def add(self, index: int, record: dict) -> None:
-        _dump(self.folder / f"case-{index}.json", record)
+        text = _record_text(record)
+        digest = hashlib.sha256(text.encode("utf-8")).hexdigest()
+        _dump(
+            self.folder / f"case-{index}.json",
+            {**self.versions, "sha256": digest, "record": text},
+        )
 
 
 def remove_partial(folder: str | os.PathLike) -> None:
