@@ -234,3 +234,20 @@ def test_the_frame_loads_are_a_labelled_dataset_with_units(ditching):
     assert ds.sizes == {"t": len(history.sections), "bay": 3}
     np.testing.assert_allclose(ds["vertical"].sum("bay").values, fl.body, rtol=1e-12, atol=1e-9)
     np.testing.assert_allclose(ds["x_fore"].values, [1.0, 2.0, hull.bounds[1, 0]])
+
+
+def test_a_catamaran_s_floats_each_take_their_own_pressure():
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    shift = np.array([0.0, 0.3, 0.0])
+    both = np.concatenate([v - shift, v + shift]), np.concatenate([f, f + len(v)])
+    cat = hs.Hull.from_arrays(*both, mass=20.0)
+    one = hs.Hull.from_arrays(v, f, mass=10.0)
+    state = (hs.Pose(0.02), hs.Motion(-V))
+    acc = hs.Acceleration(0.0)
+    rc = hs.compute_force(cat, *state, solver="mlm", slices=8, acceleration=acc)
+    r1 = hs.compute_force(one, *state, solver="mlm", slices=8, acceleration=acc)
+    fc, f1 = face_pressures(cat, rc), face_pressures(one, r1)
+    assert fc.total == pytest.approx(rc.total, rel=1e-12)
+    # each float carries the lone float's pressures, face for face
+    np.testing.assert_allclose(fc.pressure[: len(f)], f1.pressure, rtol=1e-9, atol=1e-6)
+    np.testing.assert_allclose(fc.pressure[len(f) :], f1.pressure, rtol=1e-9, atol=1e-6)

@@ -442,19 +442,28 @@ def _clip(x: np.ndarray, y: np.ndarray, parent: np.ndarray, bound: float, below:
 
 def _entry_of(rec: SectionRecord, station: np.ndarray, first: np.ndarray, y: np.ndarray):
     """The entry of each face's station that holds it laterally (a station with several
-    wetted pieces: the nearest piece)."""
-    entry = first.copy()
+    wetted pieces, a catamaran's floats: the piece nearest across)."""
     counts = np.bincount(rec.station)
-    several = np.nonzero(counts[station] > 1)[0]
-    if len(several):
-        assert rec.weight is not None
-        reach = rec.weight.sum(axis=2)  # (n, 2): port and starboard loaded widths
-        for i in several:
-            mine = np.nonzero(rec.station == station[i])[0]
-            lo, hi = rec.y_keel[mine] - reach[mine, 1], rec.y_keel[mine] + reach[mine, 0]
-            gap = np.maximum(lo - y[i], 0.0) + np.maximum(y[i] - hi, 0.0)
-            entry[i] = mine[np.argmin(gap)]
-    return entry
+    if counts.max() <= 1:
+        return first.copy()
+    assert rec.weight is not None
+    reach = rec.weight.sum(axis=2)  # (n, 2): port and starboard loaded widths
+    lo, hi = rec.y_keel - reach[:, 1], rec.y_keel + reach[:, 0]
+    order = np.argsort(rec.station, kind="stable")
+    start = np.searchsorted(rec.station[order], station)
+    best = first.copy()
+    gap_best = np.full(len(y), np.inf)
+    for k in range(int(counts.max())):  # the k-th piece of each face's station
+        has = counts[station] > k
+        e = order[np.minimum(start + k, len(order) - 1)]
+        gap = np.maximum(lo[e] - y, 0.0) + np.maximum(y - hi[e], 0.0)
+        gap = np.where(has, gap, np.inf)
+        # inside two pieces' reach (it cannot be, they are apart): the nearer keel
+        tie = np.where(has, np.abs(y - rec.y_keel[e]), np.inf)
+        better = (gap < gap_best) | ((gap == gap_best) & (tie < np.abs(y - rec.y_keel[best])))
+        best = np.where(better & has, e, best)
+        gap_best = np.where(better & has, gap, gap_best)
+    return best
 
 
 def _on_contour(tables, entry, rec, y, z, dz) -> np.ndarray:
