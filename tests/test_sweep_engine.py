@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import json
+import re
 import socket
 import subprocess
 import sys
@@ -151,7 +152,11 @@ def test_a_taken_dashboard_port_is_no_warning_and_the_sweep_runs(tmp_path):
             text=True,
             timeout=300,
         )
-    assert done.returncode == 0 and done.stderr == "", done.stderr
+    # manifold3d 3.4 (the floor) has its bindings report the objects still alive when a
+    # worker process exits ("nanobind: leaked ..."): the library's own exit report, not a
+    # warning of the sweep; everything else on stderr is
+    said = re.sub(r"nanobind: leaked .*?refleaks\.html\n?", "", done.stderr, flags=re.DOTALL)
+    assert done.returncode == 0 and said == "", done.stderr
     reference = hs.sweep(BASE, {"mass": [8.0, 12.0]}, workers=1)
     rows = done.stdout.splitlines()[2:]
     peaks = [float(row.split()[1]) for row in rows]
