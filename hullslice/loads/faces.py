@@ -387,26 +387,34 @@ def _scales(rec: SectionRecord, xs: np.ndarray, first: np.ndarray, start: float,
 
 
 def _split(x: np.ndarray, y: np.ndarray, parent: np.ndarray, lines: np.ndarray):
-    """Triangles ``(x, y)`` cut at every ``x = line`` they cross, so that each piece lies
-    between two neighbouring lines."""
-    for line in lines:
-        cross = (x.min(axis=1) < line) & (x.max(axis=1) > line)
+    """Triangles ``(x, y)`` cut at every ``x = line`` they cross (``lines`` sorted), so
+    that each piece lies between two neighbouring lines: each round cuts the triangles
+    that cross a line at the first line they cross."""
+    out = []
+    while len(x):
+        first = np.searchsorted(lines, x.min(axis=1), side="right")  # first line above
+        last = np.searchsorted(lines, x.max(axis=1), side="left")  # lines below the top
+        cross = last > first
+        out.append((x[~cross], y[~cross], parent[~cross]))
         if not cross.any():
-            continue
-        rest = ~cross
-        lo = _clip(x[cross], y[cross], parent[cross], float(line), below=True)
-        hi = _clip(x[cross], y[cross], parent[cross], float(line), below=False)
-        x = np.concatenate([x[rest], lo[0], hi[0]])
-        y = np.concatenate([y[rest], lo[1], hi[1]])
-        parent = np.concatenate([parent[rest], lo[2], hi[2]])
-    return x, y, parent
+            break
+        x, y, parent = x[cross], y[cross], parent[cross]
+        at = lines[first[cross]]
+        out.append(_clip(x, y, parent, at, below=True))  # crosses no line
+        x, y, parent = _clip(x, y, parent, at, below=False)
+    return (
+        np.concatenate([o[0] for o in out]).reshape(-1, 3),
+        np.concatenate([o[1] for o in out]).reshape(-1, 3),
+        np.concatenate([o[2] for o in out]),
+    )
 
 
-def _clip(x: np.ndarray, y: np.ndarray, parent: np.ndarray, bound: float, below: bool):
+def _clip(x: np.ndarray, y: np.ndarray, parent: np.ndarray, bound, below: bool):
     """Triangles ``(x, y)`` (p, 3) cut to the side ``x <= bound`` (``below``) or
-    ``x >= bound``: the triangles inside, and the pieces (one or two triangles) of those
-    that cross, with their ``parent``."""
-    inside = (x <= bound) if below else (x >= bound)
+    ``x >= bound`` (a number, or one per triangle): the triangles inside, and the pieces
+    (one or two triangles) of those that cross, with their ``parent``."""
+    bounds = np.broadcast_to(np.asarray(bound, dtype=np.float64), (len(x),))
+    inside = (x <= bounds[:, None]) if below else (x >= bounds[:, None])
     count = inside.sum(axis=1)
     keep = count == 3
     out = [(x[keep], y[keep], parent[keep])]
@@ -420,10 +428,11 @@ def _clip(x: np.ndarray, y: np.ndarray, parent: np.ndarray, bound: float, below:
         order = (shift[:, None] + np.arange(3)) % 3
         xr = np.take_along_axis(x[rows], order, axis=1)
         yr = np.take_along_axis(y[rows], order, axis=1)
-        t1 = (bound - xr[:, 0]) / (xr[:, 1] - xr[:, 0])
-        t2 = (bound - xr[:, 0]) / (xr[:, 2] - xr[:, 0])
-        p1 = (np.full(len(rows), bound), yr[:, 0] + t1 * (yr[:, 1] - yr[:, 0]))
-        p2 = (np.full(len(rows), bound), yr[:, 0] + t2 * (yr[:, 2] - yr[:, 0]))
+        b = bounds[rows]
+        t1 = (b - xr[:, 0]) / (xr[:, 1] - xr[:, 0])
+        t2 = (b - xr[:, 0]) / (xr[:, 2] - xr[:, 0])
+        p1 = (b, yr[:, 0] + t1 * (yr[:, 1] - yr[:, 0]))
+        p2 = (b, yr[:, 0] + t2 * (yr[:, 2] - yr[:, 0]))
         if k == 1:
             tris = [((xr[:, 0], p1[0], p2[0]), (yr[:, 0], p1[1], p2[1]))]
         else:
