@@ -34,9 +34,25 @@ from typing import Any
 import numpy as np
 
 from .caching import LRU, Cache, Entry, Once
+from .errors import InputError
 from .kernel.keel import KeelLine, lower_envelope
+from .planecut import plane_index
 
-__all__ = ["Frame", "KeelLine", "frame"]
+__all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
+
+#: How a new pitch's stations are cut, by name (the ``cutter`` option).
+CUTTERS: dict[str, str] = {
+    "exact": "manifold3d cuts a hull's first pitch; every later pitch is cut by an exact "
+    "kernel on the body-frame mesh, without turning it (hullslice.planecut)",
+    "manifold3d": "manifold3d cuts every pitch, the mesh (or a region of it) turned to it",
+}
+
+
+def check_cutter(cutter: str) -> str:
+    """``cutter`` if it names one of :data:`CUTTERS`."""
+    if cutter not in CUTTERS:
+        raise InputError(f"cutter {cutter!r} is unknown; choose one of {', '.join(CUTTERS)}")
+    return cutter
 
 
 @dataclass(frozen=True, eq=False)
@@ -65,6 +81,7 @@ class Frame:
     _matrix: np.ndarray = field(repr=False)  # body point -> cutter (Y, Z, X), 3 x 4
     _offset: np.ndarray = field(repr=False)  # (Y, Z, X) of the cutter's origin, rel. cg
     _scale: float = 1.0  # the cutter's coordinates are metres times this
+    _new_pitch: bool = False  # made while the hull held frames of other pitches
     _slicers: LRU[tuple[float, float] | None, Any] = field(
         default_factory=lambda: LRU(REGION_CACHE), repr=False
     )
@@ -82,14 +99,22 @@ class Frame:
         """Earth height of the centre of gravity for a draft (m)."""
         return -self.lowest - draft
 
-    def cut(self, x_rel: np.ndarray) -> list[tuple[np.ndarray, ...]]:
+    def cut(self, x_rel: np.ndarray, cutter: str = "exact") -> list[tuple[np.ndarray, ...]]:
         """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
         them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
         in the cutter's coordinates: divide by :attr:`scale` and add :attr:`origin` (and
-        ``Z_g``) for earth coordinates in m."""
+        ``Z_g``) for earth coordinates in m.
+
+        ``cutter="exact"`` cuts a frame made while the hull held frames of other pitches (a
+        new pitch) by :mod:`hullslice.planecut`'s kernel, and the hull's first one by
+        manifold3d; ``"manifold3d"`` cuts every frame by manifold3d (see :data:`CUTTERS`).
+        """
         x_rel = np.asarray(x_rel, dtype=np.float64)
         if len(x_rel) == 0:
             return []
+        if cutter == "exact" and self._new_pitch and abs(self.pitch) < KERNEL_MAX_PITCH:
+            index = plane_index(self._hull)
+            return index.cut(x_rel, self.pitch, self.cg, self._matrix, MERGE * CUTTER_SIZE)
         slicer = self._slicer(*self._reach(x_rel))
         ox, k = self._offset[2], self._scale
         return [tuple(slicer.slice(float((xi - ox) * k)).to_polygons()) for xi in x_rel]
@@ -146,6 +171,11 @@ class Frame:
 #: 1e-12 of the body's size: at unit size the rounding moved the force on a barely wetted
 #: body by some 1e-6, and jumped as the pitch crossed grid lines.
 CUTTER_SIZE = 1e4
+#: Consecutive points of a kernel's contour closer than this (m, of a body of unit size;
+#: along both of the cutter's axes) are one: manifold3d's grid joins them too.
+MERGE = 1e-12
+#: The kernel cuts pitches up to this (rad); manifold3d cuts steeper ones.
+KERNEL_MAX_PITCH = 1.2
 #: How many pitches' frames a hull keeps.
 FRAME_CACHE = 4
 #: Hulls with fewer faces are always cut whole (turning them is cheap).
@@ -176,7 +206,7 @@ def frame(hull, pitch: float) -> Frame:
     frames = hull.cache[FRAMES]
     fr = frames.get(pitch)
     if fr is None:
-        fr = _frame(hull, pitch)
+        fr = _frame(hull, pitch, new_pitch=len(frames) > 0)
         frames.put(pitch, fr)
     return fr
 
@@ -223,7 +253,7 @@ def _face_reach(hull) -> float:
     return hull.cache[FACE_REACH].get(reach)
 
 
-def _frame(hull, pitch: float) -> Frame:
+def _frame(hull, pitch: float, new_pitch: bool = False) -> Frame:
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
@@ -260,6 +290,7 @@ def _frame(hull, pitch: float) -> Frame:
         _matrix=cut_matrix,
         _offset=np.array([oy, oz, ox]),
         _scale=scale,
+        _new_pitch=new_pitch,
     )
 
 

@@ -50,6 +50,7 @@ LAYERS: dict[str, int] = {
     "hullslice.mass": 2,
     "hullslice.shapes": 2,
     # 3 cut: frames, caches of cuts, the slicing API
+    "hullslice.planecut": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,
