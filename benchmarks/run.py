@@ -13,15 +13,19 @@ once the hull has its first region, and the cost of making that region. Then: th
 cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
 2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
 RK4 step of 4 evaluations against 0.5 ms, peak memory), the face pressures of a saved
-instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's free-fall case from
-process start to printed report, and the time of ``import hullslice`` and ``hullslice
---help``.
+instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's
+free-fall case from process start to printed report, and the time of ``import hullslice``
+and ``hullslice --help``.
 
 Free pitch: the time step with free pitch (each of its 4 stages at a new pitch, cut
-afresh) against the same run at a held pitch, 100 steps of 0.2 ms each with 128 fixed
-slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's process), each
-run after a 5-step warm-up of its own (the held pitch's cut and waterline table, the
-hull's first region made there); target free / held <= 2. What the approximations cost
+afresh by manifold3d on the turned mesh, and by the exact kernel of
+``hullslice.planecut``) against the same run at a held pitch, 100 steps of 0.2 ms each
+with 128 fixed slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's
+process), the three runs interleaved (A B C A B C) after a 5-step warm-up of each (the
+held pitch's cut and waterline table, the hull's first region and its plane index made
+there); target free / held <= 3 with numpy alone. The kernel's force at 40 random new
+poses of the 128k fuselage against manifold3d's cut, and a 100-step free-pitch history by
+the kernel against a manifold3d-only run (target 1e-9 relative). What the approximations cost
 against fresh cuts: the held pitch's kept cut and waterline table against fresh cuts over
 20 drafts of the 128k fuselage (largest difference of the force, the horizontal force and
 the moment / body size, relative to the force); free pitch has none (every stage is cut
@@ -318,7 +322,7 @@ def bench_face_loads(table: Table, results: dict, repeat: int) -> None:
         )  # fmt: skip
         rec = SectionRecord.of(0.0, r)
         face_geometry(hull)  # kept on the hull, made once per run
-        t = median_time(lambda h=hull: face_pressures(h, rec), repeat)
+        t = median_time(lambda h=hull, rec=rec: face_pressures(h, rec), repeat)
         tracemalloc.start()
         fp = face_pressures(hull, rec)
         _, peak = tracemalloc.get_traced_memory()
@@ -337,7 +341,8 @@ def bench_face_loads(table: Table, results: dict, repeat: int) -> None:
             with tempfile.TemporaryDirectory() as tmp:
                 path = Path(tmp) / "p.vtu"
                 t_vtu = median_time(
-                    lambda h=hull: _vtu(meshio, h, path, {"pressure": fp.pressure}), 1
+                    lambda h=hull, p=path, fp=fp: _vtu(meshio, h, p, {"pressure": fp.pressure}),
+                    1,
                 )
                 table.add(
                     f"{size}: one .vtu of the face pressures",
@@ -370,10 +375,11 @@ CHILD = textwrap.dedent(
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    # then the same 100 steps at the held pitch and with free pitch, by run.py's own code
-    step_pair = runpy.run_path(sys.argv[2])["step_pair"]
-    t_held, t_free, steps = step_pair(hull, 1)
-    print(t_load, t_sim, len(h), peak, t_held, t_free, steps)
+    # then the same 100 steps at the held pitch and with free pitch by either cutter,
+    # interleaved, by run.py's own code
+    bench = runpy.run_path(sys.argv[2])
+    times, steps = bench["step_runs"](hull, 1)
+    print(t_load, t_sim, len(h), peak, *(times[key] for key in bench["PITCH_RUNS"]), steps)
     """
 )
 
@@ -385,7 +391,7 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         text=True,
         check=True,
     )
-    t_load, t_sim, steps, peak, t_held, t_free, pair_steps = (float(v) for v in out.stdout.split())
+    t_load, t_sim, steps, peak, *times, pair_steps = (float(v) for v in out.stdout.split())
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -399,58 +405,105 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         "1M: time step of that free fall (4 evaluations, RK4)", fmt(step), "<= 0.5 ms", step <= 5e-4
     )
     table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
-    pitch_rows(table, "1M", t_held, t_free, int(pair_steps))
+    pitch_rows(table, "1M", dict(zip(PITCH_RUNS, times, strict=True)), int(pair_steps))
 
 
-def step_pair(hull, repeat: int) -> tuple[float, float, int]:
+#: The runs the pitch-step comparison interleaves: (free pitch, cutter).
+PITCH_RUNS = ((False, "manifold3d"), (True, "manifold3d"), (True, "exact"))
+
+
+def step_runs(hull, repeat: int) -> tuple[dict[tuple[bool, str], float], int]:
     """The time per step (s) of the same run at a held pitch and with free pitch (4 new
-    pitches a step, each cut afresh), and the steps of each: the median of ``repeat``
-    runs of :data:`PITCH_STEPS` steps of 0.2 ms, 128 fixed slices, from pitch 4.6 deg at
-    60 m/s forward and 1.5 m/s down; each after a warm-up run of :data:`WARM_STEPS` steps
-    (it makes the held pitch's cut and waterline table, and the hull's first region)."""
+    pitches a step, each cut afresh) by either cutter, and the steps of each: the median of
+    ``repeat`` rounds, each round one run of :data:`PITCH_STEPS` steps of 0.2 ms of each
+    of :data:`PITCH_RUNS` in turn (interleaved: A B C A B C), 128 fixed slices, from pitch
+    4.6 deg at 60 m/s forward and 1.5 m/s down; after a warm-up run of :data:`WARM_STEPS`
+    steps of each (it makes the held pitch's cut and waterline table, the hull's first
+    region and its plane index)."""
     dt = 2e-4
 
-    def run(steps: int, free: bool):
+    def run(steps: int, free: bool, cutter: str):
         return hs.simulate(hull, -1.5, steps * dt, dt=dt, pitch=0.08, forward_speed=60.0,
-                           slices=128, slicing="fixed", stop_on=(), free_pitch=free)  # fmt: skip
+                           slices=128, slicing="fixed", stop_on=(), free_pitch=free,
+                           cutter=cutter)  # fmt: skip
 
-    times, counts = [], []
-    for free in (False, True):
-        run(WARM_STEPS, free)
-        runs = []
-        for _ in range(max(1, repeat)):
+    for free, cutter in PITCH_RUNS:
+        run(WARM_STEPS, free, cutter)
+    times: dict[tuple[bool, str], list[float]] = {key: [] for key in PITCH_RUNS}
+    counts = set()
+    for _ in range(max(1, repeat)):
+        for free, cutter in PITCH_RUNS:
             gc.collect()
             t0 = time.perf_counter()
-            history = run(PITCH_STEPS, free)
-            runs.append(time.perf_counter() - t0)
-        counts.append(len(history) - 1)
-        times.append(statistics.median(runs) / counts[-1])
-    assert counts[0] == counts[1], counts
-    return times[0], times[1], counts[0]
+            history = run(PITCH_STEPS, free, cutter)
+            t = time.perf_counter() - t0
+            counts.add(len(history) - 1)
+            times[(free, cutter)].append(t / (len(history) - 1))
+    assert len(counts) == 1, counts
+    return {key: statistics.median(ts) for key, ts in times.items()}, counts.pop()
 
 
-def pitch_rows(table: Table, size: str, t_held: float, t_free: float, steps: int) -> None:
+def pitch_rows(table: Table, size: str, times: dict[tuple[bool, str], float], steps: int) -> None:
+    held = times[(False, "manifold3d")]
     table.add(
         f"{size}: time step, held pitch, 128 fixed slices ({steps} steps after {WARM_STEPS})",
-        fmt(t_held),
+        fmt(held),
     )
-    table.add(f"{size}: time step, free pitch (each stage cut afresh), same steps", fmt(t_free))
-    table.add(
-        f"{size}: ratio free / held pitch step",
-        f"{t_free / t_held:.1f}",
-        "<= 2",
-        t_free <= 2 * t_held,
-    )
+    for cutter, how in (("manifold3d", "manifold3d, the mesh turned"),
+                        ("exact", "the exact kernel, not turned")):  # fmt: skip
+        free = times[(True, cutter)]
+        table.add(f"{size}: time step, free pitch (each stage cut afresh by {how})", fmt(free))
+        table.add(
+            f"{size}: ratio free ({cutter}) / held pitch step",
+            f"{free / held:.1f}",
+            "<= 3 (numpy)" if cutter == "exact" else "",
+            free <= 3 * held if cutter == "exact" else None,
+        )
 
 
 def bench_pitch_steps(table: Table, tmp: Path, results: dict, repeat: int) -> None:
-    """The time step at a held and at a free pitch at 10k and 128k faces, in this process."""
+    """The time step at a held and at a free pitch by either cutter at 10k and 128k faces,
+    interleaved in this process (1M: in the 1M free fall's process)."""
     for size in ("10k", "128k"):
         path = results[size]["path"] if size in results else fuselage_file(tmp, size)
         hull = hs.load_hull(path, mass=60000.0)
-        t_held, t_free, steps = step_pair(hull, repeat)
-        pitch_rows(table, f"{size} ({len(hull.faces)} faces)", t_held, t_free, steps)
+        times, steps = step_runs(hull, repeat)
+        pitch_rows(table, f"{size} ({len(hull.faces)} faces)", times, steps)
         results.setdefault(size, {"hull": hull, "path": path})
+
+
+def bench_kernel_cut(table: Table, path: Path) -> None:
+    """The exact kernel's force at new pitches against manifold3d's fresh cut, over random
+    poses (fixed slicing, 128 slices, cut afresh)."""
+    hull = hs.load_hull(path, mass=60000.0)
+    motion = hs.Motion(-1.5, 60.0)
+    exact = ForceModel(hull, slices=128, slicing="fixed", cache=False, cutter="exact")
+    ref = ForceModel(hull, slices=128, slicing="fixed", cache=False, cutter="manifold3d")
+    rng = np.random.default_rng(28)
+    poses = [hs.Pose(d, p) for d, p in zip(rng.uniform(0.02, 0.6, 40),
+                                           rng.uniform(-0.05, 0.15, 40), strict=True)]  # fmt: skip
+    errs = [relative_error(exact(p, motion), ref(p, motion), hull.size) for p in poses]
+    table.add(
+        f"{len(hull.faces) / 1000:.0f}k, new pitches: the kernel's cut against manifold3d's, "
+        f"{len(poses)} random poses (largest / median relative difference of Fz, Fx, My / size)",
+        f"{max(errs):.1e} / {statistics.median(errs):.1e}",
+        "<= 1e-9",
+        max(errs) <= 1e-9,
+    )
+    dt = 2e-4
+    runs = [hs.simulate(hs.load_hull(path, mass=60000.0), -1.5, 100 * dt, dt=dt, pitch=0.08,
+                        forward_speed=60.0, slices=128, slicing="fixed", stop_on=(),
+                        free_pitch=True, cutter=cutter)
+            for cutter in ("manifold3d", "exact")]  # fmt: skip
+    a, b = (np.asarray(h.force) for h in runs)
+    err = float(np.max(np.abs(a - b)) / np.max(np.abs(a)))
+    table.add(
+        f"{len(hull.faces) / 1000:.0f}k: a 100-step free-pitch history by the kernel against a "
+        "manifold3d-only run (largest force difference / peak force)",
+        f"{err:.1e}",
+        "<= 1e-9",
+        err <= 1e-9,
+    )
 
 
 def relative_error(a, b, size: float) -> float:
@@ -587,6 +640,7 @@ def main() -> None:
         print("time step at a held and a free pitch ...")
         bench_pitch_steps(table, Path(tmp), results, args.repeat)
         bench_fresh_cuts(table, results["128k"]["path"])
+        bench_kernel_cut(table, results["128k"]["path"])
         print("face pressures ...")
         bench_face_loads(table, results, args.repeat)
         if not args.quick:

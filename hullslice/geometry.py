@@ -40,11 +40,12 @@ from .planecut import plane_index
 
 __all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
 
-#: How a new pitch's stations are cut, by name (the ``cutter`` option).
+#: How the stations of a pitch are cut, by name (the ``cutter`` option).
 CUTTERS: dict[str, str] = {
-    "exact": "manifold3d cuts a hull's first pitch; every later pitch is cut by an exact "
-    "kernel on the body-frame mesh, without turning it (hullslice.planecut)",
-    "manifold3d": "manifold3d cuts every pitch, the mesh (or a region of it) turned to it",
+    "exact": "an exact kernel on the body-frame mesh, without turning it "
+    "(hullslice.planecut); free-pitch runs' default",
+    "manifold3d": "manifold3d on the mesh (or a region of it) turned to the pitch; the "
+    "default elsewhere",
 }
 
 
@@ -81,7 +82,6 @@ class Frame:
     _matrix: np.ndarray = field(repr=False)  # body point -> cutter (Y, Z, X), 3 x 4
     _offset: np.ndarray = field(repr=False)  # (Y, Z, X) of the cutter's origin, rel. cg
     _scale: float = 1.0  # the cutter's coordinates are metres times this
-    _new_pitch: bool = False  # made while the hull held frames of other pitches
     _slicers: LRU[tuple[float, float] | None, Any] = field(
         default_factory=lambda: LRU(REGION_CACHE), repr=False
     )
@@ -99,20 +99,21 @@ class Frame:
         """Earth height of the centre of gravity for a draft (m)."""
         return -self.lowest - draft
 
-    def cut(self, x_rel: np.ndarray, cutter: str = "exact") -> list[tuple[np.ndarray, ...]]:
+    def cut(self, x_rel: np.ndarray, cutter: str = "manifold3d") -> list[tuple[np.ndarray, ...]]:
         """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
         them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
         in the cutter's coordinates: divide by :attr:`scale` and add :attr:`origin` (and
         ``Z_g``) for earth coordinates in m.
 
-        ``cutter="exact"`` cuts a frame made while the hull held frames of other pitches (a
-        new pitch) by :mod:`hullslice.planecut`'s kernel, and the hull's first one by
-        manifold3d; ``"manifold3d"`` cuts every frame by manifold3d (see :data:`CUTTERS`).
+        ``cutter="exact"`` cuts by :mod:`hullslice.planecut`'s kernel on the body-frame
+        mesh (the same contours to manifold3d's grid, without turning the mesh; manifold3d
+        cuts pitches steeper than :data:`KERNEL_MAX_PITCH`); ``"manifold3d"`` by
+        manifold3d on the mesh turned to the pitch (see :data:`CUTTERS`).
         """
         x_rel = np.asarray(x_rel, dtype=np.float64)
         if len(x_rel) == 0:
             return []
-        if cutter == "exact" and self._new_pitch and abs(self.pitch) < KERNEL_MAX_PITCH:
+        if cutter == "exact" and abs(self.pitch) < KERNEL_MAX_PITCH:
             index = plane_index(self._hull)
             return index.cut(x_rel, self.pitch, self.cg, self._matrix, MERGE * CUTTER_SIZE)
         slicer = self._slicer(*self._reach(x_rel))
@@ -206,7 +207,7 @@ def frame(hull, pitch: float) -> Frame:
     frames = hull.cache[FRAMES]
     fr = frames.get(pitch)
     if fr is None:
-        fr = _frame(hull, pitch, new_pitch=len(frames) > 0)
+        fr = _frame(hull, pitch)
         frames.put(pitch, fr)
     return fr
 
@@ -253,7 +254,7 @@ def _face_reach(hull) -> float:
     return hull.cache[FACE_REACH].get(reach)
 
 
-def _frame(hull, pitch: float, new_pitch: bool = False) -> Frame:
+def _frame(hull, pitch: float) -> Frame:
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
@@ -290,7 +291,6 @@ def _frame(hull, pitch: float, new_pitch: bool = False) -> Frame:
         _matrix=cut_matrix,
         _offset=np.array([oy, oz, ox]),
         _scale=scale,
-        _new_pitch=new_pitch,
     )
 
 

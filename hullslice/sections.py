@@ -169,7 +169,7 @@ def sections_at(
     stations: np.ndarray | None = None,
     slicing: str = "wetted",
     cache: bool = True,
-    cutter: str = "exact",
+    cutter: str = "manifold3d",
 ) -> Sections:
     """The sections at a pose, inputs already checked (see :func:`cut`).
 

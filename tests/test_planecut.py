@@ -77,20 +77,20 @@ def test_kernel_contours_equal_manifold3d_on_every_body(name):
         assert _compare(ref, got) <= AREA_TOL * CUTTER_SIZE**2
 
 
-def test_a_new_pitch_is_cut_by_the_kernel_and_the_first_by_manifold3d():
+def test_the_frame_cuts_by_either_cutter():
     hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
-    first, new = frame(hull, 0.1), frame(hull, 0.1 + 1e-9)
-    x = np.linspace(first.keel.x[0], first.keel.x[-1], 9)[1:-1]
-    # the first frame: manifold3d's own contours either way
-    a, b = first.cut(x), first.cut(x, "manifold3d")
-    assert all(np.array_equal(p, q) for sa, sb in zip(a, b, strict=True)
+    fr = frame(hull, 0.1)
+    x = np.linspace(fr.keel.x[0], fr.keel.x[-1], 9)[1:-1]
+    # manifold3d's by default; the kernel's by cutter="exact", equal to it to its grid
+    a, b = fr.cut(x), hull.manifold.transform(fr._matrix)
+    ref = [tuple(b.slice(float((xi - fr._offset[2]) * fr.scale)).to_polygons()) for xi in x]
+    assert all(np.array_equal(p, q) for sa, sb in zip(a, ref, strict=True)
                for p, q in zip(sa, sb, strict=True))  # fmt: skip
-    # a new pitch: the kernel's, equal to manifold3d's to its grid
-    kernel = plane_index(hull).cut(x, new.pitch, new.cg, new._matrix, MERGE * CUTTER_SIZE)
-    got = new.cut(x)
+    kernel = plane_index(hull).cut(x, fr.pitch, fr.cg, fr._matrix, MERGE * CUTTER_SIZE)
+    got = fr.cut(x, "exact")
     assert all(np.array_equal(p, q) for sa, sb in zip(got, kernel, strict=True)
                for p, q in zip(sa, sb, strict=True))  # fmt: skip
-    assert _compare(new.cut(x, "manifold3d"), got) <= AREA_TOL * CUTTER_SIZE**2
+    assert _compare(a, got) <= AREA_TOL * CUTTER_SIZE**2
 
 
 def test_vertices_exactly_on_the_plane():
@@ -152,14 +152,14 @@ def test_the_waterline_table_builds_from_the_kernel_outline():
         level = float(np.nanmin(np.where(np.isfinite(outline.zmin), outline.zmin, np.nan)))
         table = WaterlineTable.of(outline, level + 0.3, tol, "wedge")
         assert table is not None
-    exact = hs.kernel.Outline.of(fr.cut(mids), tol, fr.origin, fr.scale)
+    exact = hs.kernel.Outline.of(fr.cut(mids, "exact"), tol, fr.origin, fr.scale)
     ref = hs.kernel.Outline.of(fr.cut(mids, "manifold3d"), tol, fr.origin, fr.scale)
     np.testing.assert_allclose(exact.area, ref.area, rtol=0, atol=AREA_TOL * hull.size**2)
 
 
 def test_free_pitch_history_equals_a_manifold3d_only_run():
     runs = {}
-    for cutter in ("manifold3d", "exact"):
+    for cutter in ("manifold3d", "exact", None):  # None: the kernel's, free pitch's default
         hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
         runs[cutter] = hs.simulate(
             hull, -1.0, 0.04, dt=5e-4, pitch=0.1, forward_speed=19.0, slices=32,
@@ -167,6 +167,7 @@ def test_free_pitch_history_equals_a_manifold3d_only_run():
         )  # fmt: skip
     a, b = runs["manifold3d"], runs["exact"]
     assert len(a) == len(b) == 81
+    np.testing.assert_array_equal(runs[None].force, b.force)
     peak = np.max(np.abs(a.force))
     assert np.max(np.abs(np.asarray(b.force) - a.force)) <= 1e-9 * peak
     assert np.max(np.abs(np.asarray(b.moment) - a.moment)) <= 1e-9 * np.max(np.abs(a.moment))
@@ -176,9 +177,9 @@ def test_free_pitch_history_equals_a_manifold3d_only_run():
 def test_wetted_slicing_at_a_new_pitch_equals_manifold3d():
     hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
     motion = hs.Motion(-1.0, 19.0)
-    exact = hs.ForceModel(hull, slices=40)
-    ref = hs.ForceModel(hull, slices=40, cutter="manifold3d")
-    for pitch in (0.04, 0.05, 0.1):  # the first is manifold3d's either way
+    exact = hs.ForceModel(hull, slices=40, cutter="exact")
+    ref = hs.ForceModel(hull, slices=40)  # manifold3d's, the default
+    for pitch in (0.04, 0.05, 0.1):
         for draft in (0.01, 0.05):
             a, b = exact(hs.Pose(draft, pitch), motion), ref(hs.Pose(draft, pitch), motion)
             assert abs(float(a.total - b.total)) <= 1e-9 * abs(float(b.total))

@@ -159,14 +159,11 @@ def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
         return [model(pose, motion) for pose in poses]
 
     banded_hull = fuselage_model.with_mass(60.0)
-    # regions are manifold3d's: its cut of every pitch
-    banded = run(ForceModel(banded_hull, slices=96, slicing="fixed", cutter="manifold3d"))
+    banded = run(ForceModel(banded_hull, slices=96, slicing="fixed"))
     assert banded_hull.cache[REGIONS]
     monkeypatch.setattr(geometry, "REGION_MIN_FACES", 10**9)
     whole_hull = fuselage_model.with_mass(60.0)
-    whole = run(
-        ForceModel(whole_hull, slices=96, slicing="fixed", cache=False, cutter="manifold3d")
-    )
+    whole = run(ForceModel(whole_hull, slices=96, slicing="fixed", cache=False))
     assert not whole_hull.cache[REGIONS]
     for a, b in zip(banded, whole, strict=True):
         assert len(a.sections) == len(b.sections) > 3

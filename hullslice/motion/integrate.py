@@ -91,8 +91,10 @@ class ForceModel:
         Refuse a hull without mass (default). A momentum-form solver along a prescribed
         motion does not need it.
     cutter : str
-        How a new pitch's stations are cut (:data:`~hullslice.geometry.CUTTERS`): ``"exact"``
-        (default) or ``"manifold3d"``, as today's turned mesh.
+        How the stations of a pitch are cut (:data:`~hullslice.geometry.CUTTERS`):
+        ``"manifold3d"`` (default), on the mesh turned to the pitch, or ``"exact"``, the
+        kernel of :mod:`hullslice.planecut` on the body-frame mesh (the same contours to
+        manifold3d's grid, much cheaper at a new pitch).
     """
 
     def __init__(
@@ -106,7 +108,7 @@ class ForceModel:
         slicing: str = "wetted",
         cache: bool = True,
         need_mass: bool = True,
-        cutter: str = "exact",
+        cutter: str = "manifold3d",
     ) -> None:
         self.solver = get_solver(solver)
         if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
@@ -204,7 +206,7 @@ def simulate(
     aero: Aerodynamics | str | None = None,
     friction: bool = False,
     sections_every: int = 0,
-    cutter: str = "exact",
+    cutter: str | None = None,
 ) -> History:
     """The free motion of a body entering the water.
 
@@ -259,10 +261,12 @@ def simulate(
         Keep the slices of every Nth instant, with the last, in :attr:`History.sections`
         for the structural loads (:meth:`History.face_pressures`,
         :meth:`History.frame_loads`); default 0, none.
-    cutter : str
-        How a new pitch's stations are cut (:data:`~hullslice.geometry.CUTTERS`): by the
-        exact kernel of :mod:`hullslice.planecut` without turning the mesh (``"exact"``,
-        default), or by manifold3d on the mesh turned to the pitch (``"manifold3d"``).
+    cutter : str, optional
+        How the stations of each pitch are cut (:data:`~hullslice.geometry.CUTTERS`): by
+        the exact kernel of :mod:`hullslice.planecut` without turning the mesh
+        (``"exact"``, the default with ``free_pitch``: every stage is a new pitch), or by
+        manifold3d on the mesh turned to the pitch (``"manifold3d"``, the default at a
+        held pitch, cut once).
 
     Returns
     -------
@@ -270,7 +274,7 @@ def simulate(
     """
     model = ForceModel(
         hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing,
-        cutter=cutter,
+        cutter=("exact" if free_pitch else "manifold3d") if cutter is None else cutter,
     )  # fmt: skip
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
     air0 = aero_model(aero)

@@ -73,7 +73,7 @@ class FixedCut:
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def window(
-        self, fr: Frame, k0: int = 0, k1: int | None = None, cutter: str = "exact"
+        self, fr: Frame, k0: int = 0, k1: int | None = None, cutter: str = "manifold3d"
     ) -> tuple[Outline, list, int]:
         """The outline of fixed stations ``k0`` to ``k1 - 1`` (mid-stations of equal slices
         over the body's length), cut once and kept.
@@ -133,7 +133,7 @@ class FixedCut:
 FIXED_CUTS: Entry[dict[tuple[int, float, str], FixedCut]] = Entry("fixed cuts", dict)
 
 
-def fixed_cut(fr: Frame, n: int, tol: float, cutter: str = "exact") -> FixedCut:
+def fixed_cut(fr: Frame, n: int, tol: float, cutter: str = "manifold3d") -> FixedCut:
     """The :class:`FixedCut` of ``n`` fixed slices kept on a frame (made empty if new)."""
     cuts = fr.cache[FIXED_CUTS]
     key = (int(n), float(tol), cutter)
@@ -154,7 +154,7 @@ def fixed_sections(
     extent: tuple[float, float] | None,
     tol: float,
     cache: bool = True,
-    cutter: str = "exact",
+    cutter: str = "manifold3d",
 ) -> Sections:
     """Fixed slices over the body's length; the wetted ones at this waterline.
 
@@ -271,7 +271,7 @@ def fixed_sections(
 
 
 def outline_of(
-    fr: Frame, rel: np.ndarray, tol: float, cutter: str = "exact"
+    fr: Frame, rel: np.ndarray, tol: float, cutter: str = "manifold3d"
 ) -> tuple[Outline, list[Polygons]]:
     """The outline and contours of the sections at relative stations ``rel`` (m), cut
     afresh."""
@@ -303,7 +303,7 @@ def _with_fresh(
     level: float,
     tol: float,
     deadrise: str,
-    cutter: str = "exact",
+    cutter: str = "manifold3d",
 ) -> tuple[dict[str, np.ndarray], list[Polygons]]:
     """Replace the entries of the slices marked ``fresh`` (at relative stations ``x``, m)
     by a cut at their position."""
