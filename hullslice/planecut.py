@@ -31,10 +31,12 @@ The contours come out as :meth:`hullslice.geometry.Frame.cut` gives manifold3d's
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
 
+from . import planecut_loops
 from .caching import Entry, Once
 
 __all__ = ["PLANE_INDEX", "PlaneIndex", "plane_index"]
@@ -201,16 +203,25 @@ class PlaneIndex:
         cg: np.ndarray,
         matrix: np.ndarray,
         merge: float = 0.0,
+        path: str = "auto",
     ) -> list[tuple[np.ndarray, ...]]:
         """The sections at relative stations ``x_rel`` (m) at a pitch (rad), about the
         centre of gravity ``cg``: one tuple of closed ``(k, 2)`` contours per station (outer
         ones counter-clockwise), each point mapped by the first two rows of ``matrix`` (a
         body point to the cutter's ``(Y, Z)``, 2 x 4); consecutive points of a contour
-        closer than ``merge`` along both of the cutter's axes are one."""
+        closer than ``merge`` along both of the cutter's axes are one.
+
+        ``path`` chooses the loops: ``"numpy"``, ``"numba"`` (the compiled loops of
+        :mod:`hullslice.planecut_loops`), ``"python"`` (those loops uncompiled, slow: for
+        checking), or ``"auto"`` (numba's where installed, else numpy's).
+        """
         x_rel = np.asarray(x_rel, dtype=np.float64)
         n_st = len(x_rel)
         station, face = self.candidates(x_rel, pitch, cg)
         c, s = np.cos(pitch), np.sin(pitch)
+        loops = _loops(path)
+        if loops is not None:
+            return self._cut_by_loops(loops, station, face, x_rel, c, s, cg, matrix, merge)
         corner = self.faces[face]  # (q, 3)
         # each vertex's distance ahead of its station's plane, the same for all its faces
         d = (self.corner_x[face] - cg[0]) * c - (self.corner_z[face] - cg[2]) * s
@@ -241,12 +252,57 @@ class PlaneIndex:
         succ = _successors(station, e_out, e_in, self.n_edges)
         return _contours(point, station, succ, n_st, merge)
 
+    def _cut_by_loops(
+        self,
+        loops: Callable,
+        station: np.ndarray,
+        face: np.ndarray,
+        x_rel: np.ndarray,
+        c: float,
+        s: float,
+        cg: np.ndarray,
+        matrix: np.ndarray,
+        merge: float,
+    ) -> list[tuple[np.ndarray, ...]]:
+        """:meth:`cut` after the candidates, by :func:`~hullslice.planecut_loops.cut_loops`
+        (compiled or not): the same points."""
+        slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
+        m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
+        points, start, ring_station, status = loops(
+            station, face, self.faces, self.face_edges, self.corner_x, self.corner_z,
+            self.vx, self.vy, self.vz, x_rel, float(cg[0]), float(cg[2]), float(c), float(s),
+            m, float(merge), slot, planecut_loops.K_OUT, planecut_loops.K_IN,
+        )  # fmt: skip
+        if status:
+            raise ValueError("the mesh is not closed along a cut: a contour does not close")
+        out: list[list[np.ndarray]] = [[] for _ in range(len(x_rel))]
+        for i, st in enumerate(ring_station.tolist()):
+            out[st].append(points[start[i] : start[i + 1]])
+        return [tuple(ring) for ring in out]
+
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
-_K_OUT = np.array([0, 0, 1, 1, 2, 0, 2, 0])
-_K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0])
+_K_OUT = planecut_loops.K_OUT
+_K_IN = planecut_loops.K_IN
 _NEXT = np.array([1, 2, 0])
+
+#: The loops' paths (see :meth:`PlaneIndex.cut`).
+PATHS = ("auto", "numpy", "numba", "python")
+
+
+def _loops(path: str) -> Callable | None:
+    """The loops :meth:`PlaneIndex.cut` runs on a ``path``: None for numpy's."""
+    if path == "numpy":
+        return None
+    if path == "python":
+        return planecut_loops.cut_loops
+    if path not in PATHS:
+        raise ValueError(f"path {path!r} is unknown; choose one of {', '.join(PATHS)}")
+    fn = planecut_loops.compiled() if path == "numba" or planecut_loops.available() else None
+    if fn is None and path == "numba":
+        raise ImportError("the compiled path needs numba: pip install hullslice[fast]")
+    return fn
 
 
 def _successors(station: np.ndarray, e_out: np.ndarray, e_in: np.ndarray, n_edges: int):

@@ -7,6 +7,9 @@ must have its edge counts and its areas to 1e-12 of the size squared.
 
 from __future__ import annotations
 
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -189,3 +192,55 @@ def test_an_unknown_cutter_is_refused():
     assert check_cutter("manifold3d") == "manifold3d"
     with pytest.raises(InputError, match="cutter 'clipper' is unknown"):
         hs.ForceModel(BODIES["wedge_prism.stl"], cutter="clipper")
+
+
+def _kernel_cuts(hull, path: str):
+    index = plane_index(hull)
+    out = []
+    for pitch in (-0.2, 0.1, 0.45):
+        fr = frame(hull, pitch)
+        x = np.linspace(fr.keel.x[0], fr.keel.x[-1], 21)
+        out.append(index.cut(x, fr.pitch, fr.cg, fr._matrix, MERGE * CUTTER_SIZE, path=path))
+    return out
+
+
+def _largest_difference(a, b) -> float:
+    """The largest coordinate difference of two kernels' cuts (cutter units), their
+    contours' counts and point counts asserted equal."""
+    worst = 0.0
+    for cut_a, cut_b in zip(a, b, strict=True):
+        for sa, sb in zip(cut_a, cut_b, strict=True):
+            assert [len(c) for c in sa] == [len(c) for c in sb]
+            for p, q in zip(sa, sb, strict=True):
+                worst = max(worst, float(np.abs(p - q).max()))
+    return worst
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
+def test_the_loops_for_a_compiler_equal_numpy(name):
+    """The loops of hullslice.planecut_loops, run uncompiled (numba's input), against
+    numpy's path: the same points to 1e-12 of the body's size."""
+    hull = BODIES[name]
+    diff = _largest_difference(_kernel_cuts(hull, "python"), _kernel_cuts(hull, "numpy"))
+    assert diff <= 1e-12 * CUTTER_SIZE
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
+def test_the_compiled_path_equals_numpy(name):
+    pytest.importorskip("numba")
+    hull = BODIES[name]
+    diff = _largest_difference(_kernel_cuts(hull, "numba"), _kernel_cuts(hull, "numpy"))
+    assert diff <= 1e-12 * CUTTER_SIZE
+
+
+def test_import_hullslice_leaves_numba_unimported():
+    code = "import sys, hullslice, hullslice.planecut; print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_an_unknown_loops_path_is_refused():
+    hull = BODIES["wedge_prism.stl"]
+    fr = frame(hull, 0.1)
+    with pytest.raises(ValueError, match="path 'gpu' is unknown"):
+        plane_index(hull).cut(np.zeros(1), fr.pitch, fr.cg, fr._matrix, path="gpu")
