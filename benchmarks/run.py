@@ -18,10 +18,16 @@ free-fall case from process start to printed report, and the time of ``import
 hullslice`` and ``hullslice --help``.
 
 Free pitch: the time step with free pitch (each of its 4 stages at a new pitch, cut
-afresh) against the same run at a held pitch, 100 steps of 0.2 ms each with 128 fixed
-slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's process), each
-run after a 5-step warm-up of its own (the held pitch's cut and waterline table, the
-hull's first region made there); target free / held <= 2. What the approximations cost
+afresh by manifold3d on the turned mesh, and by the exact kernel of
+``hullslice.planecut``) against the same run at a held pitch, 100 steps of 0.2 ms each
+with 128 fixed slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's
+process), the runs interleaved (A B C D A B C D; the kernel with numpy's loops and, with the
+``fast`` extra, numba's) after a warm-up (the held run over all its steps, cut once;
+each free run over 5 steps: the hull's first region, its plane index, numba's
+compilation); target free / held <= 3 with numpy alone, <= 2 compiled. The kernel's
+force at 40 random new poses of the 128k fuselage against manifold3d's cut (target 1e-9
+relative), and a 100-step free-pitch history by the kernel against a manifold3d-only run
+(the largest force difference over the peak force). What the approximations cost
 against fresh cuts: the held pitch's kept cut and waterline table against fresh cuts over
 20 drafts of the 128k fuselage (largest difference of the force, the horizontal force and
 the moment / body size, relative to the force); free pitch has none (every stage is cut
@@ -370,10 +376,11 @@ CHILD = textwrap.dedent(
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
-    # then the same 100 steps at the held pitch and with free pitch, by run.py's own code
-    step_pair = runpy.run_path(sys.argv[2])["step_pair"]
-    t_held, t_free, steps = step_pair(hull, 1)
-    print(t_load, t_sim, len(h), peak, t_held, t_free, steps)
+    # then the same 100 steps at the held pitch and with free pitch by either cutter,
+    # interleaved, by run.py's own code
+    bench = runpy.run_path(sys.argv[2])
+    times, steps = bench["step_runs"](hull, 1)
+    print(t_load, t_sim, len(h), peak, steps, *(f"{k}={v}" for k, v in times.items()))
     """
 )
 
@@ -385,7 +392,9 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         text=True,
         check=True,
     )
-    t_load, t_sim, steps, peak, t_held, t_free, pair_steps = (float(v) for v in out.stdout.split())
+    words = out.stdout.replace("exact, ", "exact,").split()
+    t_load, t_sim, steps, peak, pair_steps = (float(v) for v in words[:5])
+    times = {k.replace("exact,", "exact, "): float(v) for k, v in (w.split("=") for w in words[5:])}
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -399,58 +408,135 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         "1M: time step of that free fall (4 evaluations, RK4)", fmt(step), "<= 0.5 ms", step <= 5e-4
     )
     table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
-    pitch_rows(table, "1M", t_held, t_free, int(pair_steps))
+    pitch_rows(table, "1M", times, int(pair_steps))
 
 
-def step_pair(hull, repeat: int) -> tuple[float, float, int]:
+#: The runs the pitch-step comparison interleaves, by name: (free pitch, cutter, numba).
+PITCH_RUNS = {
+    "held": (False, "manifold3d", False),
+    "manifold3d": (True, "manifold3d", False),
+    "exact, numpy": (True, "exact", False),
+    "exact, numba": (True, "exact", True),
+}
+#: What each free run's stages are cut by, for the table.
+PITCH_HOW = {
+    "manifold3d": "manifold3d, the mesh turned",
+    "exact, numpy": "the exact kernel, numpy's loops",
+    "exact, numba": "the exact kernel, compiled by numba",
+}
+#: The free / held targets: at most 3 with numpy alone, 2 compiled.
+PITCH_TARGETS = {"exact, numpy": 3.0, "exact, numba": 2.0}
+
+
+def pitch_runs() -> dict[str, tuple[bool, str, bool]]:
+    """:data:`PITCH_RUNS` that this machine can run (the compiled one needs numba)."""
+    have_numba = importlib.util.find_spec("numba") is not None
+    return {name: run for name, run in PITCH_RUNS.items() if have_numba or not run[2]}
+
+
+def step_runs(hull, repeat: int) -> tuple[dict[str, float], int]:
     """The time per step (s) of the same run at a held pitch and with free pitch (4 new
-    pitches a step, each cut afresh), and the steps of each: the median of ``repeat``
-    runs of :data:`PITCH_STEPS` steps of 0.2 ms, 128 fixed slices, from pitch 4.6 deg at
-    60 m/s forward and 1.5 m/s down; each after a warm-up run of :data:`WARM_STEPS` steps
-    (it makes the held pitch's cut and waterline table, and the hull's first region)."""
+    pitches a step, each cut afresh) by either cutter (the kernel with numpy's loops and,
+    with numba, compiled), and the steps of each: the median of ``repeat`` rounds, each
+    round one run of :data:`PITCH_STEPS` steps of 0.2 ms of each of :func:`pitch_runs` in
+    turn (interleaved: A B C D A B C D), 128 fixed slices, from pitch 4.6 deg at 60 m/s
+    forward and 1.5 m/s down. Warm-up first: the held run over all its steps (its pitch's
+    cut and waterline table, cut once), each free run over :data:`WARM_STEPS` steps (the
+    hull's first region, its plane index, numba's compilation). The held run has a copy of
+    the hull of its own (the same mesh, its own frames), so that the free runs' pitches do
+    not push its frame out of the hull's few kept ones."""
     dt = 2e-4
+    runs = pitch_runs()
+    held_hull = hull.with_mass(hull.mass)
 
-    def run(steps: int, free: bool):
-        return hs.simulate(hull, -1.5, steps * dt, dt=dt, pitch=0.08, forward_speed=60.0,
-                           slices=128, slicing="fixed", stop_on=(), free_pitch=free)  # fmt: skip
+    def run(steps: int, free: bool, cutter: str, numba: bool):
+        os.environ["HULLSLICE_NUMBA"] = "1" if numba else "0"
+        body = hull if free else held_hull
+        try:
+            return hs.simulate(body, -1.5, steps * dt, dt=dt, pitch=0.08, forward_speed=60.0,
+                               slices=128, slicing="fixed", stop_on=(), free_pitch=free,
+                               cutter=cutter)  # fmt: skip
+        finally:
+            os.environ.pop("HULLSLICE_NUMBA", None)
 
-    times, counts = [], []
-    for free in (False, True):
-        run(WARM_STEPS, free)
-        runs = []
-        for _ in range(max(1, repeat)):
+    for free, cutter, numba in runs.values():
+        run(WARM_STEPS if free else PITCH_STEPS, free, cutter, numba)
+    times: dict[str, list[float]] = {name: [] for name in runs}
+    counts = set()
+    for _ in range(max(1, repeat)):
+        for name, (free, cutter, numba) in runs.items():
             gc.collect()
             t0 = time.perf_counter()
-            history = run(PITCH_STEPS, free)
-            runs.append(time.perf_counter() - t0)
-        counts.append(len(history) - 1)
-        times.append(statistics.median(runs) / counts[-1])
-    assert counts[0] == counts[1], counts
-    return times[0], times[1], counts[0]
+            history = run(PITCH_STEPS, free, cutter, numba)
+            t = time.perf_counter() - t0
+            counts.add(len(history) - 1)
+            times[name].append(t / (len(history) - 1))
+    assert len(counts) == 1, counts
+    return {name: statistics.median(ts) for name, ts in times.items()}, counts.pop()
 
 
-def pitch_rows(table: Table, size: str, t_held: float, t_free: float, steps: int) -> None:
+def pitch_rows(table: Table, size: str, times: dict[str, float], steps: int) -> None:
+    held = times["held"]
     table.add(
-        f"{size}: time step, held pitch, 128 fixed slices ({steps} steps after {WARM_STEPS})",
-        fmt(t_held),
+        f"{size}: time step, held pitch, 128 fixed slices ({steps} steps, cut once)",
+        fmt(held),
     )
-    table.add(f"{size}: time step, free pitch (each stage cut afresh), same steps", fmt(t_free))
-    table.add(
-        f"{size}: ratio free / held pitch step",
-        f"{t_free / t_held:.1f}",
-        "<= 2",
-        t_free <= 2 * t_held,
-    )
+    for name, how in PITCH_HOW.items():
+        if name not in times:
+            table.add(f"{size}: free pitch cut by {how}", "not run: numba missing (.[fast])")
+            continue
+        free = times[name]
+        table.add(f"{size}: time step, free pitch (each stage cut afresh by {how})", fmt(free))
+        target = PITCH_TARGETS.get(name)
+        table.add(
+            f"{size}: ratio free ({name}) / held pitch step",
+            f"{free / held:.1f}",
+            "" if target is None else f"<= {target:g}",
+            None if target is None else free <= target * held,
+        )
 
 
 def bench_pitch_steps(table: Table, tmp: Path, results: dict, repeat: int) -> None:
-    """The time step at a held and at a free pitch at 10k and 128k faces, in this process."""
+    """The time step at a held and at a free pitch by either cutter at 10k and 128k faces,
+    interleaved in this process (1M: in the 1M free fall's process)."""
     for size in ("10k", "128k"):
         path = results[size]["path"] if size in results else fuselage_file(tmp, size)
         hull = hs.load_hull(path, mass=60000.0)
-        t_held, t_free, steps = step_pair(hull, repeat)
-        pitch_rows(table, f"{size} ({len(hull.faces)} faces)", t_held, t_free, steps)
+        times, steps = step_runs(hull, repeat)
+        pitch_rows(table, f"{size} ({len(hull.faces)} faces)", times, steps)
         results.setdefault(size, {"hull": hull, "path": path})
+
+
+def bench_kernel_cut(table: Table, path: Path) -> None:
+    """The exact kernel's force at new pitches against manifold3d's fresh cut, over random
+    poses (fixed slicing, 128 slices, cut afresh)."""
+    hull = hs.load_hull(path, mass=60000.0)
+    motion = hs.Motion(-1.5, 60.0)
+    exact = ForceModel(hull, slices=128, slicing="fixed", cache=False, cutter="exact")
+    ref = ForceModel(hull, slices=128, slicing="fixed", cache=False, cutter="manifold3d")
+    rng = np.random.default_rng(28)
+    poses = [hs.Pose(d, p) for d, p in zip(rng.uniform(0.02, 0.6, 40),
+                                           rng.uniform(-0.05, 0.15, 40), strict=True)]  # fmt: skip
+    errs = [relative_error(exact(p, motion), ref(p, motion), hull.size) for p in poses]
+    table.add(
+        f"{len(hull.faces) / 1000:.0f}k, new pitches: the kernel's cut against manifold3d's, "
+        f"{len(poses)} random poses (largest / median relative difference of Fz, Fx, My / size)",
+        f"{max(errs):.1e} / {statistics.median(errs):.1e}",
+        "<= 1e-9",
+        max(errs) <= 1e-9,
+    )
+    dt = 2e-4
+    runs = [hs.simulate(hs.load_hull(path, mass=60000.0), -1.5, 100 * dt, dt=dt, pitch=0.08,
+                        forward_speed=60.0, slices=128, slicing="fixed", stop_on=(),
+                        free_pitch=True, cutter=cutter)
+            for cutter in ("manifold3d", "exact")]  # fmt: skip
+    a, b = (np.asarray(h.force) for h in runs)
+    err = float(np.max(np.abs(a - b)) / np.max(np.abs(a)))
+    table.add(
+        f"{len(hull.faces) / 1000:.0f}k: a 100-step free-pitch history by the kernel against a "
+        "manifold3d-only run (largest force difference / peak force)",
+        f"{err:.1e}",
+    )
 
 
 def relative_error(a, b, size: float) -> float:
@@ -587,6 +673,7 @@ def main() -> None:
         print("time step at a held and a free pitch ...")
         bench_pitch_steps(table, Path(tmp), results, args.repeat)
         bench_fresh_cuts(table, results["128k"]["path"])
+        bench_kernel_cut(table, results["128k"]["path"])
         print("face pressures ...")
         bench_face_loads(table, results, args.repeat)
         if not args.quick:

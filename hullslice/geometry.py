@@ -34,9 +34,26 @@ from typing import Any
 import numpy as np
 
 from .caching import LRU, Cache, Entry, Once
+from .errors import InputError
 from .kernel.keel import KeelLine, lower_envelope
+from .planecut import plane_index
 
-__all__ = ["Frame", "KeelLine", "frame"]
+__all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
+
+#: How the stations of a pitch are cut, by name (the ``cutter`` option).
+CUTTERS: dict[str, str] = {
+    "exact": "an exact kernel on the body-frame mesh, without turning it "
+    "(hullslice.planecut); free-pitch runs' default",
+    "manifold3d": "manifold3d on the mesh (or a region of it) turned to the pitch; the "
+    "default elsewhere",
+}
+
+
+def check_cutter(cutter: str) -> str:
+    """``cutter`` if it names one of :data:`CUTTERS`."""
+    if cutter not in CUTTERS:
+        raise InputError(f"cutter {cutter!r} is unknown; choose one of {', '.join(CUTTERS)}")
+    return cutter
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,14 +99,23 @@ class Frame:
         """Earth height of the centre of gravity for a draft (m)."""
         return -self.lowest - draft
 
-    def cut(self, x_rel: np.ndarray) -> list[tuple[np.ndarray, ...]]:
+    def cut(self, x_rel: np.ndarray, cutter: str = "manifold3d") -> list[tuple[np.ndarray, ...]]:
         """Cross-sections at relative stations ``x_rel = X - x_g`` (m), as manifold3d gives
         them: one tuple of ``(k, 2)`` contours per station (outer ones counter-clockwise),
         in the cutter's coordinates: divide by :attr:`scale` and add :attr:`origin` (and
-        ``Z_g``) for earth coordinates in m."""
+        ``Z_g``) for earth coordinates in m.
+
+        ``cutter="exact"`` cuts by :mod:`hullslice.planecut`'s kernel on the body-frame
+        mesh (the same contours to manifold3d's grid, without turning the mesh; manifold3d
+        cuts pitches steeper than :data:`KERNEL_MAX_PITCH`); ``"manifold3d"`` by
+        manifold3d on the mesh turned to the pitch (see :data:`CUTTERS`).
+        """
         x_rel = np.asarray(x_rel, dtype=np.float64)
         if len(x_rel) == 0:
             return []
+        if cutter == "exact" and abs(self.pitch) < KERNEL_MAX_PITCH:
+            index = plane_index(self._hull)
+            return index.cut(x_rel, self.pitch, self.cg, self._matrix, MERGE * CUTTER_SIZE)
         slicer = self._slicer(*self._reach(x_rel))
         ox, k = self._offset[2], self._scale
         return [tuple(slicer.slice(float((xi - ox) * k)).to_polygons()) for xi in x_rel]
@@ -146,6 +172,11 @@ class Frame:
 #: 1e-12 of the body's size: at unit size the rounding moved the force on a barely wetted
 #: body by some 1e-6, and jumped as the pitch crossed grid lines.
 CUTTER_SIZE = 1e4
+#: Consecutive points of a kernel's contour closer than this (m, of a body of unit size;
+#: along both of the cutter's axes) are one: manifold3d's grid joins them too.
+MERGE = 1e-12
+#: The kernel cuts pitches up to this (rad); manifold3d cuts steeper ones.
+KERNEL_MAX_PITCH = 1.2
 #: How many pitches' frames a hull keeps.
 FRAME_CACHE = 4
 #: Hulls with fewer faces are always cut whole (turning them is cheap).

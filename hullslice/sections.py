@@ -169,12 +169,14 @@ def sections_at(
     stations: np.ndarray | None = None,
     slicing: str = "wetted",
     cache: bool = True,
+    cutter: str = "manifold3d",
 ) -> Sections:
     """The sections at a pose, inputs already checked (see :func:`cut`).
 
     ``slicing="fixed"`` places the slices over the body's length (see :data:`SLICINGS`);
     ``cache=False`` cuts its stations afresh instead of reusing the pitch's cut (the same
-    numbers, for checking).
+    numbers, for checking); ``cutter`` names how a new pitch is cut
+    (:data:`~hullslice.geometry.CUTTERS`).
     """
     fr = frame(hull, pose.pitch)
     level = fr.lowest + pose.draft  # the water surface, relative to the cg
@@ -191,6 +193,7 @@ def sections_at(
             extent=extent,
             tol=tol,
             cache=cache,
+            cutter=cutter,
         )
     if extent is None:
         x0 = x1 = float(fr.keel.x[np.argmin(fr.keel.z)])
@@ -208,7 +211,7 @@ def sections_at(
         rel = np.asarray(stations, dtype=np.float64) - fr.cg[0]
         bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
         dx = np.diff(np.clip(bounds, x0, x1))
-    polys = fr.cut(rel)
+    polys = fr.cut(rel, cutter)
     props = wetted_properties(Outline.of(polys, tol, fr.origin, fr.scale), level, tol, deadrise)
     return assemble(
         hull,

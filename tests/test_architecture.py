@@ -51,6 +51,8 @@ LAYERS: dict[str, int] = {
     "hullslice.shapes": 2,
     "hullslice.survey": 2,
     # 3 cut: frames, caches of cuts, the slicing API
+    "hullslice.planecut": 3,
+    "hullslice.planecut_loops": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

@@ -44,7 +44,7 @@ from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve
 from ..forces.friction import Friction
 from ..forces.friction import friction as wall_friction
 from ..forces.momentum import calm_girth
-from ..geometry import frame
+from ..geometry import check_cutter, frame
 from ..limits import no_mass
 from ..mesh import Hull
 from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
@@ -90,6 +90,11 @@ class ForceModel:
     need_mass : bool
         Refuse a hull without mass (default). A momentum-form solver along a prescribed
         motion does not need it.
+    cutter : str
+        How the stations of a pitch are cut (:data:`~hullslice.geometry.CUTTERS`):
+        ``"manifold3d"`` (default), on the mesh turned to the pitch, or ``"exact"``, the
+        kernel of :mod:`hullslice.planecut` on the body-frame mesh (the same contours to
+        manifold3d's grid, much cheaper at a new pitch).
     """
 
     def __init__(
@@ -103,6 +108,7 @@ class ForceModel:
         slicing: str = "wetted",
         cache: bool = True,
         need_mass: bool = True,
+        cutter: str = "manifold3d",
     ) -> None:
         self.solver = get_solver(solver)
         if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
@@ -113,6 +119,7 @@ class ForceModel:
         self.deadrise = _check_deadrise(deadrise)
         self.slicing = _check_slicing(slicing)
         self.cache = bool(cache)
+        self.cutter = check_cutter(cutter)
 
     @property
     def momentum(self) -> bool:
@@ -124,8 +131,9 @@ class ForceModel:
         if pose.draft > height:
             pose = Pose(height, pose.pitch)
         return sections_at(
-            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache
-        )
+            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache,
+            cutter=self.cutter,
+        )  # fmt: skip
 
     def __call__(
         self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
@@ -198,6 +206,7 @@ def simulate(
     aero: Aerodynamics | str | None = None,
     friction: bool = False,
     sections_every: int = 0,
+    cutter: str | None = None,
 ) -> History:
     """The free motion of a body entering the water.
 
@@ -252,14 +261,21 @@ def simulate(
         Keep the slices of every Nth instant, with the last, in :attr:`History.sections`
         for the structural loads (:meth:`History.face_pressures`,
         :meth:`History.frame_loads`); default 0, none.
+    cutter : str, optional
+        How the stations of each pitch are cut (:data:`~hullslice.geometry.CUTTERS`): by
+        the exact kernel of :mod:`hullslice.planecut` without turning the mesh
+        (``"exact"``, the default with ``free_pitch``: every stage is a new pitch), or by
+        manifold3d on the mesh turned to the pitch (``"manifold3d"``, the default at a
+        held pitch, cut once).
 
     Returns
     -------
     History
     """
     model = ForceModel(
-        hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
-    )
+        hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing,
+        cutter=("exact" if free_pitch else "manifold3d") if cutter is None else cutter,
+    )  # fmt: skip
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
     air0 = aero_model(aero)
     if w0 > 0.0 or (w0 == 0.0 and air0.name == "none"):

@@ -72,7 +72,9 @@ class FixedCut:
     too_high: dict[str, tuple[Outline, float]] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
-    def window(self, fr: Frame, k0: int = 0, k1: int | None = None) -> tuple[Outline, list, int]:
+    def window(
+        self, fr: Frame, k0: int = 0, k1: int | None = None, cutter: str = "manifold3d"
+    ) -> tuple[Outline, list, int]:
         """The outline of fixed stations ``k0`` to ``k1 - 1`` (mid-stations of equal slices
         over the body's length), cut once and kept.
 
@@ -95,7 +97,7 @@ class FixedCut:
                 polys = self.polys
                 missing = np.array([k for k in range(lo, hi) if k not in polys], dtype=np.int64)
                 if len(missing):
-                    cuts = fr.cut(fr.fixed_stations(n)[1][missing])
+                    cuts = fr.cut(fr.fixed_stations(n)[1][missing], cutter)
                     polys.update(zip(missing.tolist(), cuts, strict=True))
                 self.rows = [polys[k] for k in range(lo, hi)]
                 self.range = held = (lo, hi)
@@ -127,14 +129,14 @@ class FixedCut:
         return table.at(level, k0, k1)
 
 
-#: A frame's fixed cuts by slice count and tolerance.
-FIXED_CUTS: Entry[dict[tuple[int, float], FixedCut]] = Entry("fixed cuts", dict)
+#: A frame's fixed cuts by slice count, tolerance and cutter.
+FIXED_CUTS: Entry[dict[tuple[int, float, str], FixedCut]] = Entry("fixed cuts", dict)
 
 
-def fixed_cut(fr: Frame, n: int, tol: float) -> FixedCut:
+def fixed_cut(fr: Frame, n: int, tol: float, cutter: str = "manifold3d") -> FixedCut:
     """The :class:`FixedCut` of ``n`` fixed slices kept on a frame (made empty if new)."""
     cuts = fr.cache[FIXED_CUTS]
-    key = (int(n), float(tol))
+    key = (int(n), float(tol), cutter)
     kept = cuts.get(key)
     if kept is None:
         kept = cuts.setdefault(key, FixedCut(key[0], key[1]))
@@ -152,12 +154,14 @@ def fixed_sections(
     extent: tuple[float, float] | None,
     tol: float,
     cache: bool = True,
+    cutter: str = "manifold3d",
 ) -> Sections:
     """Fixed slices over the body's length; the wetted ones at this waterline.
 
     ``level`` is the water's height above the centre of gravity in the pitched frame (m),
     ``extent`` the keel line's wetted ``x`` range (m, relative), ``tol`` the coordinate
-    tolerance (m); ``cache=False`` cuts the stations afresh.
+    tolerance (m); ``cache=False`` cuts the stations afresh; ``cutter`` as for
+    :meth:`~hullslice.geometry.Frame.cut`.
 
     Interior slices use their mid-station's section. A slice only partly wetted counts its
     wetted length and stands at that part's middle, where the keel line gives its
@@ -196,11 +200,11 @@ def fixed_sections(
     w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
     props = None
     if cache:
-        kept = fixed_cut(fr, n, tol)
-        outline, polys, c0 = kept.window(fr, w0, w1)
+        kept = fixed_cut(fr, n, tol, cutter)
+        outline, polys, c0 = kept.window(fr, w0, w1, cutter)
         props = kept.tabulated(outline, level, deadrise, w0 - c0, w1 - c0)
     else:
-        (outline, polys), c0 = outline_of(fr, mids, tol), 0
+        (outline, polys), c0 = outline_of(fr, mids, tol, cutter), 0
     if props is None:
         props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
     props["station"] = props["station"] + w0
@@ -247,8 +251,9 @@ def fixed_sections(
     slice_polys = [polys[src - c0] for src in source]
     if fresh.any():  # no wetted section nearby (the first contact): cut where the slice is
         sel, slice_polys = _with_fresh(
-            fr, sel, slice_polys, fresh=fresh, x=x, level=level, tol=tol, deadrise=deadrise
-        )
+            fr, sel, slice_polys, fresh=fresh, x=x, level=level, tol=tol, deadrise=deadrise,
+            cutter=cutter,
+        )  # fmt: skip
     return assemble(
         hull,
         fr,
@@ -265,10 +270,12 @@ def fixed_sections(
     )
 
 
-def outline_of(fr: Frame, rel: np.ndarray, tol: float) -> tuple[Outline, list[Polygons]]:
+def outline_of(
+    fr: Frame, rel: np.ndarray, tol: float, cutter: str = "manifold3d"
+) -> tuple[Outline, list[Polygons]]:
     """The outline and contours of the sections at relative stations ``rel`` (m), cut
     afresh."""
-    polys = fr.cut(rel)
+    polys = fr.cut(rel, cutter)
     return Outline.of(polys, tol, fr.origin, fr.scale), polys
 
 
@@ -296,11 +303,12 @@ def _with_fresh(
     level: float,
     tol: float,
     deadrise: str,
+    cutter: str = "manifold3d",
 ) -> tuple[dict[str, np.ndarray], list[Polygons]]:
     """Replace the entries of the slices marked ``fresh`` (at relative stations ``x``, m)
     by a cut at their position."""
     idx = np.flatnonzero(fresh)
-    outline, polys = outline_of(fr, x[idx], tol)
+    outline, polys = outline_of(fr, x[idx], tol, cutter)
     new = wetted_properties(outline, level, tol, deadrise)
     keep = ~np.isin(sel["station"], idx)
     out = {}

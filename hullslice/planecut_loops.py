@@ -1,0 +1,169 @@
+"""The exact plane cut's loops, written for a compiler: numba's, when installed.
+
+:func:`cut_loops` does in one pass over the candidate faces what
+:meth:`hullslice.planecut.PlaneIndex.cut` does with numpy after choosing them: the sign
+test, one crossing point per edge, the segments' successors and the contours' order, with
+the very same arithmetic in the same order, so that both give the same points. It runs as
+plain Python too (slowly: the tests compare it with numpy on small meshes); compiled by
+numba (the ``fast`` extra, ``pip install hullslice[fast]``) it is the kernel's fast path.
+numba is imported only when :func:`compiled` is first called, never by ``import
+hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import os
+import threading
+from collections.abc import Callable
+
+import numpy as np
+
+__all__ = ["available", "compiled", "cut_loops"]
+
+#: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
+#: next corner leaves the ahead side, and the one whose edge enters it.
+K_OUT = np.array([0, 0, 1, 1, 2, 0, 2, 0], dtype=np.int64)
+K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0], dtype=np.int64)
+
+
+def cut_loops(
+    station, face, faces, face_edges, corner_x, corner_z, vx, vy, vz, x_rel, gx, gz, c, s,
+    m, merge, slot, k_out_of, k_in_of,
+):  # fmt: skip
+    """The contours of the candidate faces ``face`` of stations ``station`` (grouped by
+    station), cut by the planes ``x_rel`` at a pitch (``c``, ``s``: its cosine and sine)
+    about ``(gx, gz)``, mapped by ``m`` (2 x 4) to the cutter's ``(Y, Z)``.
+
+    Returns ``(points, ring_start, ring_station, status)``: the kept contours' points one
+    after another, each kept contour's first point (and the end), its station, and 0, or
+    1 where the mesh is not closed along a cut. ``slot`` is scratch space, one integer per
+    edge.
+    """
+    q = len(face)
+    seg_station = np.empty(q, dtype=np.int64)
+    e_out = np.empty(q, dtype=np.int64)
+    e_in = np.empty(q, dtype=np.int64)
+    point = np.empty((q, 2))
+    d = np.empty(3)
+    n = 0
+    for i in range(q):
+        f = face[i]
+        xs = x_rel[station[i]]
+        code = 0
+        for k in range(3):
+            d[k] = (corner_x[f, k] - gx) * c - (corner_z[f, k] - gz) * s - xs
+            if d[k] >= 0.0:
+                code += 1 << k
+        if code == 0 or code == 7:
+            continue
+        ko = k_out_of[code]
+        kn = (ko + 1) % 3
+        e_out[n] = face_edges[f, ko]
+        e_in[n] = face_edges[f, k_in_of[code]]
+        va, vb = faces[f, ko], faces[f, kn]
+        da, db = d[ko], d[kn]
+        if va > vb:
+            va, vb = vb, va
+            da, db = db, da
+        ya = m[0, 0] * vx[va] + m[0, 1] * vy[va] + m[0, 2] * vz[va] + m[0, 3]
+        za = m[1, 0] * vx[va] + m[1, 1] * vy[va] + m[1, 2] * vz[va] + m[1, 3]
+        yb = m[0, 0] * vx[vb] + m[0, 1] * vy[vb] + m[0, 2] * vz[vb] + m[0, 3]
+        zb = m[1, 0] * vx[vb] + m[1, 1] * vy[vb] + m[1, 2] * vz[vb] + m[1, 3]
+        if abs(da) <= abs(db):
+            t = da / (da - db)
+            point[n, 0] = ya + t * (yb - ya)
+            point[n, 1] = za + t * (zb - za)
+        else:
+            t = db / (db - da)
+            point[n, 0] = yb + t * (ya - yb)
+            point[n, 1] = zb + t * (za - zb)
+        seg_station[n] = station[i]
+        n += 1
+    # successors, station by station: the segment leaving from the edge each one enters
+    succ = np.empty(n, dtype=np.int64)
+    status = 0
+    a = 0
+    while a < n:
+        b = a
+        while b < n and seg_station[b] == seg_station[a]:
+            b += 1
+        for j in range(a, b):
+            slot[e_out[j]] = j
+        for j in range(a, b):
+            k = slot[e_in[j]]
+            if k < a or k >= b or e_out[k] != e_in[j]:
+                status = 1
+                k = j
+            succ[j] = k
+        a = b
+    # the contours, each from its lowest segment, repeated points dropped
+    out = np.empty((n, 2))
+    ring_start = np.empty(n + 1, dtype=np.int64)
+    ring_station = np.empty(n, dtype=np.int64)
+    seen = np.zeros(n, dtype=np.bool_)
+    ring = np.empty(n, dtype=np.int64)
+    n_out = 0
+    n_ring = 0
+    ring_start[0] = 0
+    for j0 in range(n):
+        if seen[j0]:
+            continue
+        length = 0
+        j = j0
+        while not seen[j]:
+            seen[j] = True
+            ring[length] = j
+            length += 1
+            j = succ[j]
+        first = n_out
+        for k in range(length):
+            p = ring[k]
+            r = ring[k - 1] if k > 0 else ring[length - 1]
+            if abs(point[p, 0] - point[r, 0]) > merge or abs(point[p, 1] - point[r, 1]) > merge:
+                out[n_out, 0] = point[p, 0]
+                out[n_out, 1] = point[p, 1]
+                n_out += 1
+        kept = n_out - first
+        area = 0.0
+        for k in range(first, n_out):
+            k2 = k + 1 if k + 1 < n_out else first
+            area += out[k, 0] * out[k2, 1] - out[k2, 0] * out[k, 1]
+        if kept >= 3 and area != 0.0:
+            ring_station[n_ring] = seg_station[j0]
+            n_ring += 1
+            ring_start[n_ring] = n_out
+        else:
+            n_out = first
+    return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], status
+
+
+_LOCK = threading.Lock()
+_COMPILED: list[Callable | None] = []
+
+
+_FOUND: list[bool] = []
+
+
+def available() -> bool:
+    """Whether the compiled path can serve: numba installed and not switched off by
+    ``HULLSLICE_NUMBA=0`` (read at every call)."""
+    if os.environ.get("HULLSLICE_NUMBA", "1") == "0":
+        return False
+    if not _FOUND:
+        _FOUND.append(importlib.util.find_spec("numba") is not None)
+    return _FOUND[0]
+
+
+def compiled() -> Callable | None:
+    """:func:`cut_loops` compiled by numba (made on first call, cached on disk), or None
+    without numba."""
+    with _LOCK:
+        if not _COMPILED:
+            fn = None
+            if available():
+                import numba
+
+                fn = numba.njit(cache=True, nogil=True)(cut_loops)
+            _COMPILED.append(fn)
+        return _COMPILED[0]

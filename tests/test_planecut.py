@@ -1,0 +1,247 @@
+"""The exact cut of a new pitch (hullslice.planecut) against manifold3d's own cut.
+
+manifold3d is the reference: it cuts the body turned to the pitch, its sections rounded to a
+grid of 1e-8 of the cutter's units (1e-12 of the body's size), so the kernel's contours
+must have its edge counts and its areas to 1e-12 of the size squared.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import planecut_loops, shapes
+from hullslice.errors import InputError
+from hullslice.geometry import CUTTER_SIZE, MERGE, check_cutter, frame
+from hullslice.kernel.waterline_table import WaterlineTable
+from hullslice.planecut import PlaneIndex, plane_index
+
+from .conftest import MESHES
+
+#: Areas to this share of the size squared (manifold3d's grid is 1e-12 of the size).
+AREA_TOL = 1e-12
+PITCHES = (-0.35, -0.05, 0.08, 0.3, 0.7)
+
+
+def _area(c: np.ndarray) -> float:
+    y, z = c[:, 0], c[:, 1]
+    return 0.5 * float(y @ np.roll(z, -1) - np.roll(y, -1) @ z)
+
+
+def _bodies():
+    yield "paper_prism.stl", hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+    yield "wedge_prism.stl", hs.load_hull(MESHES / "wedge_prism.stl", mass=1.0)
+    yield "fuselage_model.obj", hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    yield "fuselage_full.obj", hs.load_hull(MESHES / "fuselage_full.obj", mass=6e4)
+    shaped = {
+        "wedge": shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0),
+        "fuselage": shapes.fuselage(stations=40, points=24),
+        "cylinder": shapes.circular_cylinder(),
+        "asymmetric wedge": shapes.asymmetric_wedge_prism(),
+        "paper prism, flipped diagonals": shapes.paper_prism(stations=41, flip_diagonals=True),
+    }
+    for name, (v, f) in shaped.items():
+        yield name, hs.Hull.from_arrays(v, f, name=name)
+
+
+BODIES = dict(_bodies())
+
+
+def _compare(ref, got) -> float:
+    """The largest area difference of two cuts (cutter units squared), their contours'
+    point counts and orientations asserted equal."""
+    worst = 0.0
+    assert len(ref) == len(got)
+    for a, b in zip(ref, got, strict=True):
+        assert sorted(len(c) for c in a) == sorted(len(c) for c in b)
+        assert sorted(_area(c) > 0 for c in a) == sorted(_area(c) > 0 for c in b)
+        worst = max(worst, abs(sum(map(_area, a)) - sum(map(_area, b))))
+        for c in b:  # closed rings of distinct consecutive points
+            step = np.abs(c - np.roll(c, 1, axis=0)).max(axis=1)
+            assert step.min() > MERGE * CUTTER_SIZE
+    return worst
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_kernel_contours_equal_manifold3d_on_every_body(name):
+    hull = BODIES[name]
+    index = plane_index(hull)
+    for pitch in PITCHES:
+        fr = frame(hull, pitch)
+        x = np.linspace(fr.keel.x[0], fr.keel.x[-1], 33)
+        x[0] -= 1e-3 * hull.size  # a plane missing the body: no contour
+        ref = fr.cut(x, "manifold3d")
+        got = index.cut(x, fr.pitch, fr.cg, fr._matrix, MERGE * CUTTER_SIZE)
+        assert got[0] == () and ref[0] == ()
+        assert _compare(ref, got) <= AREA_TOL * CUTTER_SIZE**2
+
+
+def test_the_frame_cuts_by_either_cutter():
+    hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    fr = frame(hull, 0.1)
+    x = np.linspace(fr.keel.x[0], fr.keel.x[-1], 9)[1:-1]
+    # manifold3d's by default; the kernel's by cutter="exact", equal to it to its grid
+    a, b = fr.cut(x), hull.manifold.transform(fr._matrix)
+    ref = [tuple(b.slice(float((xi - fr._offset[2]) * fr.scale)).to_polygons()) for xi in x]
+    assert all(np.array_equal(p, q) for sa, sb in zip(a, ref, strict=True)
+               for p, q in zip(sa, sb, strict=True))  # fmt: skip
+    kernel = plane_index(hull).cut(x, fr.pitch, fr.cg, fr._matrix, MERGE * CUTTER_SIZE)
+    got = fr.cut(x, "exact")
+    assert all(np.array_equal(p, q) for sa, sb in zip(got, kernel, strict=True)
+               for p, q in zip(sa, sb, strict=True))  # fmt: skip
+    assert _compare(a, got) <= AREA_TOL * CUTTER_SIZE**2
+
+
+def test_vertices_exactly_on_the_plane():
+    """A level fuselage cut through its rings of vertices (every ring's distance to the
+    plane exactly zero): the kernel keeps the vertices themselves, each once."""
+    v, f = shapes.fuselage(stations=30, points=20)
+    hull = hs.Hull.from_arrays(v, f, name="rings")
+    fr = frame(hull, 0.0)
+    ring_x, count = np.unique(hull.vertices[:, 0], return_counts=True)
+    ring_x = ring_x[count >= 20]  # the rings of 20 points
+    x = ring_x[3:-3:4] - fr.cg[0]
+    assert len(x) >= 4
+    got = plane_index(hull).cut(x, 0.0, fr.cg, fr._matrix, MERGE * CUTTER_SIZE)
+    ref = fr.cut(x, "manifold3d")
+    assert _compare(ref, got) <= AREA_TOL * CUTTER_SIZE**2
+    for xi, sec in zip(x, got, strict=True):
+        ring = hull.vertices[hull.vertices[:, 0] - fr.cg[0] == xi]  # d = 0 exactly
+        assert len(sec) == 1 and len(sec[0]) == len(ring)
+
+
+def test_a_plane_through_a_box_face_and_its_corner():
+    """Degenerate planes: through a box's end face, through its edge only (at a pitch of
+    45 degrees, the plane touching the lower aft edge), and beyond the body."""
+    v = np.array([[x, y, z] for x in (0.0, 2.0) for y in (-0.5, 0.5) for z in (0.0, 1.0)])
+    f = np.array([[0, 1, 3], [0, 3, 2], [4, 6, 7], [4, 7, 5], [0, 4, 5], [0, 5, 1],
+                  [2, 3, 7], [2, 7, 6], [0, 2, 6], [0, 6, 4], [1, 5, 7], [1, 7, 3]])  # fmt: skip
+    hull = hs.Hull.from_arrays(v, f, mass=500.0, name="box")
+    index = PlaneIndex.of(hull.vertices, hull.faces)
+    fr = frame(hull, 0.0)
+    g = fr.cg
+    m = fr._matrix
+    # the end faces and the middle: the section is the 1 x 1 square wherever it is cut
+    x = np.array([0.0, 1.0, 2.0]) - g[0]
+    got = index.cut(x, 0.0, g, m, MERGE * CUTTER_SIZE)
+    ref = fr.cut(x[1:2], "manifold3d")
+    assert _compare(ref, got[1:2]) <= AREA_TOL * CUTTER_SIZE**2
+    square = (fr.scale * 1.0) ** 2
+    assert abs(sum(map(_area, got[1])) - square) <= AREA_TOL * CUTTER_SIZE**2
+    # x = 2: the far end face is ahead (d = 0 counts as ahead) and so is cut as the square
+    assert abs(sum(map(_area, got[2])) - square) <= AREA_TOL * CUTTER_SIZE**2
+    # at 45 degrees, the plane through the corner edge (x = 2, z = 0) only: no area
+    pitch = np.pi / 4
+    c, s = np.cos(pitch), np.sin(pitch)
+    edge = (2.0 - g[0]) * c - (0.0 - g[2]) * s
+    far = (2.0 - g[0]) * c - (1.0 - g[2]) * s  # the lowest plane reaching the aft face top
+    got = index.cut(np.array([edge, edge + 1.0]), pitch, g, m, MERGE * CUTTER_SIZE)
+    assert got[0] == () and got[1] == ()
+    assert edge > far
+
+
+def test_the_waterline_table_builds_from_the_kernel_outline():
+    hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    frame(hull, 0.05)
+    fr = frame(hull, 0.06)
+    _, mids = fr.fixed_stations(32)
+    tol = 1e-9 * hull.size
+    for cutter in ("exact", "manifold3d"):
+        outline = hs.kernel.Outline.of(fr.cut(mids, cutter), tol, fr.origin, fr.scale)
+        level = float(np.nanmin(np.where(np.isfinite(outline.zmin), outline.zmin, np.nan)))
+        table = WaterlineTable.of(outline, level + 0.3, tol, "wedge")
+        assert table is not None
+    exact = hs.kernel.Outline.of(fr.cut(mids, "exact"), tol, fr.origin, fr.scale)
+    ref = hs.kernel.Outline.of(fr.cut(mids, "manifold3d"), tol, fr.origin, fr.scale)
+    np.testing.assert_allclose(exact.area, ref.area, rtol=0, atol=AREA_TOL * hull.size**2)
+
+
+def test_free_pitch_history_equals_a_manifold3d_only_run():
+    runs = {}
+    for cutter in ("manifold3d", "exact", None):  # None: the kernel's, free pitch's default
+        hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+        runs[cutter] = hs.simulate(
+            hull, -1.0, 0.04, dt=5e-4, pitch=0.1, forward_speed=19.0, slices=32,
+            slicing="fixed", stop_on=(), free_pitch=True, cutter=cutter,
+        )  # fmt: skip
+    a, b = runs["manifold3d"], runs["exact"]
+    assert len(a) == len(b) == 81
+    np.testing.assert_array_equal(runs[None].force, b.force)
+    peak = np.max(np.abs(a.force))
+    assert np.max(np.abs(np.asarray(b.force) - a.force)) <= 1e-9 * peak
+    assert np.max(np.abs(np.asarray(b.moment) - a.moment)) <= 1e-9 * np.max(np.abs(a.moment))
+    assert np.max(np.abs(np.asarray(b.pitch) - a.pitch)) <= 1e-12
+
+
+def test_wetted_slicing_at_a_new_pitch_equals_manifold3d():
+    hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    motion = hs.Motion(-1.0, 19.0)
+    exact = hs.ForceModel(hull, slices=40, cutter="exact")
+    ref = hs.ForceModel(hull, slices=40)  # manifold3d's, the default
+    for pitch in (0.04, 0.05, 0.1):
+        for draft in (0.01, 0.05):
+            a, b = exact(hs.Pose(draft, pitch), motion), ref(hs.Pose(draft, pitch), motion)
+            assert abs(float(a.total - b.total)) <= 1e-9 * abs(float(b.total))
+
+
+def test_an_unknown_cutter_is_refused():
+    assert check_cutter("manifold3d") == "manifold3d"
+    with pytest.raises(InputError, match="cutter 'clipper' is unknown"):
+        hs.ForceModel(BODIES["wedge_prism.stl"], cutter="clipper")
+
+
+def _kernel_cuts(hull, path: str):
+    index = plane_index(hull)
+    out = []
+    for pitch in (-0.2, 0.1, 0.45):
+        fr = frame(hull, pitch)
+        x = np.linspace(fr.keel.x[0], fr.keel.x[-1], 21)
+        out.append(index.cut(x, fr.pitch, fr.cg, fr._matrix, MERGE * CUTTER_SIZE, path=path))
+    return out
+
+
+def _largest_difference(a, b) -> float:
+    """The largest coordinate difference of two kernels' cuts (cutter units), their
+    contours' counts and point counts asserted equal."""
+    worst = 0.0
+    for cut_a, cut_b in zip(a, b, strict=True):
+        for sa, sb in zip(cut_a, cut_b, strict=True):
+            assert [len(c) for c in sa] == [len(c) for c in sb]
+            for p, q in zip(sa, sb, strict=True):
+                worst = max(worst, float(np.abs(p - q).max()))
+    return worst
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
+def test_the_loops_for_a_compiler_equal_numpy(name):
+    """The loops of hullslice.planecut_loops, run uncompiled (numba's input), against
+    numpy's path: the same points to 1e-12 of the body's size."""
+    hull = BODIES[name]
+    diff = _largest_difference(_kernel_cuts(hull, "python"), _kernel_cuts(hull, "numpy"))
+    assert diff <= 1e-12 * CUTTER_SIZE
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
+def test_the_compiled_path_equals_numpy(name):
+    if not planecut_loops.available():
+        pytest.skip("numba is not installed (.[fast]) or HULLSLICE_NUMBA=0")
+    hull = BODIES[name]
+    diff = _largest_difference(_kernel_cuts(hull, "numba"), _kernel_cuts(hull, "numpy"))
+    assert diff <= 1e-12 * CUTTER_SIZE
+
+
+def test_import_hullslice_leaves_numba_unimported():
+    code = "import sys, hullslice, hullslice.planecut; print('numba' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip() == "False"
+
+
+def test_an_unknown_loops_path_is_refused():
+    hull = BODIES["wedge_prism.stl"]
+    fr = frame(hull, 0.1)
+    with pytest.raises(ValueError, match="path 'gpu' is unknown"):
+        plane_index(hull).cut(np.zeros(1), fr.pitch, fr.cg, fr._matrix, path="gpu")
