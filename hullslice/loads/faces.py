@@ -48,6 +48,7 @@ from ..caching import Entry, Once
 from ..errors import InputError
 from ..forces import ForceResult
 from .record import SectionRecord
+from .triangles import clip, mean_positive, split
 
 __all__ = ["FaceGeometry", "FacePressures", "face_geometry", "face_pressures"]
 
@@ -213,9 +214,7 @@ def face_pressures(hull, state: SectionRecord | ForceResult, t: float = 0.0) -> 
     pressure = np.where(footprint > STEEP * area, load / np.where(footprint > 0, footprint, 1), 0.0)
     if rec.hydrostatic > 0.0:
         inside = _in_slices(rec, corners.mean(axis=1)[:, 0])
-        pressure = pressure + np.where(
-            inside, rec.hydrostatic * _mean_positive(-corners[..., 2]), 0
-        )
+        pressure = pressure + np.where(inside, rec.hydrostatic * mean_positive(-corners[..., 2]), 0)
     force = -(pressure * area)[:, None] * normal
     return FacePressures(rec.t, pressure, force, corners.mean(axis=1), rec.x_cg, rec.z_cg)
 
@@ -347,10 +346,10 @@ def _dynamic_load(rec: SectionRecord, corners: np.ndarray, normal: np.ndarray) -
     dz = np.ptp(sub[..., 2], axis=1)
     # the faces' projections, cut to the slices' extent along X
     xs_, ys_, parent = sub[..., 0], sub[..., 1], np.arange(len(idx))
-    xs_, ys_, parent = _clip(xs_, ys_, parent, stop, below=True)
-    xs_, ys_, parent = _clip(xs_, ys_, parent, start, below=False)
+    xs_, ys_, parent = clip(xs_, ys_, parent, stop, below=True)
+    xs_, ys_, parent = clip(xs_, ys_, parent, start, below=False)
     stations, xs, first = _stations(rec)
-    xs_, ys_, parent = _split(xs_, ys_, parent, xs)  # pieces between stations: exact in X
+    xs_, ys_, parent = split(xs_, ys_, parent, xs)  # pieces between stations: exact in X
     xc = xs_.mean(axis=1)
     j = np.clip(np.searchsorted(xs, xc, side="right") - 1, 0, len(xs) - 1)
     j1 = np.minimum(j + 1, len(xs) - 1)
@@ -384,69 +383,6 @@ def _scales(rec: SectionRecord, xs: np.ndarray, first: np.ndarray, start: float,
     weight[-1] += stop - xs[-1]
     with np.errstate(invalid="ignore", divide="ignore"):
         return np.where(weight > 0, rec.dx[first] / weight, 1.0)
-
-
-def _split(x: np.ndarray, y: np.ndarray, parent: np.ndarray, lines: np.ndarray):
-    """Triangles ``(x, y)`` cut at every ``x = line`` they cross (``lines`` sorted), so
-    that each piece lies between two neighbouring lines: each round cuts the triangles
-    that cross a line at the first line they cross."""
-    out = []
-    while len(x):
-        first = np.searchsorted(lines, x.min(axis=1), side="right")  # first line above
-        last = np.searchsorted(lines, x.max(axis=1), side="left")  # lines below the top
-        cross = last > first
-        out.append((x[~cross], y[~cross], parent[~cross]))
-        if not cross.any():
-            break
-        x, y, parent = x[cross], y[cross], parent[cross]
-        at = lines[first[cross]]
-        out.append(_clip(x, y, parent, at, below=True))  # crosses no line
-        x, y, parent = _clip(x, y, parent, at, below=False)
-    return (
-        np.concatenate([o[0] for o in out]).reshape(-1, 3),
-        np.concatenate([o[1] for o in out]).reshape(-1, 3),
-        np.concatenate([o[2] for o in out]),
-    )
-
-
-def _clip(x: np.ndarray, y: np.ndarray, parent: np.ndarray, bound, below: bool):
-    """Triangles ``(x, y)`` (p, 3) cut to the side ``x <= bound`` (``below``) or
-    ``x >= bound`` (a number, or one per triangle): the triangles inside, and the pieces
-    (one or two triangles) of those that cross, with their ``parent``."""
-    bounds = np.broadcast_to(np.asarray(bound, dtype=np.float64), (len(x),))
-    inside = (x <= bounds[:, None]) if below else (x >= bounds[:, None])
-    count = inside.sum(axis=1)
-    keep = count == 3
-    out = [(x[keep], y[keep], parent[keep])]
-    for k in (1, 2):  # one corner inside: a triangle; two: a quadrilateral, two triangles
-        rows = np.nonzero(count == k)[0]
-        if not len(rows):
-            continue
-        # roll each row so that its lone corner (inside for k = 1, outside for 2) is first
-        lone = inside[rows] if k == 1 else ~inside[rows]
-        shift = np.argmax(lone, axis=1)
-        order = (shift[:, None] + np.arange(3)) % 3
-        xr = np.take_along_axis(x[rows], order, axis=1)
-        yr = np.take_along_axis(y[rows], order, axis=1)
-        b = bounds[rows]
-        t1 = (b - xr[:, 0]) / (xr[:, 1] - xr[:, 0])
-        t2 = (b - xr[:, 0]) / (xr[:, 2] - xr[:, 0])
-        p1 = (b, yr[:, 0] + t1 * (yr[:, 1] - yr[:, 0]))
-        p2 = (b, yr[:, 0] + t2 * (yr[:, 2] - yr[:, 0]))
-        if k == 1:
-            tris = [((xr[:, 0], p1[0], p2[0]), (yr[:, 0], p1[1], p2[1]))]
-        else:
-            tris = [
-                ((p1[0], xr[:, 1], xr[:, 2]), (p1[1], yr[:, 1], yr[:, 2])),
-                ((p1[0], xr[:, 2], p2[0]), (p1[1], yr[:, 2], p2[1])),
-            ]
-        for tx, ty in tris:
-            out.append((np.stack(tx, axis=1), np.stack(ty, axis=1), parent[rows]))
-    return (
-        np.concatenate([o[0] for o in out]).reshape(-1, 3),
-        np.concatenate([o[1] for o in out]).reshape(-1, 3),
-        np.concatenate([o[2] for o in out]),
-    )
 
 
 def _entry_of(rec: SectionRecord, station: np.ndarray, first: np.ndarray, y: np.ndarray):
@@ -485,17 +421,3 @@ def _on_contour(tables, entry, rec, y, z, dz) -> np.ndarray:
     contour = height[entry, i]
     top = height[entry].max(axis=1)
     return z - rec.keel_z[entry] <= contour + HEIGHT_MARGIN * top + dz
-
-
-def _mean_positive(d: np.ndarray) -> np.ndarray:
-    """(m,) the mean of ``max(d, 0)`` over each plane triangle whose corners have the
-    values ``d`` (m, 3) (a linear field), exactly."""
-    s = -np.sort(-d, axis=1)  # descending
-    a, b, c = s[:, 0], s[:, 1], s[:, 2]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        one = a**3 / (3.0 * (a - b) * (a - c))
-        two = (a + b + c) / 3.0 - c**3 / (3.0 * (a - c) * (b - c))
-    out = np.where(c >= 0, (a + b + c) / 3.0, 0.0)
-    out = np.where((b <= 0) & (a > 0), np.nan_to_num(one), out)
-    out = np.where((c < 0) & (b > 0), np.nan_to_num(two), out)
-    return out
