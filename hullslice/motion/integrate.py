@@ -47,6 +47,7 @@ from ..forces.momentum import calm_girth
 from ..geometry import frame
 from ..limits import no_mass
 from ..mesh import Hull
+from ..renamed import renamed_keywords
 from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
 from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
 from ..solvers.registry import get_solver
@@ -160,9 +161,11 @@ class ForceModel:
             "slicing": self.slicing,
         }
 
-    def draft(self, z_cg: float, pitch: float) -> float:
-        """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m)."""
-        return max(0.0, -(frame(self.hull, pitch).lowest + z_cg))
+    @renamed_keywords(pitch="pitch_rad")
+    def draft(self, z_cg: float, pitch_rad: float) -> float:
+        """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m),
+        pitched by ``pitch_rad`` (rad, nose up)."""
+        return max(0.0, -(frame(self.hull, pitch_rad).lowest + z_cg))
 
 
 def _positive(value: float, what: str, unit: str) -> float:
@@ -175,6 +178,19 @@ def _positive(value: float, what: str, unit: str) -> float:
     return v
 
 
+def _in_rad(rad: float, deg: float | None, rad_name: str, deg_name: str) -> float:
+    """An angle given in rad or in degrees (not both), in rad."""
+    if deg is None:
+        return rad
+    if rad != 0.0:
+        raise InputError(f"give {rad_name}= or {deg_name}=, not both")
+    try:
+        return math.radians(float(deg))
+    except (TypeError, ValueError):
+        raise InputError(f"{deg_name} {deg!r} is not a number (in deg)") from None
+
+
+@renamed_keywords(pitch="pitch_rad", pitch_rate="pitch_rate_rad_s")
 def simulate(
     hull: Hull,
     velocity: float,
@@ -182,9 +198,11 @@ def simulate(
     *,
     dt: float | None = None,
     draft: float = 0.0,
-    pitch: float = 0.0,
+    pitch_rad: float = 0.0,
     forward_speed: float = 0.0,
-    pitch_rate: float = 0.0,
+    pitch_rate_rad_s: float = 0.0,
+    pitch_deg: float | None = None,
+    pitch_rate_deg_s: float | None = None,
     free_pitch: bool = False,
     free_surge: bool = False,
     slices: int = 32,
@@ -215,13 +233,16 @@ def simulate(
         through the impact.
     draft : float
         Initial draft of the lowest point in m (default 0: first contact).
-    pitch : float
-        Initial pitch in rad, nose up (default 0).
+    pitch_rad : float
+        Initial pitch in rad, nose up (default 0). Formerly ``pitch=`` (deprecated).
     forward_speed : float
         Initial forward speed in m/s (default 0).
-    pitch_rate : float
+    pitch_rate_rad_s : float
         Initial pitch rate in rad/s, nose up (default 0); kept constant unless
-        ``free_pitch``.
+        ``free_pitch``. Formerly ``pitch_rate=`` (deprecated).
+    pitch_deg, pitch_rate_deg_s : float, optional
+        The initial pitch (deg) and pitch rate (deg/s) in degrees instead, as on the command
+        line; give each angle in one unit only.
     free_pitch : bool
         Integrate the pitch from the moment about the centre of gravity.
     free_surge : bool
@@ -260,6 +281,8 @@ def simulate(
     model = ForceModel(
         hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing
     )
+    pitch = _in_rad(pitch_rad, pitch_deg, "pitch_rad", "pitch_deg")
+    pitch_rate = _in_rad(pitch_rate_rad_s, pitch_rate_deg_s, "pitch_rate_rad_s", "pitch_rate_deg_s")
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
     air0 = aero_model(aero)
     if w0 > 0.0 or (w0 == 0.0 and air0.name == "none"):
@@ -417,17 +440,17 @@ def prescribed(
     Parameters
     ----------
     hull : Hull
-        The body, with its mass.
-    hull : Hull
         The body; its mass is needed by free-fall solvers only.
     kinematics : mapping
         Arrays ``t`` (s, increasing), ``draft`` (m, draft of the lowest point, >= 0) and
         ``velocity`` (m/s, vertical velocity of the centre of gravity, negative down),
-        optionally ``acceleration`` (m/s^2, up), ``pitch`` (rad, nose up), ``pitch_rate``
-        (rad/s), ``pitch_acceleration`` (rad/s^2), ``forward_speed`` (m/s) and
-        ``forward_acceleration`` (m/s^2); e.g. from :func:`read_kinematics`. The former
-        keys ``penetration``, ``pitch_deg``, ``pitch_rate_deg_s`` and
-        ``pitch_acceleration_deg_s2`` (degrees) are deprecated. A momentum-form
+        optionally ``acceleration`` (m/s^2, up), ``pitch_rad`` (rad, nose up),
+        ``pitch_rate_rad_s`` (rad/s), ``pitch_acceleration_rad_s2`` (rad/s^2),
+        ``forward_speed`` (m/s) and ``forward_acceleration`` (m/s^2); e.g. from
+        :func:`read_kinematics`. The angles may be given in degrees instead (``pitch_deg``,
+        ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``); the former keys
+        ``penetration``, ``pitch``, ``pitch_rate`` and ``pitch_acceleration`` (rad) are
+        deprecated. A momentum-form
         solver takes the body's accelerations from the table, or from the derivatives of
         its velocities (:mod:`hullslice.motion.kinematics`).
     stop_on : iterable of str
@@ -453,8 +476,8 @@ def prescribed(
     t_all = kin["t"]
     g = model.fluid.g
     for i, t in enumerate(t_all):
-        pose = Pose(kin["draft"][i], kin["pitch"][i])
-        motion = Motion(kin["velocity"][i], kin["forward_speed"][i], kin["pitch_rate"][i])
+        pose = Pose(kin["draft"][i], kin["pitch_rad"][i])
+        motion = Motion(kin["velocity"][i], kin["forward_speed"][i], kin["pitch_rate_rad_s"][i])
         if accelerations is not None:
             r = model(pose, motion, accelerations[i])
             acc = accelerations[i].vertical
