@@ -81,7 +81,7 @@ def test_a_pitch_damping_damps_at_the_rate_of_its_closed_form():
     theta0 = math.radians(2.0)
     t_end = 1.0
     h = hs.simulate(
-        hull, 0.0, t_end, dt=1e-3, pitch=theta0, forward_speed=u, free_pitch=True,
+        hull, 0.0, t_end, dt=1e-3, pitch_rad=theta0, forward_speed=u, free_pitch=True,
         solver="zarnick", aero=model, fluid=hs.Fluid(rho=1e-9), stop_on=(),
     )  # fmt: skip
     omega2 = -qsc * cm_alpha / inertia
