@@ -13,7 +13,7 @@ from __future__ import annotations
 import functools
 import warnings
 from collections.abc import Callable
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 from .errors import InputError
 
@@ -39,8 +39,9 @@ def renamed_keywords(**former: str) -> Callable[[T], T]:
 
     def decorate(obj: T) -> T:
         is_class = isinstance(obj, type)
-        target: Callable[..., Any] = obj.__init__ if is_class else obj  # type: ignore[misc]
-        where = obj.__qualname__  # type: ignore[attr-defined]
+        subject = cast(Any, obj)
+        target: Callable[..., Any] = subject.__init__ if is_class else subject
+        where: str = getattr(obj, "__qualname__", "")
 
         @functools.wraps(target)
         def wrapper(*args: Any, **kw: Any) -> Any:
@@ -58,7 +59,7 @@ def renamed_keywords(**former: str) -> Callable[[T], T]:
             return target(*args, **kw)
 
         if is_class:
-            obj.__init__ = wrapper  # type: ignore[misc]
+            subject.__init__ = wrapper
             return obj
         return wrapper  # type: ignore[return-value]
 

@@ -155,3 +155,15 @@ def test_the_former_names_of_the_methods_and_of_study_warn(paper_hull):
         assert study.pitch == study.pitch_rad
     with pytest.warns(DeprecationWarning, match="read pitch_rate_rad_s"):
         assert study.pitch_rate == study.pitch_rate_rad_s
+
+
+def test_the_mass_on_planes_takes_the_former_pitch_keyword():
+    dist = hs.MassDistribution(
+        x=np.array([0.0, 1.0, 2.0]), mass_per_metre=np.array([1.0, 2.0, 3.0])
+    )
+    x_rel = np.array([-0.5, 0.0, 0.5])
+    now = dist.on_planes(x_rel, pitch_rad=0.1, cg=(1.0, 0.2), line_z=0.0)
+    with pytest.warns(DeprecationWarning, match="MassDistribution.on_planes: the keyword pitch="):
+        before = dist.on_planes(x_rel, pitch=0.1, cg=(1.0, 0.2), line_z=0.0)
+    np.testing.assert_allclose(before, now, rtol=1e-12)
+    np.testing.assert_array_equal(dist.on_planes(x_rel, 0.1, (1.0, 0.2), 0.0), now)
