@@ -167,3 +167,14 @@ def test_the_mass_on_planes_takes_the_former_pitch_keyword():
         before = dist.on_planes(x_rel, pitch=0.1, cg=(1.0, 0.2), line_z=0.0)
     np.testing.assert_allclose(before, now, rtol=1e-12)
     np.testing.assert_array_equal(dist.on_planes(x_rel, 0.1, (1.0, 0.2), 0.0), now)
+
+
+def test_results_give_their_angles_in_degrees_too(paper_hull):
+    h = hs.simulate(
+        paper_hull, -4.0, 0.004, dt=2e-4, slices=8, pitch_deg=3.0, pitch_rate_deg_s=20.0
+    )
+    np.testing.assert_allclose(h.pitch_deg, np.degrees(h.pitch), rtol=1e-15)
+    np.testing.assert_allclose(h.pitch_rate_deg_s, np.degrees(h.pitch_rate), rtol=1e-15)
+    assert h.pitch_deg[0] == pytest.approx(3.0, rel=1e-14)
+    s = hs.cut(paper_hull, hs.Pose(0.03, math.radians(2.0)), slices=8)
+    assert s.pitch_deg == pytest.approx(2.0, rel=1e-14)

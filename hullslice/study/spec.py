@@ -337,9 +337,8 @@ class Study:
     @property
     def slice_counts(self) -> tuple[int, ...]:
         """The slice counts, the command's default when none is given."""
-        if self.slices is not None:
-            return self.slices
-        return (16, 32, 64) if self.command == "force" else (32,)
+        default = (16, 32, 64) if self.command == "force" else (32,)
+        return self.slices if self.slices is not None else default
 
     @property
     def options(self) -> dict[str, Any]:
