@@ -372,7 +372,7 @@ CHILD = textwrap.dedent(
     hull = hs.load_hull(sys.argv[1], mass=60000.0)
     t_load = time.perf_counter() - t0
     t0 = time.perf_counter()
-    h = hs.simulate(hull, -1.5, 0.4, dt=0.0002, pitch=0.08, forward_speed=60.0,
+    h = hs.simulate(hull, -1.5, 0.4, dt=0.0002, pitch_rad=0.08, forward_speed=60.0,
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
     peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
@@ -453,7 +453,7 @@ def step_runs(hull, repeat: int) -> tuple[dict[str, float], int]:
         os.environ["HULLSLICE_NUMBA"] = "1" if numba else "0"
         body = hull if free else held_hull
         try:
-            return hs.simulate(body, -1.5, steps * dt, dt=dt, pitch=0.08, forward_speed=60.0,
+            return hs.simulate(body, -1.5, steps * dt, dt=dt, pitch_rad=0.08, forward_speed=60.0,
                                slices=128, slicing="fixed", stop_on=(), free_pitch=free,
                                cutter=cutter)  # fmt: skip
         finally:

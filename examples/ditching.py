@@ -51,7 +51,7 @@ def main() -> None:
                 -1.5,
                 args.t_end,
                 dt=args.dt,
-                pitch=math.radians(deg),
+                pitch_rad=math.radians(deg),
                 forward_speed=60.0,
                 free_pitch=args.free_pitch,
                 slices=args.slices,

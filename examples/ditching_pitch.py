@@ -37,7 +37,7 @@ def run(solver: str, t_end: float) -> hs.History:
     hull = hs.load_hull(ROOT / "meshes" / "fuselage_full.obj", mass=60000.0)
     with terminal_progress(solver) as progress:  # a progress line on a terminal's stderr
         return hs.simulate(
-            hull, -1.5, t_end, dt=0.004, pitch=math.radians(8.0), forward_speed=60.0,
+            hull, -1.5, t_end, dt=0.004, pitch_rad=math.radians(8.0), forward_speed=60.0,
             free_pitch=True, slices=64, slicing="fixed", solver=solver, stop_on=(),
             progress=progress,
         )  # fmt: skip

@@ -38,7 +38,7 @@ def main() -> None:
     args = ap.parse_args()
     hull = hs.load_hull(ROOT / "meshes" / "fuselage_full.obj", mass=60000.0)
     h = hs.simulate(
-        hull, -1.5, args.t_end, dt=0.002, pitch=math.radians(8.0), forward_speed=60.0,
+        hull, -1.5, args.t_end, dt=0.002, pitch_rad=math.radians(8.0), forward_speed=60.0,
         free_pitch=True, slices=64, slicing="fixed", solver=hs.get_solver("mlm", gravity=True),
         fluid=hs.Fluid.sea(), aero="weight", friction=True, sections_every=args.every,
     )  # fmt: skip

@@ -9,7 +9,9 @@ solvers through plugins), and the 2D forces are summed along the body.
     >>> study = hs.convergence(hull, 0.0383, -3.4943, slices=(16, 32, 64))  # draft, velocity
     >>> history = hs.simulate(hull, -4.0, 0.03, dt=1e-4)  # free fall from -4 m/s
 
-All quantities are SI: m, kg, s, N; angles in rad inside the library.
+All quantities are SI: m, kg, s, N; angles in rad inside the library, under parameter
+names that say so (``Pose(draft, pitch_rad)``, ``simulate(..., pitch_rad=)`` or
+``pitch_deg=``); the command line, case files and :class:`Study` take degrees.
 """
 
 from . import loads

@@ -32,6 +32,7 @@ from .limits import (
     check_mass_on_body,
 )
 from .paths import printable
+from .renamed import renamed_keywords
 from .tables import column_values, header_text, read_csv
 
 __all__ = [
@@ -226,11 +227,12 @@ class MassDistribution:
             out = out + np.where((x >= lo) & (x <= hi), pm / (hi - lo), 0.0)
         return out
 
+    @renamed_keywords(pitch="pitch_rad")
     def on_planes(
-        self, x_rel, pitch: float, cg, line_z: float, dx: np.ndarray | None = None
+        self, x_rel, pitch_rad: float, cg, line_z: float, dx: np.ndarray | None = None
     ) -> np.ndarray:
         """Mass per metre of earth ``X`` on the planes ``X - X_g = x_rel`` (m) of a body pitched
-        by ``pitch`` (rad, nose up) about ``cg = (x, z)`` (m), kg/m.
+        by ``pitch_rad`` (rad, nose up) about ``cg = (x, z)`` (m), kg/m.
 
         Each part of the distribution lies at its own height ``z``: a plane meets it at body
         ``x = x_g + (x_rel + (z - z_g) sin(pitch)) / cos(pitch)``, and a density of ``m`` per
@@ -240,6 +242,7 @@ class MassDistribution:
         thick they are.
         """
         x_rel = np.asarray(x_rel, dtype=np.float64)
+        pitch = pitch_rad
         c, s = np.cos(pitch), np.sin(pitch)
         xg, zg = float(cg[0]), float(cg[1])
         zl = self.line_z if self.line_z is not None else line_z

@@ -2,6 +2,12 @@
 
 Signs follow the earth frame: ``z`` up, calm water at ``z = 0``; a vertical velocity is
 negative when the body moves down into the water; forces and accelerations are positive up.
+
+Angles are in rad, and every angle field says so in its name: ``Pose.pitch_rad``,
+``Motion.pitch_rate_rad_s``, ``Acceleration.pitch_rad_s2``. The former keywords ``pitch=``
+and ``pitch_rate=`` are still taken for one release, with a :class:`DeprecationWarning`
+(:func:`~hullslice.renamed.renamed_keywords`); the attributes ``pitch`` and ``pitch_rate``
+read the same values in rad, ``pitch_deg`` and ``pitch_rate_deg_s`` in degrees.
 """
 
 from __future__ import annotations
@@ -12,6 +18,7 @@ from dataclasses import dataclass
 from .constants import NU_SEA, NU_WATER, P_ATM, P_VAPOUR, RHO_SEA, RHO_WATER, G
 from .errors import InputError
 from .limits import check_pitch
+from .renamed import renamed_keywords
 
 __all__ = ["Acceleration", "Fluid", "Motion", "Pose"]
 
@@ -26,6 +33,7 @@ def _finite(value, what: str, unit: str) -> float:
     return v
 
 
+@renamed_keywords(pitch="pitch_rad")
 @dataclass(frozen=True)
 class Pose:
     """The position of the body relative to the calm water.
@@ -35,13 +43,24 @@ class Pose:
     draft : float
         Depth of the body's lowest point below the calm water, in m (``>= 0``; ``0`` is
         first contact).
-    pitch : float
+    pitch_rad : float
         Pitch angle in rad, positive nose up (the body's forward ``x`` axis raised above
         the horizontal); the body turns about its centre of gravity. Default 0 (level).
+        Formerly ``pitch=`` (deprecated).
     """
 
     draft: float
-    pitch: float = 0.0
+    pitch_rad: float = 0.0
+
+    @property
+    def pitch(self) -> float:
+        """The pitch angle in rad (:attr:`pitch_rad`)."""
+        return self.pitch_rad
+
+    @property
+    def pitch_deg(self) -> float:
+        """The pitch angle in degrees."""
+        return math.degrees(self.pitch_rad)
 
     def __post_init__(self) -> None:
         d = _finite(self.draft, "draft", "m")
@@ -50,11 +69,12 @@ class Pose:
                 f"draft {self.draft!r} m is negative: the draft is the depth of the body's "
                 "lowest point below the water, 0 at first contact"
             )
-        pitch = check_pitch(_finite(self.pitch, "pitch", "rad"))
+        pitch = check_pitch(_finite(self.pitch_rad, "pitch", "rad"))
         object.__setattr__(self, "draft", d)
-        object.__setattr__(self, "pitch", pitch)
+        object.__setattr__(self, "pitch_rad", pitch)
 
 
+@renamed_keywords(pitch_rate="pitch_rate_rad_s")
 @dataclass(frozen=True)
 class Motion:
     """The velocity of the body (of its centre of gravity, and its pitch rate).
@@ -65,22 +85,36 @@ class Motion:
         Vertical velocity in m/s, negative downward (into the water).
     forward_speed : float
         Horizontal velocity along the body's forward direction in m/s (default 0).
-    pitch_rate : float
-        Rate of change of the pitch in rad/s, positive nose up (default 0).
+    pitch_rate_rad_s : float
+        Rate of change of the pitch in rad/s, positive nose up (default 0). Formerly
+        ``pitch_rate=`` (deprecated).
     """
 
     velocity: float
     forward_speed: float = 0.0
-    pitch_rate: float = 0.0
+    pitch_rate_rad_s: float = 0.0
+
+    @property
+    def pitch_rate(self) -> float:
+        """The pitch rate in rad/s (:attr:`pitch_rate_rad_s`)."""
+        return self.pitch_rate_rad_s
+
+    @property
+    def pitch_rate_deg_s(self) -> float:
+        """The pitch rate in degrees per second."""
+        return math.degrees(self.pitch_rate_rad_s)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "velocity", _finite(self.velocity, "velocity", "m/s"))
         object.__setattr__(
             self, "forward_speed", _finite(self.forward_speed, "forward speed", "m/s")
         )
-        object.__setattr__(self, "pitch_rate", _finite(self.pitch_rate, "pitch rate", "rad/s"))
+        object.__setattr__(
+            self, "pitch_rate_rad_s", _finite(self.pitch_rate_rad_s, "pitch rate", "rad/s")
+        )
 
 
+@renamed_keywords(pitch="pitch_rad_s2")
 @dataclass(frozen=True)
 class Acceleration:
     """The acceleration of the body (of its centre of gravity, and its pitch).
@@ -91,25 +125,35 @@ class Acceleration:
     ----------
     vertical : float
         Vertical acceleration ``dw/dt`` in m/s^2, positive upward (default 0).
-    pitch : float
-        Pitch acceleration ``dq/dt`` in rad/s^2, positive nose up (default 0).
+    pitch_rad_s2 : float
+        Pitch acceleration ``dq/dt`` in rad/s^2, positive nose up (default 0). Formerly
+        ``pitch=`` (deprecated).
     forward : float
         Forward acceleration ``du/dt`` in m/s^2 (default 0).
     """
 
     vertical: float = 0.0
-    pitch: float = 0.0
+    pitch_rad_s2: float = 0.0
     forward: float = 0.0
 
+    @property
+    def pitch(self) -> float:
+        """The pitch acceleration in rad/s^2 (:attr:`pitch_rad_s2`)."""
+        return self.pitch_rad_s2
+
     def __post_init__(self) -> None:
-        for name, unit in (("vertical", "m/s^2"), ("pitch", "rad/s^2"), ("forward", "m/s^2")):
+        for name, what, unit in (
+            ("vertical", "vertical", "m/s^2"),
+            ("pitch_rad_s2", "pitch", "rad/s^2"),
+            ("forward", "forward", "m/s^2"),
+        ):
             object.__setattr__(
-                self, name, _finite(getattr(self, name), f"{name} acceleration", unit)
+                self, name, _finite(getattr(self, name), f"{what} acceleration", unit)
             )
 
     def as_array(self) -> tuple[float, float, float]:
         """``(dw/dt, dq/dt, du/dt)``: the order of the equations of motion."""
-        return (self.vertical, self.pitch, self.forward)
+        return (self.vertical, self.pitch_rad_s2, self.forward)
 
 
 @dataclass(frozen=True)

@@ -51,7 +51,7 @@ def test_lift_equal_to_the_weight_holds_a_body_at_the_surface():
     np.testing.assert_allclose(h.air_force, hull.mass * g, rtol=1e-12)
     assert np.all(h.acceleration == pytest.approx(0.0, abs=1e-12))
     # pitched 4 deg on a level path: lift equal to the weight at touchdown
-    h = hs.simulate(hull, 0.0, 0.2, dt=0.002, forward_speed=u, pitch=math.radians(4.0),
+    h = hs.simulate(hull, 0.0, 0.2, dt=0.002, forward_speed=u, pitch_rad=math.radians(4.0),
                     solver="mlm", aero="weight", stop_on=())  # fmt: skip
     assert np.all(h.draft == 0.0) and np.all(h.force == 0.0)
     np.testing.assert_allclose(h.air_force, hull.mass * g, rtol=1e-12)
@@ -81,7 +81,7 @@ def test_a_pitch_damping_damps_at_the_rate_of_its_closed_form():
     theta0 = math.radians(2.0)
     t_end = 1.0
     h = hs.simulate(
-        hull, 0.0, t_end, dt=1e-3, pitch=theta0, forward_speed=u, free_pitch=True,
+        hull, 0.0, t_end, dt=1e-3, pitch_rad=theta0, forward_speed=u, free_pitch=True,
         solver="zarnick", aero=model, fluid=hs.Fluid(rho=1e-9), stop_on=(),
     )  # fmt: skip
     omega2 = -qsc * cm_alpha / inertia
@@ -196,7 +196,7 @@ def test_a_planing_run_out_ends_when_the_body_has_settled():
     # its weight and stays there; the run ends once it has been still for 0.25 s
     v, f = shapes.wedge_prism(length=2.0, beam=0.5, deadrise_deg=20.0, stations=3, sides=0.5)
     hull = hs.Hull.from_arrays(v, f, mass=40.0)
-    h = hs.simulate(hull, -0.3, 10.0, dt=0.005, pitch=math.radians(4.0), forward_speed=8.0,
+    h = hs.simulate(hull, -0.3, 10.0, dt=0.005, pitch_rad=math.radians(4.0), forward_speed=8.0,
                     solver="zarnick", slicing="fixed", slices=32)  # fmt: skip
     assert h.stop_reason == "settled" and h.t[-1] < 2.0
     still = h.t >= h.t[-1] - 0.25

@@ -34,6 +34,7 @@ LAYERS: dict[str, int] = {
     "hullslice.xarray_io": 0,
     "hullslice.caching": 0,
     "hullslice.progress": 0,
+    "hullslice.renamed": 0,
     "hullslice.extras": 0,
     # 1 kernel: pure numpy on 2D contours and waterlines
     "hullslice.kernel": 1,

@@ -21,7 +21,7 @@ def peak_force(hull, pitch_deg, slices, dt):
         -1.5,
         0.16,
         dt=dt,
-        pitch=np.radians(pitch_deg),
+        pitch_rad=np.radians(pitch_deg),
         forward_speed=60.0,
         slices=slices,
         stop_on=(),
@@ -60,7 +60,7 @@ def test_zarnick_ditching_with_free_pitch_converges(fuselage):
     # 0.0007 deg on the pitch
     def run(slices, dt):
         return hs.simulate(
-            fuselage, -1.5, 0.16, dt=dt, pitch=np.radians(8.0), forward_speed=60.0,
+            fuselage, -1.5, 0.16, dt=dt, pitch_rad=np.radians(8.0), forward_speed=60.0,
             free_pitch=True, slices=slices, solver="zarnick",
         )  # fmt: skip
 

@@ -67,7 +67,7 @@ def test_a_step_gives_the_same_force_however_the_float_is_meshed_and_sliced():
     x = np.concatenate([np.linspace(0.0, 0.4999, 51), np.linspace(0.5, 1.0, 51)])
     fine = hs.Hull.from_arrays(*stepped_float(x))
     assert coarse.volume == pytest.approx(fine.volume, rel=1e-12)
-    pose, motion = hs.Pose(draft=0.03, pitch=math.radians(6.0)), hs.Motion(-1.0, 10.0)
+    pose, motion = hs.Pose(draft=0.03, pitch_rad=math.radians(6.0)), hs.Motion(-1.0, 10.0)
     forces = []
     for hull in (coarse, fine):
         for slices in (16, 64, 128):

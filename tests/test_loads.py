@@ -110,7 +110,7 @@ def ditching():
     hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=40.0)
     solver = hs.get_solver("mlm", gravity=True)
     history = hs.simulate(
-        hull, -1.0, 0.12, dt=0.002, pitch=math.radians(8.0), forward_speed=15.0,
+        hull, -1.0, 0.12, dt=0.002, pitch_rad=math.radians(8.0), forward_speed=15.0,
         free_pitch=True, slices=32, solver=solver, fluid=hs.Fluid.sea(), sections_every=10,
     )  # fmt: skip
     return hull, history

@@ -34,7 +34,7 @@ def test_pitch_inertia_from_the_mesh_matches_trimesh(fuselage):
 @pytest.mark.parametrize("pitch_deg", [0.0, 6.0])
 def test_mass_per_metre_adds_up_to_the_mass(fuselage, pitch_deg):
     # the whole body under water, cut into many slices: sum M dX = m (midpoint rule)
-    pose = hs.Pose(draft=0.0, pitch=np.radians(pitch_deg))
+    pose = hs.Pose(draft=0.0, pitch_rad=np.radians(pitch_deg))
     height = hs.sections._height_at(fuselage, pose.pitch)
     s = hs.cut(fuselage, hs.Pose(height, pose.pitch), 400)
     total = (s.mass_per_metre * s.dx).sum()

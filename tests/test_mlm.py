@@ -167,7 +167,7 @@ def test_no_section_pulls_harder_than_the_water_can(solver):
     # the bundled fuselage, pitched 6 deg at 60 m/s and sinking at 1.5 m/s, 0.5 m deep:
     # its keel curves up aft, where the inertia term pulls sections down
     hull = hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
-    pose = hs.Pose(draft=0.5, pitch=math.radians(6.0))
+    pose = hs.Pose(draft=0.5, pitch_rad=math.radians(6.0))
     motion = hs.Motion(velocity=-1.5, forward_speed=60.0)
     r = hs.compute_force(hull, pose, motion, slices=64, solver=solver)
     fluid = hs.Fluid()
@@ -241,8 +241,8 @@ def test_the_mlm_carries_no_suction_where_the_keel_curves_up_aft():
     # the bundled fuselage pitched 12 deg at 60 m/s: its tail cone is in the water, whose
     # curvature makes the strip theory's inertia term pull the sections there down
     hull = hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
-    pose = hs.Pose(draft=1.6, pitch=math.radians(12.0))
-    motion = hs.Motion(velocity=2.0, forward_speed=60.0, pitch_rate=math.radians(5.0))
+    pose = hs.Pose(draft=1.6, pitch_rad=math.radians(12.0))
+    motion = hs.Motion(velocity=2.0, forward_speed=60.0, pitch_rate_rad_s=math.radians(5.0))
     kw = {"slices": 24, "acceleration": 0.0}
     m = hs.compute_force(hull, pose, motion, solver="mlm", **kw)
     z = hs.compute_force(hull, pose, motion, solver="zarnick", **kw)

@@ -229,7 +229,7 @@ def test_ditching_with_free_pitch_runs_with_the_added_mass_on_the_left():
     # keel's slope makes a drag
     hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=6.0)
     h = hs.simulate(
-        hull, -0.5, 0.05, dt=5e-4, pitch=math.radians(8.0), forward_speed=6.0,
+        hull, -0.5, 0.05, dt=5e-4, pitch_rad=math.radians(8.0), forward_speed=6.0,
         free_pitch=True, free_surge=True, slices=32, slicing="fixed", solver="wagner",
         stop_on=(),
     )  # fmt: skip
@@ -287,12 +287,15 @@ def test_kinematics_rates_are_derived_or_checked():
         "t": t,
         "draft": 0.005 + 2.0 * t,
         "velocity": np.full_like(t, -2.0),
-        "pitch": np.radians(4.0 + 100.0 * t),
+        "pitch_rad": np.radians(4.0 + 100.0 * t),
         "forward_speed": np.full_like(t, 5.0),
     }
     derived = hs.prescribed(hull, kin, solver="wagner", slices=8)
     given = hs.prescribed(
-        hull, {**kin, "pitch_rate": np.full_like(t, np.radians(100.0))}, solver="wagner", slices=8
+        hull,
+        {**kin, "pitch_rate_rad_s": np.full_like(t, np.radians(100.0))},
+        solver="wagner",
+        slices=8,
     )
     np.testing.assert_allclose(derived.force, given.force, rtol=1e-9)
     bad = {**kin, "forward_acceleration": np.full_like(t, 100.0)}

@@ -180,7 +180,7 @@ def test_draft_past_the_body_height_is_recorded_as_it_is(wedge_hull):
 
 def test_a_run_ends_when_the_pitch_reaches_80_degrees(paper_hull):
     h = simulate(
-        paper_hull, -4.0, 0.2, dt=1e-3, pitch=np.radians(75.0), pitch_rate=np.radians(300.0),
+        paper_hull, -4.0, 0.2, dt=1e-3, pitch_deg=75.0, pitch_rate_deg_s=300.0,
         slices=8, stop_on=(),
     )  # fmt: skip
     assert h.stop_reason == "pitch"
@@ -194,14 +194,14 @@ def _pitched_kinematics(rows: int = 9) -> dict[str, np.ndarray]:
         "t": t,
         "draft": 0.005 + 2.0 * t,
         "velocity": np.full_like(t, -2.0),
-        "pitch": np.radians(4.0 + 100.0 * t),
-        "pitch_rate": np.full_like(t, np.radians(100.0)),
+        "pitch_rad": np.radians(4.0 + 100.0 * t),
+        "pitch_rate_rad_s": np.full_like(t, np.radians(100.0)),
         "forward_speed": np.full_like(t, 5.0),
     }
 
 
 @pytest.mark.parametrize("solver", ["extended-von-karman", "wagner"])
-def test_prescribed_former_keys_in_degrees_give_the_same_history(solver):
+def test_prescribed_former_keys_and_degrees_give_the_same_history(solver):
     v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
     hull = hs.Hull.from_arrays(v, f, mass=5.0)
     kin = _pitched_kinematics()
@@ -210,18 +210,31 @@ def test_prescribed_former_keys_in_degrees_give_the_same_history(solver):
         "t": kin["t"],
         "penetration": kin["draft"],
         "velocity": kin["velocity"],
-        "pitch_deg": 4.0 + 100.0 * kin["t"],
-        "pitch_rate_deg_s": np.full_like(kin["t"], 100.0),
+        "pitch": kin["pitch_rad"],
+        "pitch_rate": kin["pitch_rate_rad_s"],
         "forward_speed": kin["forward_speed"],
     }
     with pytest.warns(DeprecationWarning) as record:
         before = prescribed(hull, old, solver=solver, slices=8)
-    said = {str(w.message).split("'")[1] for w in record}
-    assert said == {"penetration", "pitch_deg", "pitch_rate_deg_s"}
+    said = {tuple(str(w.message).split("'")[1:4:2]) for w in record}
+    assert said == {
+        ("penetration", "draft"), ("pitch", "pitch_rad"), ("pitch_rate", "pitch_rate_rad_s")
+    }  # fmt: skip
     np.testing.assert_allclose(before.force, now.force, rtol=1e-12)
     np.testing.assert_allclose(before.moment, now.moment, rtol=1e-12, atol=1e-12)
+    # the angles in degrees, under the names that say so, without a warning
+    deg = {k: v for k, v in kin.items() if not k.startswith("pitch")}
+    deg["pitch_deg"] = 4.0 + 100.0 * kin["t"]
+    deg["pitch_rate_deg_s"] = np.full_like(kin["t"], 100.0)
+    in_deg = prescribed(hull, deg, solver=solver, slices=8)
+    np.testing.assert_allclose(in_deg.force, now.force, rtol=1e-12)
+    np.testing.assert_allclose(in_deg.moment, now.moment, rtol=1e-12, atol=1e-12)
     with pytest.raises(hs.CaseError, match="give 'draft' only"):
         prescribed(hull, {**kin, "penetration": kin["draft"]}, solver=solver, slices=8)
+    with pytest.raises(hs.CaseError, match="give 'pitch_rad' only"):
+        prescribed(hull, {**kin, "pitch": kin["pitch_rad"]}, solver=solver, slices=8)
+    with pytest.raises(hs.CaseError, match="the angle twice"):
+        prescribed(hull, {**kin, "pitch_deg": deg["pitch_deg"]}, solver=solver, slices=8)
 
 
 def test_history_draft_and_its_former_name(paper_fall):
@@ -238,9 +251,13 @@ def test_kinematics_file_in_degrees_is_read_in_rad(tmp_path):
         "t,draft,velocity,pitch_deg,pitch_rate_deg_s\n0,0.01,-2,4,90\n0.001,0.012,-2,4.09,90\n"
     )
     kin = read_kinematics(path)
-    assert list(kin) == ["t", "draft", "velocity", "pitch", "pitch_rate"]
-    np.testing.assert_array_equal(kin["pitch"], np.radians([4.0, 4.09]))
-    np.testing.assert_array_equal(kin["pitch_rate"], np.radians([90.0, 90.0]))
+    assert list(kin) == ["t", "draft", "velocity", "pitch_rad", "pitch_rate_rad_s"]
+    np.testing.assert_array_equal(kin["pitch_rad"], np.radians([4.0, 4.09]))
+    np.testing.assert_array_equal(kin["pitch_rate_rad_s"], np.radians([90.0, 90.0]))
+    with pytest.warns(DeprecationWarning, match="read 'pitch_rad'"):
+        assert kin["pitch"] is kin["pitch_rad"]
+    with pytest.raises(KeyError):
+        kin["pitch_acceleration"]
 
 
 def test_a_kinematics_file_may_name_the_draft_by_its_former_name(tmp_path):

@@ -26,7 +26,7 @@ def test_pitched_prism_equals_the_prism_meshed_rotated(paper_hull, pitch_deg):
     turned = hs.Hull.from_arrays(
         rotated(paper_hull.vertices, paper_hull.cg, theta), paper_hull.faces, mass=1.0
     )
-    motion = hs.Motion(-3.0, forward_speed=4.0, pitch_rate=0.5)
+    motion = hs.Motion(-3.0, forward_speed=4.0, pitch_rate_rad_s=0.5)
     for draft in (0.01, 0.04):
         a = hs.compute_force(paper_hull, hs.Pose(draft, theta), motion, slices=24)
         b = hs.compute_force(turned, hs.Pose(draft, 0.0), motion, slices=24)
@@ -47,7 +47,7 @@ def test_zero_pitch_and_speed_give_the_level_results(paper_hull):
     )
     np.testing.assert_array_equal(general.forces, level.forces)
     fall = simulate(paper_hull, -4.0, 0.006, dt=2e-4, slices=16)
-    free = simulate(paper_hull, -4.0, 0.006, dt=2e-4, slices=16, pitch=0.0, forward_speed=0.0)
+    free = simulate(paper_hull, -4.0, 0.006, dt=2e-4, slices=16, pitch_rad=0.0, forward_speed=0.0)
     np.testing.assert_array_equal(free.force, fall.force)
     assert fall.mode == "free fall"
 
@@ -128,8 +128,8 @@ def test_free_pitch_history_obeys_its_equations(paper_hull):
         "t": h.t,
         "draft": h.draft,
         "velocity": h.velocity,
-        "pitch": h.pitch,
-        "pitch_rate": h.pitch_rate,
+        "pitch_rad": h.pitch,
+        "pitch_rate_rad_s": h.pitch_rate,
         "forward_speed": h.forward_speed,
     }
     again = prescribed(paper_hull, kin, slices=24)

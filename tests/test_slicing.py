@@ -24,7 +24,7 @@ def test_cached_fixed_slicing_equals_cutting_afresh(paper_hull, pitch_deg, monke
     paper_hull = paper_hull.with_mass(1.0)  # frames of its own
     cached = ForceModel(paper_hull, slices=96, slicing="fixed")
     fresh = ForceModel(paper_hull, slices=96, slicing="fixed", cache=False)
-    motion = hs.Motion(-3.0, forward_speed=2.0, pitch_rate=0.3)
+    motion = hs.Motion(-3.0, forward_speed=2.0, pitch_rate_rad_s=0.3)
     tabulated = []
     for draft in (0.0005, 0.004, 0.02, 0.05, 0.09):
         pose = hs.Pose(draft, np.radians(pitch_deg))
@@ -152,7 +152,7 @@ def test_region_cut_has_the_same_points_as_the_whole_hull(fuselage_model, pitch_
 
 
 def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
-    motion = hs.Motion(-1.5, forward_speed=6.0, pitch_rate=0.2)
+    motion = hs.Motion(-1.5, forward_speed=6.0, pitch_rate_rad_s=0.2)
     poses = [hs.Pose(d, np.radians(p)) for p in (4.0, 4.5) for d in (0.005, 0.02, 0.04)]
 
     def run(model):

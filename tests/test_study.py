@@ -50,7 +50,7 @@ def test_a_case_and_its_command_line_are_one_study(tmp_path, capsys):
     again = hs.Study.from_args(build_parser().parse_args(study.command_line()))
     for name in ("mesh", "units", "mass", "draft", "velocity", "slices", "solver", "rho", "g"):
         assert getattr(again, name) == getattr(study, name), name
-    assert (again.pitch, again.horizontal_speed) == (study.pitch, study.horizontal_speed)
+    assert (again.pitch_rad, again.horizontal_speed) == (study.pitch_rad, study.horizontal_speed)
 
 
 def test_to_case_writes_a_case_that_reads_back(tmp_path):
@@ -62,7 +62,7 @@ def test_to_case_writes_a_case_that_reads_back(tmp_path):
     back = hs.Study.from_case(hs.load_case(path), checked=True)
     assert Path(back.mesh).resolve() == Path(PRISM).resolve()
     assert dataclasses.replace(back, mesh=study.mesh) == study
-    assert back.pitch == pytest.approx(math.radians(3.0), rel=1e-15)
+    assert back.pitch_rad == pytest.approx(math.radians(3.0), rel=1e-15)
     result = hs.execute(back)
     assert isinstance(result, SimulationResult) and len(result.history) > 1
 

@@ -282,7 +282,7 @@ def test_with_the_fixed_slicing_a_worker_reuses_its_cuts_to_rounding(client):
         for v in grid["velocity"]:
             hull = hs.load_hull(WEDGE, mass=10.0)
             ref = hs.simulate(hull, v, 0.01, dt=0.001, slices=8, slicing="fixed",
-                              pitch=math.radians(p), forward_speed=3.0, stop_on=())  # fmt: skip
+                              pitch_rad=math.radians(p), forward_speed=3.0, stop_on=())  # fmt: skip
             got = ds.sel(pitch=p, velocity=v)
             assert got["peak_force"].item() == pytest.approx(ref.peak["force"], rel=1e-12)
             assert got["final_velocity"].item() == pytest.approx(ref.velocity[-1], rel=1e-12)

@@ -27,7 +27,7 @@ BASE = {"mesh": str(WEDGE), "mass": 10.0, "cg": [0.5, 0.05], "velocity": -4.0,
 def single(cg: tuple[float, float], velocity: float = -4.0) -> hs.History:
     """The reference: the case run alone with the centre of gravity ``cg`` (x, z in m)."""
     hull = hs.load_hull(WEDGE, mass=10.0, cg=cg)
-    return hs.simulate(hull, velocity, 0.01, dt=0.001, slices=8, pitch=math.radians(3.0),
+    return hs.simulate(hull, velocity, 0.01, dt=0.001, slices=8, pitch_rad=math.radians(3.0),
                        forward_speed=2.0, free_pitch=True)  # fmt: skip
 
 
@@ -114,7 +114,7 @@ def test_a_sweep_of_slice_counts_equals_single_runs_exactly():
         point = ds.sel(slices=n)
         assert point["error"].item() == ""
         hull = hs.load_hull(WEDGE, mass=10.0, cg=(0.5, 0.05))
-        ref = hs.simulate(hull, -4.0, 0.01, dt=0.001, slices=n, pitch=math.radians(3.0),
+        ref = hs.simulate(hull, -4.0, 0.01, dt=0.001, slices=n, pitch_rad=math.radians(3.0),
                           forward_speed=2.0, free_pitch=True)  # fmt: skip
         assert point["peak_force"].item() == ref.peak["force"]
         assert point["final_slices"].item() == ref.slices[-1]

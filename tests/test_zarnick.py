@@ -142,7 +142,7 @@ def test_a_ditching_with_zarnick_and_free_pitch_runs_to_its_end():
     # modelled, so neither a slow section nor a wetted chine ends the run
     hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
     h = hs.simulate(
-        hull, -0.5, 0.06, dt=1e-3, pitch=math.radians(8.0), forward_speed=6.0,
+        hull, -0.5, 0.06, dt=1e-3, pitch_rad=math.radians(8.0), forward_speed=6.0,
         free_pitch=True, slices=32, solver="zarnick",
     )  # fmt: skip
     assert h.stop_reason == "t_end"

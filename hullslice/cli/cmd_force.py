@@ -118,7 +118,7 @@ SLICE_FX = Column("force_x", "Fx", "N", "~7")
 
 def pitched(study: Study) -> bool:
     """Whether a force study's state has pitch, forward speed or pitch rate."""
-    return study.pitch != 0.0 or study.horizontal_speed != 0.0 or study.pitch_rate != 0.0
+    return study.pitch_rad != 0.0 or study.horizontal_speed != 0.0 or study.pitch_rate_rad_s != 0.0
 
 
 def run(args: argparse.Namespace) -> int:
@@ -169,9 +169,9 @@ def outcome(result: StudyResult) -> Outcome:
         "mass": hull.mass,
         "draft": spec.draft,
         "velocity": spec.velocity,
-        "pitch_deg": math.degrees(spec.pitch),
+        "pitch_deg": math.degrees(spec.pitch_rad),
         "forward_speed": spec.horizontal_speed,
-        "pitch_rate_deg_s": math.degrees(spec.pitch_rate),
+        "pitch_rate_deg_s": math.degrees(spec.pitch_rate_rad_s),
         "cg": [float(hull.cg[0]), float(hull.cg[2])],
         "force_x": finest.total_x,
         "moment": finest.moment,

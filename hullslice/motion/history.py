@@ -82,9 +82,9 @@ class History:
     force : (k,) float
         2D+t vertical force, N, positive up.
     pitch : (k,) float
-        Pitch in rad, nose up.
+        Pitch in rad, nose up (:attr:`pitch_deg` in degrees).
     pitch_rate : (k,) float
-        Pitch rate in rad/s.
+        Pitch rate in rad/s (:attr:`pitch_rate_deg_s` in degrees per second).
     forward_speed : (k,) float
         Forward speed in m/s.
     force_x : (k,) float
@@ -285,6 +285,16 @@ class History:
         decel = -float(total[i])
         in_g = decel / (float(mass) * float(g)) if mass and g else math.nan  # type: ignore[arg-type]
         return {"force": decel, "t": float(self.t[i]), "g": in_g}
+
+    @property
+    def pitch_deg(self) -> np.ndarray:
+        """(k,) float: the pitch in degrees, nose up (:attr:`pitch` in rad)."""
+        return np.degrees(self.pitch)
+
+    @property
+    def pitch_rate_deg_s(self) -> np.ndarray:
+        """(k,) float: the pitch rate in degrees per second (:attr:`pitch_rate` in rad/s)."""
+        return np.degrees(self.pitch_rate)
 
     @property
     def penetration(self) -> np.ndarray:

@@ -40,19 +40,19 @@ import numpy as np
 from ..aero import Aerodynamics, aero_model
 from ..constants import MAX_SLICE_STEPS, MAX_STEPS
 from ..errors import InputError
-from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms, solve_bounded
+from ..forces import solve_bounded
 from ..forces.friction import Friction
 from ..forces.friction import friction as wall_friction
 from ..forces.momentum import calm_girth
-from ..geometry import check_cutter, frame
-from ..limits import no_mass
+from ..geometry import frame
 from ..mesh import Hull
-from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
-from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
-from ..solvers.registry import get_solver
-from ..state import Acceleration, Fluid, Motion, Pose
+from ..renamed import renamed_keywords
+from ..sections import _height_at
+from ..solvers.base import SolverBase
+from ..state import Fluid, Motion, Pose
 from .history import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, MAX_PITCH, History
 from .kinematics import check_kinematics, kinematics_accelerations
+from .model import ForceModel
 from .recorder import Recorder
 
 __all__ = ["ForceModel", "prescribed", "simulate"]
@@ -66,113 +66,6 @@ class _PitchLimit(Exception):
 MAX_STEP_TRAVEL = 0.1
 
 
-class ForceModel:
-    """The 2D+t force and moment on a hull as a function of its pose and motion.
-
-    Parameters
-    ----------
-    hull : Hull
-        The body, with its mass.
-    slices : int
-        Slices over the wetted length (default 32).
-    solver : str, Solver or Solver subclass, optional
-        The 2D solver (default ``"extended-von-karman"``).
-    fluid : Fluid, optional
-        Water density and gravity.
-    deadrise : str
-        Deadrise estimator (default ``"wedge"``).
-    slicing : str
-        ``"wetted"`` (default) or ``"fixed"`` (cut once per pitch and reused), see
-        :data:`~hullslice.sections.SLICINGS`.
-    cache : bool
-        Reuse the fixed slicing's cut (default); False cuts afresh at every call, for
-        checking that both give the same numbers.
-    need_mass : bool
-        Refuse a hull without mass (default). A momentum-form solver along a prescribed
-        motion does not need it.
-    cutter : str
-        How the stations of a pitch are cut (:data:`~hullslice.geometry.CUTTERS`):
-        ``"manifold3d"`` (default), on the mesh turned to the pitch, or ``"exact"``, the
-        kernel of :mod:`hullslice.planecut` on the body-frame mesh (the same contours to
-        manifold3d's grid, much cheaper at a new pitch).
-    """
-
-    def __init__(
-        self,
-        hull: Hull,
-        *,
-        slices: int = 32,
-        solver: str | SolverBase | type[SolverBase] | None = None,
-        fluid: Fluid | None = None,
-        deadrise: str = "wedge",
-        slicing: str = "wetted",
-        cache: bool = True,
-        need_mass: bool = True,
-        cutter: str = "manifold3d",
-    ) -> None:
-        self.solver = get_solver(solver)
-        if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
-            raise no_mass(hull.name)
-        self.hull = hull
-        self.slices = _slice_count(slices)
-        self.fluid = fluid or Fluid()
-        self.deadrise = _check_deadrise(deadrise)
-        self.slicing = _check_slicing(slicing)
-        self.cache = bool(cache)
-        self.cutter = check_cutter(cutter)
-
-    @property
-    def momentum(self) -> bool:
-        """True when the solver is a momentum-form solver."""
-        return self.solver.kind == MOMENTUM
-
-    def _sections(self, pose: Pose):
-        height = _height_at(self.hull, pose.pitch)
-        if pose.draft > height:
-            pose = Pose(height, pose.pitch)
-        return sections_at(
-            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache,
-            cutter=self.cutter,
-        )  # fmt: skip
-
-    def __call__(
-        self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
-    ) -> ForceResult:
-        """The force result at a pose (its draft clipped to the body's height) and motion;
-        a momentum-form solver's with the body's ``acceleration`` (default: free in heave,
-        see :func:`~hullslice.forces.compute_force`)."""
-        return force_on(
-            self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
-            acceleration=acceleration, mass=self.hull.mass,
-        )  # fmt: skip
-
-    def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
-        """A momentum-form solver's terms before the body's accelerations are known."""
-        solver = cast(MomentumFormSolver, self.solver)
-        return momentum_terms(
-            self._sections(pose), motion, solver, self.fluid, float(self.hull.cg[0])
-        )
-
-    def settings(self) -> dict[str, object]:
-        """The model's inputs, for a history's settings."""
-        return {
-            "hull": self.hull.name,
-            "mass": self.hull.mass,
-            "slices": self.slices,
-            "solver": self.solver.name,
-            "solver_kind": self.solver.kind,
-            "solver_options": dict(self.solver.settings),
-            "rho": self.fluid.rho,
-            "g": self.fluid.g,
-            "deadrise": self.deadrise,
-            "slicing": self.slicing,
-        }
-
-    def draft(self, z_cg: float, pitch: float) -> float:
-        """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m)."""
-        return max(0.0, -(frame(self.hull, pitch).lowest + z_cg))
-
-
 def _positive(value: float, what: str, unit: str) -> float:
     try:
         v = float(value)
@@ -183,6 +76,19 @@ def _positive(value: float, what: str, unit: str) -> float:
     return v
 
 
+def _in_rad(rad: float, deg: float | None, rad_name: str, deg_name: str) -> float:
+    """An angle given in rad or in degrees (not both), in rad."""
+    if deg is None:
+        return rad
+    if rad != 0.0:
+        raise InputError(f"give {rad_name}= or {deg_name}=, not both")
+    try:
+        return math.radians(float(deg))
+    except (TypeError, ValueError):
+        raise InputError(f"{deg_name} {deg!r} is not a number (in deg)") from None
+
+
+@renamed_keywords(pitch="pitch_rad", pitch_rate="pitch_rate_rad_s")
 def simulate(
     hull: Hull,
     velocity: float,
@@ -190,9 +96,11 @@ def simulate(
     *,
     dt: float | None = None,
     draft: float = 0.0,
-    pitch: float = 0.0,
+    pitch_rad: float = 0.0,
     forward_speed: float = 0.0,
-    pitch_rate: float = 0.0,
+    pitch_rate_rad_s: float = 0.0,
+    pitch_deg: float | None = None,
+    pitch_rate_deg_s: float | None = None,
     free_pitch: bool = False,
     free_surge: bool = False,
     slices: int = 32,
@@ -224,13 +132,16 @@ def simulate(
         through the impact.
     draft : float
         Initial draft of the lowest point in m (default 0: first contact).
-    pitch : float
-        Initial pitch in rad, nose up (default 0).
+    pitch_rad : float
+        Initial pitch in rad, nose up (default 0). Formerly ``pitch=`` (deprecated).
     forward_speed : float
         Initial forward speed in m/s (default 0).
-    pitch_rate : float
+    pitch_rate_rad_s : float
         Initial pitch rate in rad/s, nose up (default 0); kept constant unless
-        ``free_pitch``.
+        ``free_pitch``. Formerly ``pitch_rate=`` (deprecated).
+    pitch_deg, pitch_rate_deg_s : float, optional
+        The initial pitch (deg) and pitch rate (deg/s) in degrees instead, as on the command
+        line; give each angle in one unit only.
     free_pitch : bool
         Integrate the pitch from the moment about the centre of gravity.
     free_surge : bool
@@ -276,6 +187,8 @@ def simulate(
         hull, slices=slices, solver=solver, fluid=fluid, deadrise=deadrise, slicing=slicing,
         cutter=("exact" if free_pitch else "manifold3d") if cutter is None else cutter,
     )  # fmt: skip
+    pitch = _in_rad(pitch_rad, pitch_deg, "pitch_rad", "pitch_deg")
+    pitch_rate = _in_rad(pitch_rate_rad_s, pitch_rate_deg_s, "pitch_rate_rad_s", "pitch_rate_deg_s")
     w0 = float(Motion(velocity, forward_speed, pitch_rate).velocity)
     air0 = aero_model(aero)
     if w0 > 0.0 or (w0 == 0.0 and air0.name == "none"):
@@ -433,17 +346,17 @@ def prescribed(
     Parameters
     ----------
     hull : Hull
-        The body, with its mass.
-    hull : Hull
         The body; its mass is needed by free-fall solvers only.
     kinematics : mapping
         Arrays ``t`` (s, increasing), ``draft`` (m, draft of the lowest point, >= 0) and
         ``velocity`` (m/s, vertical velocity of the centre of gravity, negative down),
-        optionally ``acceleration`` (m/s^2, up), ``pitch`` (rad, nose up), ``pitch_rate``
-        (rad/s), ``pitch_acceleration`` (rad/s^2), ``forward_speed`` (m/s) and
-        ``forward_acceleration`` (m/s^2); e.g. from :func:`read_kinematics`. The former
-        keys ``penetration``, ``pitch_deg``, ``pitch_rate_deg_s`` and
-        ``pitch_acceleration_deg_s2`` (degrees) are deprecated. A momentum-form
+        optionally ``acceleration`` (m/s^2, up), ``pitch_rad`` (rad, nose up),
+        ``pitch_rate_rad_s`` (rad/s), ``pitch_acceleration_rad_s2`` (rad/s^2),
+        ``forward_speed`` (m/s) and ``forward_acceleration`` (m/s^2); e.g. from
+        :func:`read_kinematics`. The angles may be given in degrees instead (``pitch_deg``,
+        ``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``); the former keys
+        ``penetration``, ``pitch``, ``pitch_rate`` and ``pitch_acceleration`` (rad) are
+        deprecated. A momentum-form
         solver takes the body's accelerations from the table, or from the derivatives of
         its velocities (:mod:`hullslice.motion.kinematics`).
     stop_on : iterable of str
@@ -469,8 +382,8 @@ def prescribed(
     t_all = kin["t"]
     g = model.fluid.g
     for i, t in enumerate(t_all):
-        pose = Pose(kin["draft"][i], kin["pitch"][i])
-        motion = Motion(kin["velocity"][i], kin["forward_speed"][i], kin["pitch_rate"][i])
+        pose = Pose(kin["draft"][i], kin["pitch_rad"][i])
+        motion = Motion(kin["velocity"][i], kin["forward_speed"][i], kin["pitch_rate_rad_s"][i])
         if accelerations is not None:
             r = model(pose, motion, accelerations[i])
             acc = accelerations[i].vertical

@@ -2,12 +2,15 @@
 
 A kinematics table maps the names ``t`` (s, increasing), ``draft`` (m, the draft of the
 lowest point, >= 0) and ``velocity`` (m/s, vertical velocity of the centre of gravity,
-negative down) to arrays; optionally ``acceleration`` (m/s^2, positive up), ``pitch``
-(rad, nose up), ``pitch_rate`` (rad/s), ``pitch_acceleration`` (rad/s^2),
-``forward_speed`` (m/s) and ``forward_acceleration`` (m/s^2). A pitch that changes without
-a ``pitch_rate`` has its derivative as its rate. The former names ``penetration``,
-``pitch_deg``, ``pitch_rate_deg_s`` and ``pitch_acceleration_deg_s2`` (degrees) are still
-taken, with a :class:`DeprecationWarning` (:data:`DEPRECATED_KEYS`).
+negative down) to arrays; optionally ``acceleration`` (m/s^2, positive up), ``pitch_rad``
+(rad, nose up), ``pitch_rate_rad_s`` (rad/s), ``pitch_acceleration_rad_s2`` (rad/s^2),
+``forward_speed`` (m/s) and ``forward_acceleration`` (m/s^2). Each angle may be given in
+degrees instead, under the name that says so (:data:`DEGREE_KEYS`: ``pitch_deg``,
+``pitch_rate_deg_s``, ``pitch_acceleration_deg_s2``, the names of the files' columns),
+converted to rad once. A pitch that changes without a pitch rate has its derivative as its
+rate. The former names ``penetration``, ``pitch``, ``pitch_rate`` and
+``pitch_acceleration`` (angles in rad) are still taken, with a :class:`DeprecationWarning`
+(:data:`DEPRECATED_KEYS`).
 
 A CSV file of kinematics (:func:`read_kinematics`) names its columns as the command line's
 own history files do: ``t``, ``draft`` (formerly ``penetration``, still read), ``velocity``,
@@ -21,8 +24,8 @@ A momentum-form solver needs the body's accelerations. Where the table gives no
 forward accelerations of the pitch rate and forward speed: second-order central
 differences inside the table and second-order one-sided ones at its ends
 (``numpy.gradient(..., edge_order=2)``), so three rows at least. A given rate must agree
-with its value (``acceleration`` with ``velocity``, ``pitch_rate`` with ``pitch``,
-``pitch_acceleration`` with ``pitch_rate``, ``forward_acceleration`` with
+with its value (``acceleration`` with ``velocity``, ``pitch_rate_rad_s`` with ``pitch_rad``,
+``pitch_acceleration_rad_s2`` with ``pitch_rate_rad_s``, ``forward_acceleration`` with
 ``forward_speed``): its trapezoidal integral from the first row may differ from the
 value's change by at most :data:`ACCELERATION_TOLERANCE` of the value's largest size. The
 draft is checked against the velocity by the same rule where the pitch is constant (the
@@ -54,10 +57,12 @@ from ..tables import column_values, header_text, read_csv
 
 __all__ = [
     "ACCELERATION_TOLERANCE",
+    "DEGREE_KEYS",
     "DEPRECATED_KEYS",
     "FILE_COLUMNS",
     "KINEMATICS_COLUMNS",
     "KINEMATICS_OPTIONAL",
+    "Kinematics",
     "check_kinematics",
     "kinematics_accelerations",
     "read_kinematics",
@@ -67,20 +72,26 @@ KINEMATICS_COLUMNS = ("t", "draft", "velocity")
 #: Optional kinematics columns and their value when absent (NaN: derived when needed).
 KINEMATICS_OPTIONAL = {
     "acceleration": math.nan,
-    "pitch": 0.0,
-    "pitch_rate": 0.0,
-    "pitch_acceleration": math.nan,
+    "pitch_rad": 0.0,
+    "pitch_rate_rad_s": 0.0,
+    "pitch_acceleration_rad_s2": math.nan,
     "forward_speed": 0.0,
     "forward_acceleration": math.nan,
 }
 
-#: Former names of kinematics keys: ``old -> (new, degrees)``; ``degrees``: the old key's
-#: values are in degrees (converted to rad).
-DEPRECATED_KEYS: dict[str, tuple[str, bool]] = {
-    "penetration": ("draft", False),
-    "pitch_deg": ("pitch", True),
-    "pitch_rate_deg_s": ("pitch_rate", True),
-    "pitch_acceleration_deg_s2": ("pitch_acceleration", True),
+#: Former names of kinematics keys: ``old -> new`` (the same values).
+DEPRECATED_KEYS: dict[str, str] = {
+    "penetration": "draft",
+    "pitch": "pitch_rad",
+    "pitch_rate": "pitch_rate_rad_s",
+    "pitch_acceleration": "pitch_acceleration_rad_s2",
+}
+
+#: Kinematics keys of angles in degrees: ``key -> the key in rad`` they are converted to.
+DEGREE_KEYS: dict[str, str] = {
+    "pitch_deg": "pitch_rad",
+    "pitch_rate_deg_s": "pitch_rate_rad_s",
+    "pitch_acceleration_deg_s2": "pitch_acceleration_rad_s2",
 }
 
 #: The columns of a kinematics file -> the keys they are read into (angles converted from
@@ -91,44 +102,59 @@ FILE_COLUMNS: dict[str, str] = {
     "penetration": "draft",
     "velocity": "velocity",
     "acceleration": "acceleration",
-    "pitch_deg": "pitch",
-    "pitch_rate_deg_s": "pitch_rate",
-    "pitch_acceleration_deg_s2": "pitch_acceleration",
+    "pitch_deg": "pitch_rad",
+    "pitch_rate_deg_s": "pitch_rate_rad_s",
+    "pitch_acceleration_deg_s2": "pitch_acceleration_rad_s2",
     "forward_speed": "forward_speed",
     "forward_acceleration": "forward_acceleration",
 }
 
 #: The columns of a kinematics file in degrees (or degrees per second, per second squared).
-FILE_DEGREES = frozenset({"pitch_deg", "pitch_rate_deg_s", "pitch_acceleration_deg_s2"})
+FILE_DEGREES = frozenset(DEGREE_KEYS)
 
 #: Largest disagreement between a given ``acceleration`` column, integrated in time, and
 #: the ``velocity`` column, as a share of the largest speed in the table.
 ACCELERATION_TOLERANCE = 0.02
 
 
+class Kinematics(dict[str, np.ndarray]):
+    """A kinematics table (a dict of arrays by the keys of the module notes); its former keys
+    (:data:`DEPRECATED_KEYS`) are still read, with a :class:`DeprecationWarning`."""
+
+    def __missing__(self, key: str) -> np.ndarray:
+        new = DEPRECATED_KEYS.get(key)
+        if new is None or new not in self:
+            raise KeyError(key)
+        warnings.warn(
+            f"the kinematics key {key!r} is deprecated: read {new!r} (the same values)",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self[new]
+
+
 def _current(
     kin: Mapping[str, Sequence[float] | np.ndarray],
 ) -> dict[str, Sequence[float] | np.ndarray]:
-    """``kin`` with its deprecated keys renamed (and degrees in rad), each warned about."""
-    old = [k for k in DEPRECATED_KEYS if k in kin]
-    if not old:
-        return dict(kin)
+    """``kin`` with its deprecated keys renamed, each warned about, and degrees in rad."""
     out = dict(kin)
-    for key in old:
-        new, degrees = DEPRECATED_KEYS[key]
+    for key in [k for k in DEPRECATED_KEYS if k in kin]:
+        new = DEPRECATED_KEYS[key]
         if new in kin:
-            raise CaseError(
-                f"kinematics give both {key!r} and {new!r}: give {new!r} only"
-                + (" (in rad)" if degrees else "")
-            )
+            raise CaseError(f"kinematics give both {key!r} and {new!r}: give {new!r} only")
         warnings.warn(
-            f"the kinematics key {key!r} is deprecated: give {new!r}"
-            + (" in rad" if degrees else " (the same values)"),
+            f"the kinematics key {key!r} is deprecated: give {new!r} (the same values)",
             DeprecationWarning,
             stacklevel=4,
         )
-        values = out.pop(key)
-        out[new] = np.radians(np.asarray(values, dtype=np.float64)) if degrees else values
+        out[new] = out.pop(key)
+    for key in [k for k in DEGREE_KEYS if k in kin]:
+        new = DEGREE_KEYS[key]
+        if new in out:
+            raise CaseError(
+                f"kinematics give the angle twice, {key!r} (deg) and {new!r} (rad): give one"
+            )
+        out[new] = np.radians(np.asarray(out.pop(key), dtype=np.float64))
     return out
 
 
@@ -140,8 +166,9 @@ def check_kinematics(
     Parameters
     ----------
     kin : mapping
-        The keys of the module notes (SI, angles in rad); the deprecated ones of
-        :data:`DEPRECATED_KEYS` are renamed with a :class:`DeprecationWarning`.
+        The keys of the module notes (SI, angles in rad, or in degrees under the keys of
+        :data:`DEGREE_KEYS`); the deprecated ones of :data:`DEPRECATED_KEYS` are renamed
+        with a :class:`DeprecationWarning`.
     hull : Hull
         The body (its height limits the draft).
 
@@ -187,20 +214,21 @@ def check_kinematics(
         )
     if n >= 2:
         t = out["t"]
-        if "pitch_rate" not in given and np.any(out["pitch"] != out["pitch"][0]):
+        pitch = out["pitch_rad"]
+        if "pitch_rate_rad_s" not in given and np.any(pitch != pitch[0]):
             # a pitch that changes without its rate: the rate is its derivative
-            out["pitch_rate"] = _derivative(out["pitch"], t)
+            out["pitch_rate_rad_s"] = _derivative(pitch, t)
         for rate, value in RATES:
             if rate in given and (value in given or value in KINEMATICS_COLUMNS):
                 _check_rate(t, out[value], out[rate], value, rate)
-        if np.all(out["pitch"] == out["pitch"][0]):
+        if np.all(pitch == pitch[0]):
             _check_draft(t, out["draft"], out["velocity"])
     p = out["draft"]
-    steep = np.flatnonzero(np.abs(out["pitch"]) >= MAX_PITCH)
+    steep = np.flatnonzero(np.abs(out["pitch_rad"]) >= MAX_PITCH)
     if len(steep):
         i = int(steep[0])
         raise CaseError(
-            f"kinematics pitch at row {i + 1} ({math.degrees(out['pitch'][i]):g} deg) is too "
+            f"kinematics pitch at row {i + 1} ({math.degrees(out['pitch_rad'][i]):g} deg) is too "
             f"steep for a 2D+t model: keep it between -{MAX_PITCH_DEG:g} and "
             f"{MAX_PITCH_DEG:g} deg"
         )
@@ -210,7 +238,7 @@ def check_kinematics(
             f"kinematics draft at row {i + 1} is negative ({p[i]:g} m): the "
             "draft is the depth of the lowest point below the water, >= 0"
         )
-    heights = np.array([_height_at(hull, float(th)) for th in out["pitch"]])
+    heights = np.array([_height_at(hull, float(th)) for th in out["pitch_rad"]])
     if np.any(p > heights):
         i = int(np.flatnonzero(p > heights)[0])
         raise CaseError(
@@ -230,10 +258,11 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
 
     Returns
     -------
-    dict of (k,) float arrays
+    Kinematics (a dict) of (k,) float arrays
         ``t``, ``draft``, ``velocity`` and the optional columns present under the keys of
-        the module notes, angles in rad (``pitch``, ``pitch_rate``,
-        ``pitch_acceleration``).
+        the module notes, angles in rad (``pitch_rad``, ``pitch_rate_rad_s``,
+        ``pitch_acceleration_rad_s2``); the former keys ``pitch``, ... are still read, with
+        a :class:`DeprecationWarning`.
     """
     why = " (the step limit of simulate; each row is one cut of the body)"
     header, rows = read_csv(path, "kinematics", MAX_STEPS, why)  # hullslice/tables.py
@@ -256,7 +285,7 @@ def read_kinematics(path: str | os.PathLike) -> dict[str, np.ndarray]:
         columns[c]: np.radians(arr[:, i]) if c in FILE_DEGREES else arr[:, i]
         for i, c in enumerate(names)
     }
-    return {k: out[k] for k in (*KINEMATICS_COLUMNS, *KINEMATICS_OPTIONAL) if k in out}
+    return Kinematics({k: out[k] for k in (*KINEMATICS_COLUMNS, *KINEMATICS_OPTIONAL) if k in out})
 
 
 def _derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
@@ -270,8 +299,8 @@ def _derivative(values: np.ndarray, t: np.ndarray) -> np.ndarray:
 #: Columns that are the time derivatives of others, with their units: ``(rate, value)``.
 RATES = (
     ("acceleration", "velocity"),
-    ("pitch_rate", "pitch"),
-    ("pitch_acceleration", "pitch_rate"),
+    ("pitch_rate_rad_s", "pitch_rad"),
+    ("pitch_acceleration_rad_s2", "pitch_rate_rad_s"),
     ("forward_acceleration", "forward_speed"),
 )
 
@@ -284,7 +313,7 @@ def _check_rate(t: np.ndarray, x: np.ndarray, rate: np.ndarray, value: str, name
     miss = np.abs(integral - (x - x[0]))
     scale = float(np.abs(x).max())
     worst = int(np.argmax(miss))
-    unit = {"velocity": "m/s", "pitch": "rad", "pitch_rate": "rad/s"}.get(value, "m/s")
+    unit = {"velocity": "m/s", "pitch_rad": "rad", "pitch_rate_rad_s": "rad/s"}.get(value, "m/s")
     if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
         raise CaseError(
             f"kinematics {name} disagrees with {value}: integrated from t = {t[0]:g} s to "
@@ -329,7 +358,7 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
     cols = {}
     for acc, vel in (
         ("acceleration", "velocity"),
-        ("pitch_acceleration", "pitch_rate"),
+        ("pitch_acceleration_rad_s2", "pitch_rate_rad_s"),
         ("forward_acceleration", "forward_speed"),
     ):
         a = np.asarray(kin[acc], dtype=np.float64)
@@ -346,7 +375,7 @@ def kinematics_accelerations(kin: Mapping[str, np.ndarray]) -> list[Acceleration
                 f"time (three at least): give more rows or an {acc} column"
             )
         cols[acc] = _derivative(v, t)
-    pitch = cols["pitch_acceleration"]
+    pitch = cols["pitch_acceleration_rad_s2"]
     return [
         Acceleration(float(a), float(q), float(u))
         for a, q, u in zip(cols["acceleration"], pitch, cols["forward_acceleration"], strict=True)

@@ -7,6 +7,7 @@ the section's mass per metre. A section with one piece (the usual case) is one e
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
 from typing import ClassVar
@@ -104,7 +105,8 @@ class Sections:
     deadrise_method : str
         The estimator used, a key of :data:`DEADRISE_ESTIMATORS`.
     draft, pitch, wetted_length : float
-        The pose (m, rad) and the length of the wetted part along ``X`` (m).
+        The pose (m; rad, :attr:`pitch_deg` in degrees) and the length of the wetted part
+        along ``X`` (m).
     z_cg : float
         Earth height of the centre of gravity, m.
     keel_curvature : (n,) float
@@ -166,6 +168,11 @@ class Sections:
     def wetted(self) -> np.ndarray:
         """(n,) bool: entries with a positive penetration."""
         return self.penetration > 0.0
+
+    @property
+    def pitch_deg(self) -> float:
+        """The pitch in degrees, nose up (:attr:`pitch` in rad)."""
+        return math.degrees(self.pitch)
 
     @property
     def deadrise_deg(self) -> np.ndarray:

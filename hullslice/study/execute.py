@@ -224,7 +224,7 @@ def _sections(study: Study) -> SectionsResult:
     hull = load(study)
     sections = cut(
         hull,
-        Pose(study.draft, study.pitch),
+        Pose(study.draft, study.pitch_rad),
         study.slice_counts[0],
         deadrise=study.deadrise,
         slicing=study.slicing,
@@ -245,8 +245,8 @@ def _force(study: Study) -> ForceStudyResult:
     hull = load(study)
     result = convergence(
         hull,
-        Pose(study.draft, study.pitch),
-        Motion(study.velocity, study.horizontal_speed, study.pitch_rate),
+        Pose(study.draft, study.pitch_rad),
+        Motion(study.velocity, study.horizontal_speed, study.pitch_rate_rad_s),
         slices=list(study.slice_counts),
         solver=slv,
         fluid=fluid(study),
@@ -359,9 +359,9 @@ def simulation(
             study.t_end,
             dt=study.dt,
             draft=0.0 if study.draft is None else study.draft,
-            pitch=study.pitch,
+            pitch_rad=study.pitch_rad,
             forward_speed=study.horizontal_speed,
-            pitch_rate=study.pitch_rate,
+            pitch_rate_rad_s=study.pitch_rate_rad_s,
             free_pitch=study.free_pitch,
             free_surge=study.free_surge,
             stop_on=() if study.continue_invalid else DEFAULT_STOP_ON,

@@ -5,7 +5,7 @@ how to read it, the mass properties, the water, the solver and its options, the 
 the state or the motion, and the outputs. The command line and case files both build one
 (:meth:`Study.from_args`, :meth:`Study.from_case`); :meth:`Study.to_case` gives it back as a
 case mapping and :meth:`Study.command_line` as the equivalent command. Angles are in degrees
-here, as in case files and on the command line; :attr:`Study.pitch` gives radians.
+here, as in case files and on the command line; :attr:`Study.pitch_rad` gives radians.
 """
 
 from __future__ import annotations
@@ -22,6 +22,7 @@ from ..constants import RHO_WATER, G
 from ..errors import CaseError, InputError
 from ..limits import check_pitch, check_slice_count
 from ..motion import MAX_FLAGGED_SHARE
+from ..renamed import former_attribute
 from ..solvers.registry import DEFAULT_SOLVER
 from ..state import Acceleration, Fluid, Motion, Pose
 
@@ -243,11 +244,11 @@ class Study:
     def _check_values(self) -> None:
         """The state and the water, checked by the objects the library computes with (so
         that a value is refused with one message, whichever way it was given)."""
-        check_pitch(self.pitch)
+        check_pitch(self.pitch_rad)
         if self.command in ("sections", "force") and self.draft is not None:
-            Pose(self.draft, self.pitch)
+            Pose(self.draft, self.pitch_rad)
         if self.command == "force" and self.velocity is not None:
-            Motion(self.velocity, self.horizontal_speed, self.pitch_rate)
+            Motion(self.velocity, self.horizontal_speed, self.pitch_rate_rad_s)
         if self.command == "force" and self.acceleration is not None:
             Acceleration(self.acceleration)
         if self.command in ("force", "simulate"):
@@ -310,14 +311,17 @@ class Study:
     # -- derived values -------------------------------------------------------------------
 
     @property
-    def pitch(self) -> float:
+    def pitch_rad(self) -> float:
         """The pitch in rad (0 when not given)."""
         return 0.0 if self.pitch_deg is None else math.radians(self.pitch_deg)
 
     @property
-    def pitch_rate(self) -> float:
+    def pitch_rate_rad_s(self) -> float:
         """The pitch rate in rad/s (0 when not given)."""
         return 0.0 if self.pitch_rate_deg_s is None else math.radians(self.pitch_rate_deg_s)
+
+    pitch = former_attribute("Study.pitch", "pitch_rad")
+    pitch_rate = former_attribute("Study.pitch_rate", "pitch_rate_rad_s")
 
     @property
     def horizontal_speed(self) -> float:
@@ -333,9 +337,8 @@ class Study:
     @property
     def slice_counts(self) -> tuple[int, ...]:
         """The slice counts, the command's default when none is given."""
-        if self.slices is not None:
-            return self.slices
-        return (16, 32, 64) if self.command == "force" else (32,)
+        default = (16, 32, 64) if self.command == "force" else (32,)
+        return self.slices if self.slices is not None else default
 
     @property
     def options(self) -> dict[str, Any]:

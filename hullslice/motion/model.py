@@ -1,0 +1,126 @@
+"""The force on a body as the equations of motion need it: :class:`ForceModel`."""
+
+from __future__ import annotations
+
+from typing import cast
+
+from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms
+from ..geometry import check_cutter, frame
+from ..limits import no_mass
+from ..mesh import Hull
+from ..renamed import renamed_keywords
+from ..sections import _check_deadrise, _check_slicing, _height_at, _slice_count, sections_at
+from ..solvers.base import MOMENTUM, MomentumFormSolver, SolverBase
+from ..solvers.registry import get_solver
+from ..state import Acceleration, Fluid, Motion, Pose
+
+__all__ = ["ForceModel"]
+
+
+class ForceModel:
+    """The 2D+t force and moment on a hull as a function of its pose and motion.
+
+    Parameters
+    ----------
+    hull : Hull
+        The body, with its mass.
+    slices : int
+        Slices over the wetted length (default 32).
+    solver : str, Solver or Solver subclass, optional
+        The 2D solver (default ``"extended-von-karman"``).
+    fluid : Fluid, optional
+        Water density and gravity.
+    deadrise : str
+        Deadrise estimator (default ``"wedge"``).
+    slicing : str
+        ``"wetted"`` (default) or ``"fixed"`` (cut once per pitch and reused), see
+        :data:`~hullslice.sections.SLICINGS`.
+    cache : bool
+        Reuse the fixed slicing's cut (default); False cuts afresh at every call, for
+        checking that both give the same numbers.
+    need_mass : bool
+        Refuse a hull without mass (default). A momentum-form solver along a prescribed
+        motion does not need it.
+    cutter : str
+        How the stations of a pitch are cut (:data:`~hullslice.geometry.CUTTERS`):
+        ``"manifold3d"`` (default), on the mesh turned to the pitch, or ``"exact"``, the
+        kernel of :mod:`hullslice.planecut` on the body-frame mesh (the same contours to
+        manifold3d's grid, much cheaper at a new pitch).
+    """
+
+    def __init__(
+        self,
+        hull: Hull,
+        *,
+        slices: int = 32,
+        solver: str | SolverBase | type[SolverBase] | None = None,
+        fluid: Fluid | None = None,
+        deadrise: str = "wedge",
+        slicing: str = "wetted",
+        cache: bool = True,
+        need_mass: bool = True,
+        cutter: str = "manifold3d",
+    ) -> None:
+        self.solver = get_solver(solver)
+        if hull.mass is None and (need_mass or self.solver.kind != MOMENTUM):
+            raise no_mass(hull.name)
+        self.hull = hull
+        self.slices = _slice_count(slices)
+        self.fluid = fluid or Fluid()
+        self.deadrise = _check_deadrise(deadrise)
+        self.slicing = _check_slicing(slicing)
+        self.cache = bool(cache)
+        self.cutter = check_cutter(cutter)
+
+    @property
+    def momentum(self) -> bool:
+        """True when the solver is a momentum-form solver."""
+        return self.solver.kind == MOMENTUM
+
+    def _sections(self, pose: Pose):
+        height = _height_at(self.hull, pose.pitch)
+        if pose.draft > height:
+            pose = Pose(height, pose.pitch)
+        return sections_at(
+            self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache,
+            cutter=self.cutter,
+        )  # fmt: skip
+
+    def __call__(
+        self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
+    ) -> ForceResult:
+        """The force result at a pose (its draft clipped to the body's height) and motion;
+        a momentum-form solver's with the body's ``acceleration`` (default: free in heave,
+        see :func:`~hullslice.forces.compute_force`)."""
+        return force_on(
+            self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
+            acceleration=acceleration, mass=self.hull.mass,
+        )  # fmt: skip
+
+    def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
+        """A momentum-form solver's terms before the body's accelerations are known."""
+        solver = cast(MomentumFormSolver, self.solver)
+        return momentum_terms(
+            self._sections(pose), motion, solver, self.fluid, float(self.hull.cg[0])
+        )
+
+    def settings(self) -> dict[str, object]:
+        """The model's inputs, for a history's settings."""
+        return {
+            "hull": self.hull.name,
+            "mass": self.hull.mass,
+            "slices": self.slices,
+            "solver": self.solver.name,
+            "solver_kind": self.solver.kind,
+            "solver_options": dict(self.solver.settings),
+            "rho": self.fluid.rho,
+            "g": self.fluid.g,
+            "deadrise": self.deadrise,
+            "slicing": self.slicing,
+        }
+
+    @renamed_keywords(pitch="pitch_rad")
+    def draft(self, z_cg: float, pitch_rad: float) -> float:
+        """The draft (m, >= 0) of the body with its centre of gravity at height ``z_cg`` (m),
+        pitched by ``pitch_rad`` (rad, nose up)."""
+        return max(0.0, -(frame(self.hull, pitch_rad).lowest + z_cg))
