@@ -526,7 +526,7 @@ def bench_kernel_cut(table: Table, path: Path) -> None:
         max(errs) <= 1e-9,
     )
     dt = 2e-4
-    runs = [hs.simulate(hs.load_hull(path, mass=60000.0), -1.5, 100 * dt, dt=dt, pitch=0.08,
+    runs = [hs.simulate(hs.load_hull(path, mass=60000.0), -1.5, 100 * dt, dt=dt, pitch_rad=0.08,
                         forward_speed=60.0, slices=128, slicing="fixed", stop_on=(),
                         free_pitch=True, cutter=cutter)
             for cutter in ("manifold3d", "exact")]  # fmt: skip

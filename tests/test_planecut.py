@@ -165,7 +165,7 @@ def test_free_pitch_history_equals_a_manifold3d_only_run():
     for cutter in ("manifold3d", "exact", None):  # None: the kernel's, free pitch's default
         hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
         runs[cutter] = hs.simulate(
-            hull, -1.0, 0.04, dt=5e-4, pitch=0.1, forward_speed=19.0, slices=32,
+            hull, -1.0, 0.04, dt=5e-4, pitch_rad=0.1, forward_speed=19.0, slices=32,
             slicing="fixed", stop_on=(), free_pitch=True, cutter=cutter,
         )  # fmt: skip
     a, b = runs["manifold3d"], runs["exact"]
