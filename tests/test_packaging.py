@@ -23,10 +23,13 @@ def _floor(requirements: list[str], name: str) -> str:
     return req.split(">=")[1]
 
 
-def test_all_is_every_feature_and_test_takes_all_without_the_tools():
+def test_all_is_every_feature_and_test_takes_all_and_the_type_check():
     assert EXTRAS["all"] == [f"hullslice[{','.join(FEATURES)}]"]
     assert "hullslice[all]" in EXTRAS["test"]
-    assert _names(EXTRAS["test"]) == {"pytest", "hypothesis", "hullslice"}
+    # CI type-checks in the test environment: mypy at the dev extra's version, ruff not
+    assert _names(EXTRAS["test"]) == {"pytest", "hypothesis", "mypy", "hullslice"}
+    mypy = [r for r in EXTRAS["test"] if _names([r]) == {"mypy"}]
+    assert mypy == [r for r in EXTRAS["dev"] if _names([r]) == {"mypy"}]
     assert _names(EXTRAS["dev"]) == {"ruff", "mypy"}
 
 
