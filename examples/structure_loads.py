@@ -44,22 +44,20 @@ def main() -> None:
     )  # fmt: skip
     print(f"{len(h.t)} instants, {len(h.sections)} kept; ended by {h.stop_reason}")
     print("     t (s)   slices (kN)   faces (kN)   difference   peak face pressure (kPa)")
-    peak = np.zeros(len(hull.faces))
-    when = np.full(len(hull.faces), np.nan)
+    peak = hs.loads.FacePeak(len(hull.faces))
     worst = 0.0
     top = float(np.max(np.abs(h.force)))
     for fp, rec in zip(h.face_pressures(hull), h.sections, strict=True):
         diff = (fp.total - rec.total) / top
         worst = max(worst, abs(diff))
-        higher = fp.pressure > peak
-        peak, when = np.where(higher, fp.pressure, peak), np.where(higher, fp.t, when)
+        peak.add(fp)
         print(f"  {fp.t:8.3f}  {rec.total / 1e3:11.1f}  {fp.total / 1e3:11.1f}  {diff:+11.1e}"
               f"  {fp.pressure.max() / 1e3:12.1f}")  # fmt: skip
-    i = int(np.argmax(peak))
+    i = int(np.argmax(peak.pressure))
     c = hs.loads.face_geometry(hull).centroid[i]
     print(f"largest difference {worst:.1e} of the peak force; peak face pressure "
-          f"{peak[i] / 1e3:.1f} kPa at t = {when[i]:.3f} s on face {i} (x = {c[0]:.2f} m, "
-          f"y = {c[1]:+.2f} m)")  # fmt: skip
+          f"{peak.pressure[i] / 1e3:.1f} kPa at t = {peak.t[i]:.3f} s on face {i} "
+          f"(x = {c[0]:.2f} m, y = {c[1]:+.2f} m)")  # fmt: skip
     fl = h.frame_loads(hull, spacing=0.5)
     pk = fl.peak()
     k = int(np.argmax(pk["vertical"]))
@@ -71,7 +69,9 @@ def main() -> None:
     out.mkdir(parents=True, exist_ok=True)
     title = "Fuselage ditching, 8 deg, 60 m/s, sink 1.5 m/s, mlm, sea"
     plots.save(
-        plots.plot_face_pressure(hull, peak, f"{title}: peak pressure", label="peak pressure"),
+        plots.plot_face_pressure(
+            hull, peak.pressure, f"{title}: peak pressure", label="peak pressure"
+        ),
         out / "loads_peak_pressure.png",
     )
     plots.save(plots.plot_frame_loads(fl, f"{title}: frame bays (0.5 m)"), out / "loads_frames.png")

@@ -147,11 +147,11 @@ class LoadsOutput:
         remove_stale(target.parent, target.name)
         stage = Path(tempfile.mkdtemp(prefix=temp_prefix(target.name), dir=target.parent))
         try:
-            write_loads(history, hull, stage, frames)
+            _, peak = write_loads(history, hull, stage, frames)
         except BaseException:
             shutil.rmtree(stage, ignore_errors=True)
             raise
-        return _summary(history, hull, self.folder, frames), stage
+        return _summary(history, peak, self.folder, frames), stage
 
     @property
     def target(self) -> Path:
@@ -183,12 +183,13 @@ def _put_in_place(stage: Path, target: Path) -> None:
         shutil.rmtree(old, ignore_errors=True)
 
 
-def _summary(history, hull, folder: str, frames) -> str:
-    peak, when = history.peak_face_pressures(hull)
-    i = int(np.argmax(peak))
+def _summary(history, peak, folder: str, frames) -> str:
+    """The summary's lines: the face pressures' peak (written already, not mapped again)
+    and the most loaded frame bay."""
+    i = int(np.argmax(peak.pressure))
     line = (
-        f"face pressures: {len(history.sections)} instants of {len(peak)} faces in {folder}; "
-        f"peak {peak[i] / 1e3:.6g} kPa at t = {when[i]:.6g} s on face {i}"
+        f"face pressures: {len(history.sections)} instants of {len(peak.pressure)} faces in "
+        f"{folder}; peak {peak.pressure[i] / 1e3:.6g} kPa at t = {peak.t[i]:.6g} s on face {i}"
     )
     if frames is not None and len(frames.t):
         pk = frames.peak()

@@ -8,12 +8,13 @@
   (:mod:`hullslice.loads.frames`).
 """
 
-from .faces import FaceGeometry, FacePressures, face_geometry, face_pressures
+from .faces import FaceGeometry, FacePeak, FacePressures, face_geometry, face_pressures
 from .frames import FrameLoads, frame_loads, frame_stations
 from .record import SectionRecord
 
 __all__ = [
     "FaceGeometry",
+    "FacePeak",
     "FacePressures",
     "FrameLoads",
     "SectionRecord",

@@ -50,7 +50,7 @@ from ..forces import ForceResult
 from .record import SectionRecord
 from .triangles import clip, mean_positive, split
 
-__all__ = ["FaceGeometry", "FacePressures", "face_geometry", "face_pressures"]
+__all__ = ["FaceGeometry", "FacePeak", "FacePressures", "face_geometry", "face_pressures"]
 
 #: A face whose outward normal's vertical part is below ``-DOWN`` faces down.
 DOWN = 1e-6
@@ -177,6 +177,28 @@ class FacePressures:
         return float((arm_x * self.force[:, 2] - arm_z * self.force[:, 0]).sum())
 
 
+class FacePeak:
+    """Each face's largest pressure over the instants added (:meth:`add`) and its time.
+
+    Attributes
+    ----------
+    pressure : (m,) float
+        The largest pressure so far, Pa (0 on a face that stays dry).
+    t : (m,) float
+        Its time, s (NaN on a face that stays dry).
+    """
+
+    def __init__(self, faces: int) -> None:
+        self.pressure = np.zeros(faces)
+        self.t = np.full(faces, np.nan)
+
+    def add(self, fp: FacePressures) -> None:
+        """Take in one instant's face pressures."""
+        higher = fp.pressure > self.pressure
+        self.pressure = np.where(higher, fp.pressure, self.pressure)
+        self.t = np.where(higher, fp.t, self.t)
+
+
 def face_pressures(hull, state: SectionRecord | ForceResult, t: float = 0.0) -> FacePressures:
     """The pressure on every face of ``hull``'s mesh at one instant.
 
@@ -196,27 +218,26 @@ def face_pressures(hull, state: SectionRecord | ForceResult, t: float = 0.0) -> 
         The instant's solver gives no pressures along the sections.
     """
     rec = state if isinstance(state, SectionRecord) else SectionRecord.of(t, state)
-    geom = face_geometry(hull)
-    if not rec.has_pressures and not np.any(rec.force):  # dry: no solver was asked
-        zero = np.zeros(len(geom))
-        corners, _ = geom.earth(rec.pitch, rec.z_cg)
-        return FacePressures(rec.t, zero, np.zeros((len(geom), 3)), corners.mean(axis=1),
-                             rec.x_cg, rec.z_cg)  # fmt: skip
-    if not rec.has_pressures:
+    if not rec.has_pressures and np.any(rec.force):  # a dry instant asks no solver
         raise InputError(
             "the run's solver gives no pressures along the sections' contours, so none can "
             "be mapped onto the faces; use solver='mlm' (--solver mlm)"
         )
+    geom = face_geometry(hull)
     corners, normal = geom.earth(rec.pitch, rec.z_cg)
+    centroid = corners.mean(axis=1)
     area = geom.area
-    load = _dynamic_load(rec, corners, normal)  # vertical, N
-    footprint = area * -normal[:, 2]
-    pressure = np.where(footprint > STEEP * area, load / np.where(footprint > 0, footprint, 1), 0.0)
+    pressure = np.zeros(len(geom))
+    if rec.has_pressures:
+        load = _dynamic_load(rec, corners, normal)  # vertical, N
+        footprint = area * -normal[:, 2]
+        steep = footprint <= STEEP * area
+        pressure = np.where(steep, 0.0, load / np.where(steep, 1.0, footprint))
     if rec.hydrostatic > 0.0:
-        inside = _in_slices(rec, corners.mean(axis=1)[:, 0])
+        inside = _in_slices(rec, centroid[:, 0])
         pressure = pressure + np.where(inside, rec.hydrostatic * mean_positive(-corners[..., 2]), 0)
     force = -(pressure * area)[:, None] * normal
-    return FacePressures(rec.t, pressure, force, corners.mean(axis=1), rec.x_cg, rec.z_cg)
+    return FacePressures(rec.t, pressure, force, centroid, rec.x_cg, rec.z_cg)
 
 
 # -- the mapping --------------------------------------------------------------------------------

@@ -36,7 +36,7 @@ import numpy as np
 
 from .._version import __version__
 from ..extras import need
-from .faces import face_geometry
+from .faces import FacePeak, face_geometry
 from .frames import FrameLoads
 
 __all__ = ["MANIFEST", "require_meshio", "write_loads"]
@@ -85,15 +85,17 @@ def write_loads(history, hull, folder: str | os.PathLike, frames: FrameLoads | N
 
     Returns
     -------
-    list of str
+    files : list of str
         The files written, relative to ``folder``.
+    peak : FacePeak
+        Each face's peak pressure over the instants and its time.
     """
     meshio = require_meshio()
     out = Path(folder)
     geom = face_geometry(hull)
     written: list[str] = []
     n = len(geom)
-    peak, when = np.zeros(n), np.full(n, -1.0)
+    peak = FacePeak(n)
     entries: list[tuple[float, str]] = []
     with open(out / "face_pressures.csv", "w", encoding="utf-8", newline="") as table:
         table.write("t,face,pressure\n")
@@ -104,12 +106,11 @@ def write_loads(history, hull, folder: str | os.PathLike, frames: FrameLoads | N
             wet = np.nonzero(fp.pressure)[0]
             rows = np.column_stack([np.full(len(wet), fp.t), wet, fp.pressure[wet]])
             np.savetxt(table, rows, fmt=("%.9g", "%d", "%.9g"), delimiter=",")
-            higher = fp.pressure > peak
-            peak = np.where(higher, fp.pressure, peak)
-            when = np.where(higher, fp.t, when)
+            peak.add(fp)
     written += [name for _, name in entries] + ["face_pressures.csv"]
     (out / "pressure.pvd").write_text(_pvd(entries), encoding="utf-8")
-    _vtu(meshio, hull, out / "peak.vtu", {"peak_pressure": peak, "peak_time": when})
+    when = np.where(np.isnan(peak.t), -1.0, peak.t)
+    _vtu(meshio, hull, out / "peak.vtu", {"peak_pressure": peak.pressure, "peak_time": when})
     faces = np.column_stack([np.arange(n), geom.centroid, geom.normal, geom.area])
     header = "face,x,y,z,nx,ny,nz,area"
     np.savetxt(out / "faces.csv", faces, fmt=["%d"] + ["%.9g"] * 7, delimiter=",",
@@ -136,4 +137,4 @@ def write_loads(history, hull, folder: str | os.PathLike, frames: FrameLoads | N
     }
     text = json.dumps(manifest, indent=1, default=str)
     (out / MANIFEST).write_text(text + "\n", encoding="utf-8")
-    return [*written, MANIFEST]
+    return [*written, MANIFEST], peak

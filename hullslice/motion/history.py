@@ -12,7 +12,7 @@ import numpy as np
 from ..errors import InputError
 from ..forces import MIN_SLENDERNESS
 from ..limits import MAX_PITCH
-from ..loads import FacePressures, FrameLoads, SectionRecord, face_pressures
+from ..loads import FacePeak, FacePressures, FrameLoads, SectionRecord, face_pressures
 from ..loads.frames import frame_loads, frame_stations
 
 __all__ = [
@@ -346,13 +346,10 @@ class History:
     def peak_face_pressures(self, hull) -> tuple[np.ndarray, np.ndarray]:
         """Each face's largest pressure over the kept instants (Pa) and its time (s; NaN
         on a face that stays dry)."""
-        peak = np.zeros(len(hull.faces))
-        when = np.full(len(hull.faces), np.nan)
+        peak = FacePeak(len(hull.faces))
         for fp in self.face_pressures(hull):
-            higher = fp.pressure > peak
-            peak = np.where(higher, fp.pressure, peak)
-            when = np.where(higher, fp.t, when)
-        return peak, when
+            peak.add(fp)
+        return peak.pressure, peak.t
 
     def frame_loads(self, hull, frames=None, *, spacing: float | None = None) -> FrameLoads:
         """The loads of the frame bays at each kept instant (:mod:`hullslice.loads.frames`).

@@ -305,14 +305,19 @@ RATES = (
 )
 
 
+def _against_integral(t: np.ndarray, x: np.ndarray, rate: np.ndarray):
+    """``rate`` integrated in time (trapezoids) from the first row, how far it misses the
+    change of ``x``, the largest size of ``x`` and the row where it misses most."""
+    integral = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])
+    miss = np.abs(integral - (x - x[0]))
+    return integral, miss, float(np.abs(x).max()), int(np.argmax(miss))
+
+
 def _check_rate(t: np.ndarray, x: np.ndarray, rate: np.ndarray, value: str, name: str) -> None:
     """A given rate must agree with its value: integrated in time (trapezoids) it changes the
     value as the table does, within :data:`ACCELERATION_TOLERANCE` of the value's largest
     size."""
-    integral = np.concatenate([[0.0], np.cumsum(0.5 * (rate[1:] + rate[:-1]) * np.diff(t))])
-    miss = np.abs(integral - (x - x[0]))
-    scale = float(np.abs(x).max())
-    worst = int(np.argmax(miss))
+    integral, miss, scale, worst = _against_integral(t, x, rate)
     unit = {"velocity": "m/s", "pitch_rad": "rad", "pitch_rate_rad_s": "rad/s"}.get(value, "m/s")
     if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
         raise CaseError(
@@ -328,11 +333,7 @@ def _check_draft(t: np.ndarray, draft: np.ndarray, velocity: np.ndarray) -> None
     """At a constant pitch the draft must follow the velocity: ``-velocity`` integrated in
     time (trapezoids) changes the draft as the table does, within
     :data:`ACCELERATION_TOLERANCE` of the largest draft."""
-    sink = -0.5 * (velocity[1:] + velocity[:-1]) * np.diff(t)
-    integral = np.concatenate([[0.0], np.cumsum(sink)])
-    miss = np.abs(integral - (draft - draft[0]))
-    scale = float(np.abs(draft).max())
-    worst = int(np.argmax(miss))
+    integral, miss, scale, worst = _against_integral(t, draft, -velocity)
     if miss[worst] > ACCELERATION_TOLERANCE * scale + 1e-12:
         raise CaseError(
             f"kinematics draft disagrees with velocity: the velocity integrated from "
