@@ -13,7 +13,9 @@ A case file holds what a command line would give, so that a study can be repeate
 :func:`validate_case` checks every key against :data:`SCHEMA`: an unknown key, a value of
 the wrong type (a quoted number, a boolean for a number, a fractional slice count) or out
 of range (a negative mass, NaN) raises a :class:`~hullslice.errors.CaseError` that names
-the key, the expected type and unit, and the offending value. Keys are flat except
+the key, the expected type and unit, and the offending value. The keys are the rows of the
+option table, :data:`hullslice.options.OPTIONS`, which the command line and
+:class:`~hullslice.study.Study` are built from too. Keys are flat except
 ``solver_options``, a table passed to the solver as it is. Values are in the command
 line's units: SI, angles in degrees (``pitch``, ``pitch_rate``).
 """
@@ -24,18 +26,15 @@ import difflib
 import math
 import os
 import tomllib
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .aero import AERO_MODELS, AERO_NUMBERS
-from .constants import AXES, LENGTH_UNITS, MAX_SLICES, RHO_WATER, G
 from .errors import CaseError
 from .limits import MAX_CASE_BYTES
+from .options import COMMANDS, OPTIONS, Option
 from .paths import WRITTEN_KEYS, confined, printable, toml_string, toml_value
 from .safety import non_finite
-from .sections import DEADRISE_ESTIMATORS, SLICINGS
 
 __all__ = [
     "COMMAND_KEYS",
@@ -49,139 +48,11 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
-class Key:
-    """One key of a case file.
+#: One key of a case file: a row of the option table (:class:`hullslice.options.Option`).
+Key = Option
 
-    Attributes
-    ----------
-    name : str
-        The key as written in the file.
-    kind : str
-        Its type: ``"text"``, ``"path"`` (text, a file relative to the case file),
-        ``"number"`` (a float; an integer is accepted), ``"count"`` (a whole number),
-        ``"counts"`` (a whole number or a list of them), ``"times"`` (a number or a list of
-        numbers), ``"flag"`` (true or false) or ``"table"``.
-    unit : str
-        SI unit of a number (``""`` for none).
-    help : str
-        What it is, for messages and documentation.
-    default : Any
-        Value taken when the key is absent (None: absent stays absent).
-    check : callable, optional
-        Further condition on the (converted) value: returns a reason when the value is
-        out of range, else None.
-    """
-
-    name: str
-    kind: str
-    unit: str
-    help: str
-    default: Any = None
-    check: Callable[[Any], str | None] | None = None
-
-
-def _positive(v: float) -> str | None:
-    return None if v > 0.0 else "must be positive"
-
-
-def _not_negative(v: float) -> str | None:
-    return None if v >= 0.0 else "must not be negative"
-
-
-def _share(v: float) -> str | None:
-    return None if 0.0 <= v <= 1.0 else "must be a share in [0, 1]"
-
-
-def _one_of(choices) -> Callable[[Any], str | None]:
-    names = tuple(choices)
-
-    def check(v: str) -> str | None:
-        return None if v.strip().lower() in names else f"must be one of {', '.join(names)}"
-
-    return check
-
-
-def _axis(v: str) -> str | None:
-    key = v.strip().lower()
-    return None if key in AXES or "+" + key in AXES else f"must be one of {', '.join(AXES)}"
-
-
-def _slice_range(v: list[int]) -> str | None:
-    bad = [n for n in v if not 1 <= n <= MAX_SLICES]
-    if bad:
-        return f"must be from 1 to {MAX_SLICES} (got {bad[0]})"
-    if len(set(v)) != len(v):
-        return "must not repeat a count"
-    return None
-
-
-#: The keys a case file may hold, by name.
-SCHEMA: dict[str, Key] = {
-    k.name: k
-    for k in (
-        Key("title", "text", "", "a name for the study, for reports"),
-        Key("command", "text", "", "what to compute: sections, force, simulate or info",
-            check=_one_of(("sections", "force", "simulate", "info"))),
-        Key("mesh", "path", "", "the hull mesh, STL or OBJ, relative to the case file"),
-        Key("units", "text", "", "length unit of the mesh", None, _one_of(LENGTH_UNITS)),
-        Key("forward", "text", "", "mesh axis pointing forward", None, _axis),
-        Key("up", "text", "", "mesh axis pointing up", None, _axis),
-        Key("scale", "number", "m per file unit", "scale of the mesh (not with length)",
-            check=_positive),
-        Key("length", "number", "m", "the body's length along forward, sets the scale",
-            check=_positive),
-        Key("repair", "text", "", "repair of an open mesh: none or close", None,
-            _one_of(("none", "close"))),
-        Key("keep", "text", "", "bodies to keep: 'largest' or numbers from 1 as '1,3'"),
-        Key("keep_box", "box", "m", "keep the part inside xmin, xmax, ymin, ymax, zmin, zmax"),
-        Key("no_fix", "flag", "", "make none of the safe repairs: refuse a mesh that needs one"),
-        Key("mass", "number", "kg", "mass of the body", check=_positive),
-        Key("mass_distribution", "path", "", "CSV of the mass along the body, relative to "
-            "the case"),
-        Key("cg", "pair", "m", "centre of gravity x, z in the body frame"),
-        Key("inertia", "number", "kg*m^2", "pitch moment of inertia about the centre of "
-            "gravity", check=_positive),
-        Key("rho", "number", "kg/m^3", "water density", RHO_WATER, _positive),
-        Key("g", "number", "m/s^2", "gravitational acceleration", G, _not_negative),
-        Key("solver", "text", "", "name of the 2D solver", "extended-von-karman"),
-        Key("solver_options", "table", "", "options passed to the 2D solver"),
-        Key("deadrise", "text", "", "local deadrise estimator", "wedge",
-            _one_of(DEADRISE_ESTIMATORS)),
-        Key("slicing", "text", "", "how the slices are placed", "wetted", _one_of(SLICINGS)),
-        Key("slices", "counts", "", "slice count(s) over the wetted length", check=_slice_range),
-        Key("draft", "number", "m", "depth of the lowest point below the water", None,
-            _not_negative),
-        Key("pitch", "number", "deg", "pitch angle, positive nose up"),
-        Key("velocity", "number", "m/s", "vertical velocity, negative down"),
-        Key("forward_speed", "number", "m/s", "horizontal speed along the body"),
-        Key("pitch_rate", "number", "deg/s", "pitch rate, positive nose up"),
-        Key("t_end", "number", "s", "duration of a free fall", check=_positive),
-        Key("dt", "number", "s", "time step of a free fall", check=_positive),
-        Key("kinematics", "path", "", "CSV of t, draft, velocity, relative to the case"),
-        Key("free_pitch", "flag", "", "integrate the pitch in a free fall"),
-        Key("free_surge", "flag", "", "integrate the forward speed in a free fall"),
-        Key("continue_invalid", "flag", "", "go on past the method's range in a free fall"),
-        Key("lift", "text", "", "the air's forces", None, _one_of(tuple(AERO_MODELS))),
-        *(Key(name, "number", unit, what, check={"wing_area": _positive, "wing_chord": _positive,
-              "cd": _not_negative, "thrust": _not_negative}.get(name))
-          for name, unit, what in AERO_NUMBERS),
-        Key("friction", "flag", "", "the water's friction on the wetted surface (ITTC-57)"),
-        Key("check", "flag", "", "also run at half the step and twice the slices (simulate)"),
-        Key("max_flagged_share", "number", "", "largest share of the force that slices "
-            "outside the solver's range may carry before a run stops", 0.1, _share),
-        Key("acceleration", "number", "m/s^2", "vertical acceleration of the body, positive "
-            "up, for a momentum-form solver's force (default: free in heave)"),
-        Key("stations", "count", "", "stations of the sectional area curve (info)"),
-        Key("every", "count", "", "rows shown: every Nth instant, with the first and last "
-            "(simulate)", check=_positive),
-        Key("at", "times", "s", "rows shown: the instants nearest these times (simulate)"),
-        Key("format", "text", "", "output format: table, json or csv", None,
-            _one_of(("table", "json", "csv"))),
-        Key("output", "path", "", "file to write the output to, relative to the case"),
-        Key("plot", "path", "", "image to draw the main figure to, relative to the case"),
-    )
-}  # fmt: skip
+#: The keys a case file may hold, by name: every row of :data:`hullslice.options.OPTIONS`.
+SCHEMA: dict[str, Key] = {o.name: o for o in OPTIONS}
 
 _KIND_WORDS = {
     "text": "text in quotes",
@@ -431,23 +302,11 @@ def read_case_file(path: str | os.PathLike) -> tuple[dict[str, Any], Path, str]:
         ) from None
 
 
-_COMMON = {"title", "command", "mesh", "units", "forward", "up", "format", "output",
-           "scale", "length", "repair", "keep", "keep_box", "no_fix"}  # fmt: skip
-_MASS = {"mass", "mass_distribution", "cg", "inertia"}
-_METHOD = {"solver", "solver_options", "deadrise", "slicing", "slices", "rho", "g"}
-_MOTION = {"pitch", "forward_speed", "pitch_rate"}
-AERO_KEYS = ("lift", *(name for name, _, _ in AERO_NUMBERS), "friction", "check")
-
-#: The keys that each command takes (besides ``title``, ``command`` and the mesh's).
+#: The keys that each command takes: the rows of :data:`~hullslice.options.OPTIONS` that
+#: name it (``title``, ``command`` and the mesh's keys are every command's).
 COMMAND_KEYS: dict[str, set[str]] = {
-    "info": _COMMON | _MASS | {"stations", "plot"},
-    "sections": _COMMON | _MASS | {"draft", "pitch", "slices", "deadrise", "slicing", "plot"},
-    "force": _COMMON | _MASS | _METHOD | _MOTION | {"draft", "velocity", "acceleration", "plot"},
-    "simulate": _COMMON | _MASS | _METHOD | _MOTION | {
-        "velocity", "t_end", "dt", "draft", "kinematics", "free_pitch", "free_surge",
-        "continue_invalid", "max_flagged_share", "plot", "every", "at", *AERO_KEYS,
-    },
-}  # fmt: skip
+    command: {o.name for o in OPTIONS if command in o.commands} for command in COMMANDS
+}
 
 
 def case_command(case: Mapping[str, Any]) -> str:

@@ -66,8 +66,9 @@ LAYERS: dict[str, int] = {
     "hullslice.loads": 5,
     # 6 motion in time
     "hullslice.motion": 6,
-    # 7 studies: one computation, case files, sweeps
+    # 7 studies: the option table, one computation, case files, sweeps
     "hullslice.study": 7,
+    "hullslice.options": 7,
     "hullslice.case": 7,
     "hullslice.sweeps": 7,
     # 8 output and the command line

@@ -29,10 +29,9 @@ from .common import (
     add_solver_options,
     compute,
     finish,
-    number,
-    slice_list,
     solver_label,
 )
+from .options import add_options
 from .outputs import Extra, check_distinct, check_path, out_path
 
 
@@ -44,44 +43,17 @@ def add_parser(sub) -> None:
         "forward speed, pitch rate), for one or more slice counts; with three or more, the "
         "Richardson-extrapolated force and its GCI error band (Roache).",
     )
-    add_mesh_options(p, mass_required=True)
+    add_mesh_options(p, "force")
     g = p.add_argument_group("state and method")
-    g.add_argument(
-        "--draft",
-        type=number("m"),
-        required=True,
-        metavar="M",
-        help="depth of the body's lowest point below the calm water, in m",
-    )
-    g.add_argument(
-        "--velocity",
-        type=number("m/s"),
-        required=True,
-        metavar="M/S",
-        help="vertical velocity in m/s, negative downward (e.g. --velocity=-3.5)",
-    )
-    add_pose_options(g)
-    g.add_argument(
-        "--acceleration",
-        type=number("m/s^2"),
-        metavar="M/S2",
-        help="vertical acceleration of the body in m/s^2, positive up, for a momentum-form "
-        "solver's added-inertia force (default: the body free in heave, its acceleration "
-        "solved with its mass and added mass); free-fall solvers do not use it",
-    )
-    g.add_argument(
-        "--slices",
-        type=slice_list,
-        default=[16, 32, 64],
-        metavar="N[,N...]",
-        help="slice counts over the wetted length; three or more give the extrapolated "
-        "force (default: 16,32,64)",
-    )
-    add_solver_options(g)
-    add_section_options(g)
-    add_fluid_options(p)
+    add_options(g, "force", "draft", "velocity")
+    add_pose_options(g, "force")
+    add_options(g, "force", "acceleration", "slices")
+    add_solver_options(g, "force")
+    add_section_options(g, "force")
+    add_fluid_options(p, "force")
     add_output_options(
         p,
+        "force",
         plot="the convergence in the slices (or, with one count, the force "
         "per metre along the body)",
     )

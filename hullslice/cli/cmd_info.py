@@ -22,8 +22,8 @@ from .common import (
     compute,
     finish,
     out_path,
-    positive_int,
 )
+from .options import add_option
 
 AREA_COLUMNS = (Column("x", "x", "m", ".5g"), Column("area", "area", "m^2", ".6g"))
 
@@ -56,15 +56,9 @@ def add_parser(sub) -> None:
         "without --repair: faces, extent, open edges, whether --repair close would close "
         "it and the volume it would then enclose, and its views.",
     )
-    add_mesh_options(p)
-    p.add_argument(
-        "--stations",
-        type=positive_int,
-        default=40,
-        metavar="N",
-        help="stations of the sectional area curve, along the body's length (default: 40)",
-    )
-    add_output_options(p, plot="the sectional area curve")
+    add_mesh_options(p, "info")
+    add_option(p, "stations", "info")
+    add_output_options(p, "info", plot="the sectional area curve")
     p.add_argument(
         "--write-mesh",
         type=out_path(),

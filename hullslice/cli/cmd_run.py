@@ -9,7 +9,7 @@ from typing import Any
 
 from ..case import load_case
 from ..study import Study
-from .common import FORMATS, out_path
+from .options import add_options
 from .studies import command_module
 
 
@@ -22,13 +22,7 @@ def add_parser(sub) -> None:
         "relative to its folder. The options below override the case's outputs.",
     )
     p.add_argument("case", metavar="CASE.toml", help="the case file")
-    p.add_argument("--format", choices=FORMATS, help="output format (default: the case's)")
-    p.add_argument(
-        "-o", "--output", type=out_path(), metavar="PATH", help="output file (default: the case's)"
-    )
-    p.add_argument(
-        "--plot", type=out_path(), metavar="PATH.png", help="figure file (default: the case's)"
-    )
+    add_options(p, "run", "format", "output", "plot")
     p.add_argument(
         "--print-command",
         action="store_true",

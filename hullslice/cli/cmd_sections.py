@@ -16,9 +16,8 @@ from .common import (
     add_section_options,
     compute,
     finish,
-    number,
-    positive_int,
 )
+from .options import add_option
 
 
 def add_parser(sub) -> None:
@@ -29,25 +28,15 @@ def add_parser(sub) -> None:
         "list each mid-station's wetted pieces: penetration, half-beam at the waterline, "
         "deadrise, area and mass per metre.",
     )
-    add_mesh_options(p)
+    add_mesh_options(p, "sections")
     g = p.add_argument_group("pose and slicing")
-    g.add_argument(
-        "--draft",
-        type=number("m"),
-        required=True,
-        metavar="M",
-        help="depth of the body's lowest point below the calm water, in m",
+    add_option(g, "draft", "sections")
+    add_pose_options(g, "sections", pitch_rate=False, forward_speed=False)
+    add_option(g, "slices", "sections")
+    add_section_options(g, "sections")
+    add_output_options(
+        p, "sections", plot="the cut: the side view with the stations and the section outlines"
     )
-    add_pose_options(g, pitch_rate=False, forward_speed=False)
-    g.add_argument(
-        "--slices",
-        type=positive_int,
-        default=32,
-        metavar="N",
-        help="number of slices over the wetted length (default: 32)",
-    )
-    add_section_options(g)
-    add_output_options(p, plot="the cut: the side view with the stations and the section outlines")
     p.set_defaults(func=run)
 
 

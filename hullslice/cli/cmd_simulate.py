@@ -12,7 +12,7 @@ import numpy as np
 from .. import plots
 from ..aero import AERO_NUMBERS
 from ..errors import InputError
-from ..motion import DEFAULT_STOP_ON, MAX_FLAGGED_SHARE, STOP_RULES
+from ..motion import MAX_FLAGGED_SHARE, STOP_RULES
 from ..motion.history import STEP_CHANGE_WARN
 from ..progress import terminal_progress
 from ..study import SimulationResult, Study, StudyResult
@@ -35,11 +35,10 @@ from .common import (
     add_solver_options,
     compute,
     finish,
-    number,
-    positive_int,
     solver_label,
 )
 from .loads_out import LoadsOutput, add_loads_options, loads_output
+from .options import add_option, add_options
 
 TABLE_ROWS = 40
 
@@ -47,35 +46,8 @@ TABLE_ROWS = 40
 def add_aero_options(p) -> None:
     """The air's forces and the water's friction (a free motion)."""
     a = p.add_argument_group("air and friction")
-    a.add_argument(
-        "--lift",
-        choices=("none", "weight", "coefficients"),
-        help="the air's forces: none (default), weight (lift equal to the weight at "
-        "touchdown, scaled with the speed squared and the angle of attack) or coefficients "
-        "(--wing-area, --wing-chord and the coefficients below)",
-    )
-    for name, unit, what in AERO_NUMBERS:
-        model = "weight" if name == "lift_fraction" else "coefficients"
-        given = name in ("wing_area", "wing_chord")
-        default = "" if given else f" (default: {int(model == 'weight')})"
-        in_unit = f", in {unit}" if unit else ""
-        a.add_argument(
-            "--" + name.replace("_", "-"),
-            type=number(unit),
-            metavar=unit.upper() or "C",
-            help=f"with --lift {model}: {what}{in_unit}{default}",
-        )
-    a.add_argument(
-        "--friction",
-        action="store_true",
-        help="add the water's friction on the wetted surface (ITTC-57 line, N)",
-    )
-    a.add_argument(
-        "--check",
-        action="store_true",
-        help="also run at half the time step and at twice the slices, and report how much "
-        "the peak force (%%), its time (s) and the largest pitch (deg) moved",
-    )
+    add_options(a, "simulate", "lift", *(name for name, _, _ in AERO_NUMBERS))
+    add_options(a, "simulate", "friction", "check")
 
 
 def add_parser(sub) -> None:
@@ -90,113 +62,26 @@ def add_parser(sub) -> None:
         "outside the solver's range carry more than --max-flagged-share of the force "
         "(--continue-invalid goes on with flagged values).",
     )
-    add_mesh_options(p, mass_required=True)
+    add_mesh_options(p, "simulate")
     g = p.add_argument_group("motion")
-    g.add_argument(
-        "--velocity",
-        type=number("m/s"),
-        metavar="M/S",
-        help="initial vertical velocity in m/s, negative downward (free fall)",
-    )
-    g.add_argument(
-        "--t-end", type=number("s"), metavar="S", help="duration of the run in s (free fall)"
-    )
-    g.add_argument(
-        "--dt",
-        type=number("s"),
-        metavar="S",
-        help="time step in s (default: t-end / 1000)",
-    )
-    g.add_argument(
-        "--draft",
-        type=number("m"),
-        default=0.0,
-        metavar="M",
-        help="initial draft of the lowest point in m (default: 0, first contact)",
-    )
-    add_pose_options(g)
-    g.add_argument(
-        "--free-pitch",
-        action="store_true",
-        help="integrate the pitch from the moment about the centre of gravity (default: the "
-        "pitch changes at the constant --pitch-rate)",
-    )
-    g.add_argument(
-        "--free-surge",
-        action="store_true",
-        help="integrate the forward speed from the horizontal force (default: constant)",
-    )
-    g.add_argument(
-        "--kinematics",
-        metavar="CSV",
-        help="prescribed motion: CSV with columns t (s), draft (m, positive), "
-        "velocity (m/s, negative down), optionally acceleration (m/s^2, up; derived from "
-        "velocity when absent), pitch_deg, pitch_rate_deg_s, forward_speed (m/s)",
-    )
-    g.add_argument(
-        "--continue-invalid",
-        action="store_true",
-        help="go on to the end when a stop rule is met, with flagged values "
-        f"(rules: {', '.join(DEFAULT_STOP_ON)})",
-    )
-    g.add_argument(
-        "--max-flagged-share",
-        type=number(""),
-        default=MAX_FLAGGED_SHARE,
-        metavar="SHARE",
-        help="stop when slices outside the solver's range carry more than this share of "
-        f"the force, 0 to 1 (default: {MAX_FLAGGED_SHARE:g})",
-    )
+    add_options(g, "simulate", "velocity", "t_end", "dt", "draft")
+    add_pose_options(g, "simulate")
+    add_options(g, "simulate", "free_pitch", "free_surge", "kinematics", "continue_invalid")
+    add_option(g, "max_flagged_share", "simulate")
     add_aero_options(p)
     m = p.add_argument_group("method")
-    m.add_argument(
-        "--slices",
-        type=positive_int,
-        default=32,
-        metavar="N",
-        help="slices over the wetted length at each instant (default: 32)",
+    add_option(m, "slices", "simulate")
+    add_solver_options(m, "simulate")
+    add_section_options(m, "simulate")
+    add_fluid_options(p, "simulate")
+    add_output_options(
+        p, "simulate", plot="the history (force, acceleration, velocity, draft, pitch)"
     )
-    add_solver_options(m)
-    add_section_options(m)
-    add_fluid_options(p)
-    add_output_options(p, plot="the history (force, acceleration, velocity, draft, pitch)")
     add_loads_options(p)
     r = p.add_argument_group("rows")
     rows = r.add_mutually_exclusive_group()
-    rows.add_argument(
-        "--every",
-        type=positive_int,
-        metavar="N",
-        help="give every Nth instant, with the first and the last, in the table, CSV and "
-        "JSON (default: every instant in CSV and JSON, about 40 in the table)",
-    )
-    rows.add_argument(
-        "--at",
-        type=times,
-        metavar="S[,S...]",
-        help="give the instants nearest these times in s, e.g. --at 0.01,0.02, in the "
-        "table, CSV and JSON (a time outside the run is refused, naming its range)",
-    )
+    add_options(rows, "simulate", "every", "at")
     p.set_defaults(func=run)
-
-
-def times(text: str) -> list[float]:
-    """``"0.01,0.02"`` to ``[0.01, 0.02]`` (s)."""
-    parts = [p.strip() for p in text.split(",") if p.strip()]
-    if not parts:
-        raise argparse.ArgumentTypeError("give one or more times in s, e.g. --at 0.01,0.02")
-    out = []
-    for part in parts:
-        try:
-            t = float(part)
-        except ValueError:
-            raise argparse.ArgumentTypeError(
-                f"{part!r} is not a time in s (give e.g. --at 0.01,0.02)"
-            ) from None
-        if not np.isfinite(t):
-            raise argparse.ArgumentTypeError(f"{part!r} is not a finite time in s")
-        out.append(t)
-    return out
 
 
 def run(args: argparse.Namespace) -> int:

@@ -18,26 +18,24 @@ from pathlib import Path
 from typing import Any
 
 from ..case import COMMAND_KEYS, SCHEMA, case_command, validate_case
-from ..constants import RHO_WATER, G
 from ..errors import CaseError, InputError
 from ..limits import check_pitch, check_slice_count
-from ..motion import MAX_FLAGGED_SHARE
+from ..options import COMMANDS, FIELD_KEYS, OPTIONS, option
+from ..options import study_default as _default
 from ..renamed import former_attribute
-from ..solvers.registry import DEFAULT_SOLVER
 from ..state import Acceleration, Fluid, Motion, Pose
 
 __all__ = ["COMMANDS", "Study", "StudyError"]
 
-#: The computations a study can describe.
-COMMANDS = ("info", "sections", "force", "simulate")
-
 #: Study fields whose case key (and command-line option) differs: angles, in degrees.
-_CASE_NAMES = {"pitch_deg": "pitch", "pitch_rate_deg_s": "pitch_rate"}
+_CASE_NAMES = FIELD_KEYS
 _FIELD_NAMES = {v: k for k, v in _CASE_NAMES.items()}
-_FLAGS = ("no_fix", "free_pitch", "free_surge", "continue_invalid", "friction", "check")
+_FLAGS = tuple(o.name for o in OPTIONS if o.kind == "flag")
 #: The study's fields of the aerodynamic coefficients (:data:`hullslice.aero.COEFFICIENTS`).
 COEFS = ("wing_area", "wing_chord", "cl0", "cl_alpha", "cd", "cm0", "cm_alpha", "cm_q", "thrust")
-_PATHS = ("mesh", "kinematics", "mass_distribution", "output", "plot")
+_PATHS = tuple(o.name for o in OPTIONS if o.kind == "path")
+#: Keys whose values are sequences (kept as tuples in a study, lists in a case).
+_SEQUENCES = tuple(o.name for o in OPTIONS if o.kind in ("counts", "pair", "box", "times"))
 
 
 class StudyError(InputError):
@@ -162,12 +160,12 @@ class Study:
     mass_distribution: str | None = None
     cg: tuple[float, float] | None = None
     inertia: float | None = None
-    rho: float = RHO_WATER
-    g: float = G
-    solver: str = DEFAULT_SOLVER
+    rho: float = _default("rho")
+    g: float = _default("g")
+    solver: str = _default("solver")
     solver_options: tuple[tuple[str, Any], ...] = ()
-    deadrise: str = "wedge"
-    slicing: str = "wetted"
+    deadrise: str = _default("deadrise")
+    slicing: str = _default("slicing")
     slices: tuple[int, ...] | None = None
     draft: float | None = None
     pitch_deg: float | None = None
@@ -181,7 +179,7 @@ class Study:
     free_pitch: bool = False
     free_surge: bool = False
     continue_invalid: bool = False
-    max_flagged_share: float = MAX_FLAGGED_SHARE
+    max_flagged_share: float = _default("max_flagged_share")
     lift: str | None = None
     lift_fraction: float | None = None
     wing_area: float | None = None
@@ -400,7 +398,7 @@ class Study:
                 value = str(value)
             elif name == "solver_options":
                 value = tuple(value.items())
-            elif name in ("slices", "cg", "keep_box", "at"):
+            elif name in _SEQUENCES:
                 value = tuple(value)
             values[_FIELD_NAMES.get(name, name)] = value
         return cls(command=command, **values)
@@ -416,14 +414,13 @@ class Study:
         StudyError
             A solver option given twice.
         """
-        values: dict[str, Any] = {}
-        for f in fields(cls):
-            name = _CASE_NAMES.get(f.name, f.name)
-            if f.name in ("solver_options", "case_file"):
+        values: dict[str, Any] = {"command": args.command}
+        for o in OPTIONS:
+            if o.cli is None or o.kind == "table":
                 continue
-            value = getattr(args, name, None)
+            value = getattr(args, o.name, None)
             if value is not None:
-                values[f.name] = value
+                values[o.attribute] = value
         options: dict[str, Any] = {}
         for key, value in getattr(args, "solver_option", None) or ():
             if key in options:
@@ -477,14 +474,14 @@ class Study:
         """The arguments of the ``hullslice`` command that computes this study."""
         argv = [self.command, str(self.mesh)]
         for name, value in self._case_items():
-            option = "--" + name.replace("_", "-")
+            flag = option(name).flag
             if value is None:
                 continue
             if name in _FLAGS:
                 if value:
-                    argv.append(option)
+                    argv.append(flag)
             elif name == "solver_options":
-                argv += [f"--solver-option={k}={json.dumps(v)}" for k, v in value]
+                argv += [f"{flag}={k}={json.dumps(v)}" for k, v in value]
             elif name == "cg":
                 argv.append(f"--cg={value[0]!r},{value[1]!r}")
             elif name == "slices":
@@ -494,7 +491,7 @@ class Study:
             elif name == "keep_box" and not isinstance(value, str):
                 argv.append(f"--keep-box={','.join(repr(float(x)) for x in value)}")
             elif isinstance(value, float):
-                argv.append(f"{option}={value!r}")
+                argv.append(f"{flag}={value!r}")
             else:
-                argv.append(f"{option}={value}")
+                argv.append(f"{flag}={value}")
         return argv
