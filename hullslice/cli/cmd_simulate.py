@@ -73,6 +73,7 @@ def add_parser(sub) -> None:
     add_option(m, "slices", "simulate")
     add_solver_options(m, "simulate")
     add_section_options(m, "simulate")
+    add_option(m, "cutter", "simulate")
     add_fluid_options(p, "simulate")
     add_output_options(
         p, "simulate", plot="the history (force, acceleration, velocity, draft, pitch)"

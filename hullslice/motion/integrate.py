@@ -340,6 +340,7 @@ def prescribed(
     max_flagged_share: float = MAX_FLAGGED_SHARE,
     progress: Callable[[float, float], None] | None = None,
     sections_every: int = 0,
+    cutter: str = "manifold3d",
 ) -> History:
     """The force along a prescribed motion.
 
@@ -361,6 +362,9 @@ def prescribed(
         its velocities (:mod:`hullslice.motion.kinematics`).
     stop_on : iterable of str
         Stop rules that end the evaluation early (default none: the whole table).
+    cutter : str
+        How the table's pitches are cut (:data:`hullslice.geometry.CUTTERS`; default
+        ``"manifold3d"``; ``"exact"`` cuts each new pitch without turning the hull).
 
     Other parameters as for :func:`simulate`. The history's acceleration is the prescribed
     one with a momentum-form solver, and the one the 2D+t force implies, ``F / m - g``,
@@ -377,6 +381,7 @@ def prescribed(
         deadrise=deadrise,
         slicing=slicing,
         need_mass=False,
+        cutter=cutter,
     )
     accelerations = kinematics_accelerations(kin) if model.momentum else None
     t_all = kin["t"]

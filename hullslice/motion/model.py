@@ -117,6 +117,7 @@ class ForceModel:
             "g": self.fluid.g,
             "deadrise": self.deadrise,
             "slicing": self.slicing,
+            "cutter": self.cutter,
         }
 
     @renamed_keywords(pitch="pitch_rad")

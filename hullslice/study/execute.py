@@ -351,6 +351,8 @@ def simulation(
         "progress": progress,
         "sections_every": sections_every,
     }
+    if study.cutter is not None:
+        common["cutter"] = study.cutter
     if kinematics is None:
         assert study.velocity is not None and study.t_end is not None  # checked by Study
         return simulate(

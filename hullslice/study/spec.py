@@ -95,8 +95,9 @@ class Study:
         Name of the 2D solver.
     solver_options : tuple of (str, Any)
         Options passed to the solver, in order.
-    deadrise, slicing : str
-        Local deadrise estimator and slice placement (``wetted`` or ``fixed``).
+    deadrise, slicing, cutter : str
+        Local deadrise estimator, slice placement (``wetted`` or ``fixed``) and how a new
+        pitch is cut (:data:`hullslice.geometry.CUTTERS`; None: the run's default).
     slices : tuple of int, optional
         Slice count(s); one for ``sections`` and ``simulate``, one or more for ``force``
         (default: the command's, 32 or 16, 32, 64).
@@ -167,6 +168,7 @@ class Study:
     deadrise: str = _default("deadrise")
     slicing: str = _default("slicing")
     slices: tuple[int, ...] | None = None
+    cutter: str | None = None
     draft: float | None = None
     pitch_deg: float | None = None
     velocity: float | None = None
