@@ -7,7 +7,7 @@ The mesh is ``meshes/airliner/airliner.obj`` (a twin-engined narrow-body airline
 faces, CC BY 3.0; see ``meshes/airliner/README.md``), scaled to 37.6 m, of which the part
 within 3.2 m of the centreline is kept: the fuselage with its belly fairing and the wing
 roots, without the nacelles (4.9 m out) and the outer wings. At 60 t, 0.5 m draft, pitched
-6 degrees, 60 m/s forward and sinking at 1.5 m/s, the aft 13 m of the keel are wetted:
+6 degrees, 60 m/s forward and sinking at 1.5 m/s, the aft 12.7 m of the keel are wetted:
 the tail cone's upsweep, where the keel line of the mesh is a polyline with kinks.
 
 With forward speed a section's acceleration includes the forward speed squared times the
