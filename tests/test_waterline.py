@@ -263,3 +263,25 @@ def test_pieces_come_in_order_along_the_waterline():
     table = WaterlineTable.of(outline, 0.4, 1e-4, "wedge")
     for level in (0.05, 0.15, 0.3):
         assert compare(table, outline, level, 1e-4, "wedge")
+
+
+@pytest.mark.parametrize("deadrise", ["wedge", "waterline-slope", "keel-fit"])
+@pytest.mark.parametrize("make, pitch_deg, n", [(fuselage_hull, 6.0, 24), (round_hull, 0.0, 4),
+                                                (asymmetric_hull, 3.0, 6)])  # fmt: skip
+def test_one_evaluation_of_many_stations_at_their_own_levels_is_each_alone(
+    make, pitch_deg, n, deadrise
+):
+    # stations taken from an outline (repeated, out of order), each at its own water:
+    # every station's properties the very same as its evaluation alone
+    outline, tol, fr = outline_of(make(), pitch_deg, n)
+    rng = np.random.default_rng(3)
+    picks = rng.integers(0, n, 3 * n)
+    at = rng.uniform(fr.lowest, fr.highest, len(picks))
+    both = wetted_properties(outline.take(picks), at, tol, deadrise)
+    for j, (k, level) in enumerate(zip(picks.tolist(), at.tolist(), strict=True)):
+        alone = wetted_properties(outline.window(k, k + 1), level, tol, deadrise)
+        mine = both["station"] == j
+        for key, val in alone.items():
+            got = both[key][j : j + 1] if key == "area" else both[key][mine]
+            want = val if key != "station" else val + j
+            np.testing.assert_array_equal(got, want, err_msg=f"{key} of station {k}")

@@ -189,17 +189,52 @@ class Outline:
             z_chine=self.z_chine[k0:k1],
         )
 
-    def below(self, level: float) -> tuple:
+    def below(self, level: float | np.ndarray) -> tuple:
         """The edges reaching below ``level`` (a prefix of each station's), with heights
-        measured from ``level``: ``station, ya, za, yb, zb, contour``."""
+        measured from ``level`` (or from each station's, ``(s,)``): ``station, ya, za, yb,
+        zb, contour``."""
         idx = prefix_index(self.start[:-1], prefix_counts(self, level))
+        station = self.station[idx]
+        at = level if np.isscalar(level) else np.asarray(level)[station]
         return (
-            self.station[idx],
+            station,
             self.ya[idx],
-            self.za[idx] - level,
+            self.za[idx] - at,
             self.yb[idx],
-            self.zb[idx] - level,
+            self.zb[idx] - at,
             self.contour[idx],
+        )
+
+    def take(self, stations: np.ndarray) -> Outline:
+        """The outline of the given stations (indices, in this order, repeats allowed), as
+        stations ``0 .. len(stations) - 1``: the same edges and values, copied."""
+        k = np.asarray(stations, dtype=np.int64)
+        counts = self.start[k + 1] - self.start[k]
+        idx = prefix_index(self.start[k], counts)
+        c0 = np.searchsorted(self.part_station, k, side="left")
+        c_count = np.searchsorted(self.part_station, k, side="right") - c0
+        parts = prefix_index(c0, c_count)
+        new_c0 = np.cumsum(c_count) - c_count
+        slot = np.repeat(np.arange(len(k)), counts)
+        return Outline(
+            station=slot,
+            ya=self.ya[idx],
+            za=self.za[idx],
+            yb=self.yb[idx],
+            zb=self.zb[idx],
+            zlo=self.zlo[idx],
+            start=np.concatenate([[0], np.cumsum(counts)]),
+            area=self.area[k],
+            contour=self.contour[idx] - c0[slot] + new_c0[slot],
+            part_area=self.part_area[parts],
+            part_station=np.repeat(np.arange(len(k)), c_count),
+            part_zmax=self.part_zmax[parts],
+            part_ymin=self.part_ymin[parts],
+            part_ymax=self.part_ymax[parts],
+            zmin=self.zmin[k],
+            ymin=self.ymin[k],
+            ymax=self.ymax[k],
+            z_chine=self.z_chine[k],
         )
 
 
@@ -239,9 +274,11 @@ def _inside(point: np.ndarray, contour: np.ndarray) -> bool:
     return bool(np.count_nonzero(straddle & (yc > point[0])) % 2)
 
 
-def prefix_counts(outline: Outline, level: float) -> np.ndarray:
-    """For each station, how many of its edges (sorted by lower end) reach below ``level``."""
-    cum = np.concatenate([[0], np.cumsum(outline.zlo < level)])
+def prefix_counts(outline: Outline, level: float | np.ndarray) -> np.ndarray:
+    """For each station, how many of its edges (sorted by lower end) reach below ``level``
+    (or below each station's, ``(s,)``)."""
+    at = level if np.isscalar(level) else np.asarray(level)[outline.station]
+    cum = np.concatenate([[0], np.cumsum(outline.zlo < at)])
     return cum[outline.start[1:]] - cum[outline.start[:-1]]
 
 

@@ -64,9 +64,11 @@ def section_properties(
 
 
 def wetted_properties(
-    outline: Outline, level: float, tol: float, deadrise: str = "wedge"
+    outline: Outline, level: float | np.ndarray, tol: float, deadrise: str = "wedge"
 ) -> dict[str, np.ndarray]:
-    """Properties of the sections of an :class:`Outline` with the water at height ``level``.
+    """Properties of the sections of an :class:`Outline` with the water at height ``level``
+    (m; or one height per station, ``(s,)``: each station's properties are those it has
+    alone at its own).
 
     See :func:`section_properties` for the result.
     """
@@ -178,7 +180,7 @@ def _mass_share(
 
 def _wetted_pieces(
     outline: Outline,
-    level: float,
+    level: float | np.ndarray,
     *,
     station: np.ndarray,
     ya: np.ndarray,
@@ -223,7 +225,8 @@ def _wetted_pieces(
     tl, tr = slope[opens], slope[closes]
     crossed = np.zeros(len(outline.part_area), dtype=bool)
     crossed[cc] = True
-    submerged = np.flatnonzero(~crossed & (outline.part_zmax - level < 0.0))
+    part_level = level if np.isscalar(level) else np.asarray(level)[outline.part_station]
+    submerged = np.flatnonzero(~crossed & (outline.part_zmax - part_level < 0.0))
     if len(submerged):
         ps = np.concatenate([ps, outline.part_station[submerged]])
         yl = np.concatenate([yl, outline.part_ymin[submerged]])
@@ -237,15 +240,23 @@ def _wetted_pieces(
 
 
 def _assign(seg_station, seg_y, ps, yl, yr) -> np.ndarray:
-    """Index of the piece whose waterline interval holds each point, or -1."""
+    """Index of the piece whose waterline interval holds each point, or -1.
+
+    Pieces are sorted by ``(station, y_left)``: a point's candidate is the last piece of its
+    own station starting at or left of it, found by exact comparisons only (no key mixing
+    stations and heights), so that a station's assignment does not depend on the others."""
     if len(ps) == 0:
         return np.full(len(seg_y), -1)
-    # pieces are sorted by (station, y_left): search in a combined key
-    span = max(float(np.max(np.abs(np.concatenate([yl, yr, seg_y])))), 1.0) * 4.0
-    key_p = ps * span + yl
-    key_s = seg_station * span + seg_y
-    i = np.searchsorted(key_p, key_s, side="right") - 1
-    ok = (i >= 0) & (ps[np.clip(i, 0, None)] == seg_station) & (seg_y <= yr[np.clip(i, 0, None)])
+    first = np.searchsorted(ps, seg_station, side="left")
+    end = np.searchsorted(ps, seg_station, side="right")
+    i = first - 1
+    most = int((end - first).max()) if len(seg_y) else 0
+    for j in range(most):  # a station's pieces, left to right (one or two, usually)
+        cand = first + j
+        take = cand < end
+        take[take] = yl[cand[take]] <= seg_y[take]
+        i = np.where(take, cand, i)
+    ok = (i >= first) & (seg_y <= yr[np.clip(i, 0, None)])
     return np.where(ok, i, -1)
 
 

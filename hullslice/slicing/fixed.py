@@ -199,17 +199,12 @@ def fixed_sections(
     # only the stations of the wetted slices and their neighbours matter
     w0, w1 = max(int(k[0]) - 1, 0), min(int(k[-1]) + 2, n)
     props = None
-    if cache:
-        kept = fixed_cut(fr, n, tol, cutter)
+    kept = fixed_cut(fr, n, tol, cutter) if cache else None
+    if kept is not None:
         outline, polys, c0 = kept.window(fr, w0, w1, cutter)
         props = kept.tabulated(outline, level, deadrise, w0 - c0, w1 - c0)
     else:
         (outline, polys), c0 = outline_of(fr, mids, tol, cutter), 0
-    if props is None:
-        props = wetted_properties(outline.window(w0 - c0, w1 - c0), level, tol, deadrise)
-    props["station"] = props["station"] + w0
-    wet_mid = np.zeros(n, dtype=bool)
-    wet_mid[props["station"][props["penetration"] > 0]] = True
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
     keel = fr.keel.at(x)
@@ -223,19 +218,32 @@ def fixed_sections(
     if not full.all():
         own[~full] &= np.abs(fr.keel.at(mids[k[~full]])[1]) <= END_FACE_SLOPE
     source = np.where(own, k, neighbour)
+    # a partial slice's source moved by this much (where the slice takes a moved section)
+    with np.errstate(invalid="ignore"):
+        depth = np.where(full, 0.0, keel[0] - outline.zmin[source - c0])
+    extra: dict[int, dict[str, np.ndarray]] = {}
+    if props is None:
+        props, extra = _window_properties(
+            kept, outline, (w0 - c0, w1 - c0), level, tol, deadrise,
+            _guess_moved(outline, k - c0, neighbour - c0, full, level, w0 - c0, w1 - c0),
+            source - c0, depth,
+        )  # fmt: skip
+    props["station"] = props["station"] + w0
+    wet_mid = np.zeros(n, dtype=bool)
+    wet_mid[props["station"][props["penetration"] > 0]] = True
     fresh = ~full & ~wet_mid[k] & ~wet_mid[neighbour]
-    lift = np.zeros(len(x))
     moved = np.flatnonzero(~full & ~fresh)
+    lift = np.zeros(len(x))
+    lift[moved] = depth[moved]
     station = props["station"]
     # entries of the chosen sources, one slice after another (entries sorted by station)
     first = np.searchsorted(station, source, side="left")
     count = np.searchsorted(station, source, side="right") - first
     if len(moved):  # a partial slice: its source wetted as deep as the slice's middle is,
         # its entries appended to the window's
-        lift[moved] = keel[0][moved] - outline.zmin[source[moved] - c0]
         more = [
-            _station_at(kept if cache else None, outline, int(source[i] - c0),
-                        float(level - lift[i]), tol, deadrise)
+            extra[int(i)] if int(i) in extra else
+            _station_at(kept, outline, int(source[i] - c0), float(level - lift[i]), tol, deadrise)
             for i in moved
         ]  # fmt: skip
         sizes = [len(m["station"]) for m in more]
@@ -277,6 +285,62 @@ def outline_of(
     afresh."""
     polys = fr.cut(rel, cutter)
     return Outline.of(polys, tol, fr.origin, fr.scale), polys
+
+
+def _guess_moved(
+    outline: Outline,
+    k: np.ndarray,
+    neighbour: np.ndarray,
+    full: np.ndarray,
+    level: float,
+    k0: int,
+    k1: int,
+) -> np.ndarray:
+    """The partial slices that will likely take a moved section (see
+    :func:`fixed_sections`): those whose own or neighbouring station of the outline
+    (``k``, ``neighbour``) reaches below ``level`` within stations ``k0 .. k1 - 1``. A guess
+    only: the wetted properties decide, and a slice guessed wrongly is evaluated apart."""
+    inside = (outline.zmin < level) & (np.arange(outline.n_stations) >= k0)
+    inside &= np.arange(outline.n_stations) < k1
+    return np.flatnonzero(~full & (inside[k] | inside[neighbour]))
+
+
+def _window_properties(
+    kept: FixedCut | None,
+    outline: Outline,
+    window: tuple[int, int],
+    level: float,
+    tol: float,
+    deadrise: str,
+    guess: np.ndarray,
+    source: np.ndarray,
+    lift: np.ndarray,
+) -> tuple[dict[str, np.ndarray], dict[int, dict[str, np.ndarray]]]:
+    """The wetted properties of the outline's stations ``window[0] .. window[1] - 1`` at
+    ``level``, and in the same evaluation those of the partial slices ``guess`` (their
+    ``source`` stations of the outline at ``level - lift``, by slice): one call of
+    :func:`wetted_properties`, each station's properties the same as alone. The slices'
+    by slice index, each as :func:`_station_at` gives it; none where a waterline table of
+    this outline would serve them (:func:`_station_at` reads it)."""
+    k0, k1 = window
+    table = None if kept is None else kept.tables.get(deadrise)
+    if table is not None and table.outline is outline:
+        guess = guess[:0]
+    guess = guess[np.isfinite(lift[guess])]
+    nwin = k1 - k0
+    stations = np.concatenate([np.arange(k0, k1), source[guess]])
+    levels = np.concatenate([np.full(nwin, level), level - lift[guess]])
+    both = wetted_properties(outline.take(stations), levels, tol, deadrise)
+    ends = np.searchsorted(both["station"], np.arange(nwin, len(stations) + 1))
+    props = {key: val[: ends[0]] for key, val in both.items() if key != "area"}
+    props["area"] = both["area"][:nwin]
+    extra = {}
+    for j, i in enumerate(guess.tolist()):
+        one = {key: val[ends[j] : ends[j + 1]] for key, val in both.items() if key != "area"}
+        one["station"] = one["station"] - (nwin + j)
+        one["area"] = both["area"][nwin + j : nwin + j + 1]
+        extra[i] = one
+    return props, extra
 
 
 def _station_at(
