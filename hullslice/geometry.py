@@ -33,6 +33,7 @@ from typing import Any
 
 import numpy as np
 
+from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
 from .errors import InputError
 from .kernel.keel import KeelLine, lower_envelope
@@ -280,7 +281,7 @@ def _frame(hull, pitch: float) -> Frame:
             [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
         ]
     )
-    keel = lower_envelope(ta, tb)
+    keel = lower_envelope(ta, tb, planecut_loops.compiled("lowest") if keel_loops() else None)
     return Frame(
         pitch=pitch,
         cg=g,
@@ -292,6 +293,14 @@ def _frame(hull, pitch: float) -> Frame:
         _offset=np.array([oy, oz, ox]),
         _scale=scale,
     )
+
+
+def keel_loops() -> bool:
+    """Whether the keel line at a new pitch is found by the compiled loops: once the exact
+    cut's are in use in this process (numba installed, not switched off, and imported
+    for the cut: a run at a held pitch does not import it for its few frames), see
+    :mod:`hullslice.planecut_loops`. The same keel line as numpy's."""
+    return planecut_loops.available() and planecut_loops.in_use()
 
 
 def _turn(r: np.ndarray, c: float, s: float) -> np.ndarray:

@@ -1,4 +1,5 @@
-"""The exact plane cut's loops, written for a compiler: numba's, when installed.
+"""The exact plane cut's loops and the keel line's, written for a compiler: numba's, when
+installed.
 
 :func:`cut_loops` does in one pass over the candidate faces what
 :meth:`hullslice.planecut.PlaneIndex.cut` does with numpy after choosing them: the sign
@@ -8,6 +9,10 @@ plain Python too (slowly: the tests compare it with numpy on small meshes); comp
 numba (the ``fast`` extra, ``pip install hullslice[fast]``) it is the kernel's fast path.
 numba is imported only when :func:`compiled` is first called, never by ``import
 hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
+
+:func:`lowest_loops` is :meth:`hullslice.kernel.keel.lower_envelope`'s inner search (the
+lowest of the side view's segments over each abscissa) in the same way: the same
+arithmetic per pair, and a minimum, which does not depend on the order.
 """
 
 from __future__ import annotations
@@ -19,7 +24,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["available", "compiled", "cut_loops"]
+__all__ = ["available", "compiled", "cut_loops", "in_use", "lowest_loops"]
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -138,8 +143,36 @@ def cut_loops(
     return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], status
 
 
+def lowest_loops(xs, xa, za, xb, zb):
+    """The lowest height of the segments from ``(xa, za)`` to ``(xb, zb)`` over each of the
+    sorted abscissae ``xs`` (``inf`` where none): a vertical segment's lower end, else the
+    segment's height there, ``za + (x - xa) / (xb - xa) * (zb - za)``."""
+    z = np.full(len(xs), np.inf)
+    for j in range(len(xa)):
+        dx = xb[j] - xa[j]
+        dz = zb[j] - za[j]
+        lo, hi = min(xa[j], xb[j]), max(xa[j], xb[j])
+        a, b = 0, len(xs)  # the first abscissa at or after lo
+        while a < b:
+            c = (a + b) // 2
+            if xs[c] < lo:
+                a = c + 1
+            else:
+                b = c
+        for i in range(a, len(xs)):
+            if xs[i] > hi:
+                break
+            if dx == 0.0:
+                zi = min(za[j], zb[j])
+            else:
+                zi = za[j] + (xs[i] - xa[j]) / dx * dz
+            if zi < z[i] or zi != zi:  # np.minimum's: a NaN wins
+                z[i] = zi
+    return z
+
+
 _LOCK = threading.Lock()
-_COMPILED: list[Callable | None] = []
+_COMPILED: dict[str, Callable | None] = {}
 
 
 _FOUND: list[bool] = []
@@ -155,15 +188,25 @@ def available() -> bool:
     return _FOUND[0]
 
 
-def compiled() -> Callable | None:
-    """:func:`cut_loops` compiled by numba (made on first call, cached on disk), or None
-    without numba."""
+def in_use() -> bool:
+    """Whether this process has compiled loops already (numba imported for them): then the
+    keel line's are worth using too."""
+    return any(fn is not None for fn in _COMPILED.values())
+
+
+#: The loops :func:`compiled` compiles, by name.
+LOOPS: dict[str, Callable] = {"cut": cut_loops, "lowest": lowest_loops}
+
+
+def compiled(name: str = "cut") -> Callable | None:
+    """The loops of :data:`LOOPS` by name (:func:`cut_loops` by default) compiled by numba
+    (made on first call, cached on disk), or None without numba."""
     with _LOCK:
-        if not _COMPILED:
+        if name not in _COMPILED:
             fn = None
             if available():
                 import numba
 
-                fn = numba.njit(cache=True, nogil=True)(cut_loops)
-            _COMPILED.append(fn)
-        return _COMPILED[0]
+                fn = numba.njit(cache=True, nogil=True)(LOOPS[name])
+            _COMPILED[name] = fn
+        return _COMPILED[name]

@@ -245,3 +245,26 @@ def test_an_unknown_loops_path_is_refused():
     fr = frame(hull, 0.1)
     with pytest.raises(ValueError, match="path 'gpu' is unknown"):
         plane_index(hull).cut(np.zeros(1), fr.pitch, fr.cg, fr._matrix, path="gpu")
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
+def test_the_keel_line_by_the_loops_equals_numpy(name):
+    """The keel line's loops (run as Python, and compiled where numba is installed) give
+    numpy's keel line to the last bit at pitches from -20 to 40 degrees."""
+    from hullslice.geometry import _turn, silhouette_edges
+    from hullslice.kernel.keel import lower_envelope
+
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    paths = [planecut_loops.lowest_loops]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("lowest"))
+    for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+        want = lower_envelope(ta, tb)
+        for loops in paths:
+            got = lower_envelope(ta, tb, loops)
+            np.testing.assert_array_equal(got.x, want.x)
+            np.testing.assert_array_equal(got.z, want.z)

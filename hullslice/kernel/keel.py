@@ -7,6 +7,7 @@ slice. Pure numpy.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -244,12 +245,14 @@ class _Runs:
         return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
 
 
-def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
+def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) -> KeelLine:
     """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
 
     Evaluated exactly at every end point; where two segments cross between end points the
     envelope is refined at the middle of that interval (the crossing point itself is not
-    found, so there the line may lie a little high).
+    found, so there the line may lie a little high). ``loops``, when given, finds the
+    lowest segment over each abscissa instead of numpy (``loops(xs, xa, za, xb, zb)``, as
+    :func:`hullslice.planecut_loops.lowest_loops`, compiled: the same numbers).
     """
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
@@ -259,9 +262,15 @@ def lower_envelope(a: np.ndarray, b: np.ndarray) -> KeelLine:
             new &= ~np.isnan(xs[:-1])
         xs = xs[np.concatenate([[True], new])]
     segments = _Segments(a, b)
-    z = segments.lowest(xs)
-    mid = 0.5 * (xs[1:] + xs[:-1])
-    zm = segments.lowest(mid)
+    if loops is None:
+        z = segments.lowest(xs)
+        mid = 0.5 * (xs[1:] + xs[:-1])
+        zm = segments.lowest(mid)
+    else:
+        ends = (segments.xa, segments.za, segments.xb, segments.zb)
+        z = loops(xs, *ends)
+        mid = 0.5 * (xs[1:] + xs[:-1])
+        zm = loops(mid, *ends)
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
