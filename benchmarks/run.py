@@ -1,6 +1,6 @@
 """hullslice's benchmark suite: one command, a table of measured figures against targets.
 
-    python benchmarks/run.py [--quick] [--repeat 5] [--no-sweep]
+    python benchmarks/run.py [--quick] [--repeat 5] [--no-sweep] [--envelope]
 
 Meshes: the generic fuselage of ``hullslice.shapes`` at about 10k, 100k and 1M faces
 (``--quick`` stops at 100k). For each: the time to load it from a file; the time to cut
@@ -37,7 +37,11 @@ force from one pitch to the next, 1e-10 rad apart, over 10 such steps (the 1:10 
 forward, 1 m/s down), next to the force's own change over that step. Unless ``--quick``
 or ``--no-sweep``: the 64-case free-pitch sweep of ``benchmarks/sweep.py`` (cases of
 0.03 s at 1 ms, 2 to 3 minutes) in this process and on 1 and 2 Dask workers, cases per
-second, target 2 / 1 workers >= 1.7 (it needs the ``sweep`` extra).
+second, target 2 / 1 workers >= 1.7 (it needs the ``sweep`` extra); and the envelope
+study's case (the 1:10 model, free pitch, 0.5 s at 1 ms, 32 fixed slices): its time in
+this process, 8 such cases on 1 and 2 Dask workers (target 2 / 1 >= 1.7), and 1,000 of
+them on two workers at that rate (target under 10 minutes), about 3 minutes in all
+(``--envelope`` runs this part alone).
 
 Times are medians of ``--repeat`` runs on this machine (the 1M process and the sweep run
 once); ratios compare figures measured in the same run.
@@ -597,12 +601,7 @@ def bench_sweep(table: Table, repeat: int) -> None:
             f'not run: {" and ".join(missing)} missing: pip install -e ".[sweep]"',
         )
         return
-    spec = importlib.util.spec_from_file_location(
-        "sweep_benchmark", ROOT / "benchmarks" / "sweep.py"
-    )
-    assert spec is not None and spec.loader is not None
-    sweep = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(sweep)
+    sweep = _sweep_module()
     what = f"64-case free-pitch sweep ({SWEEP_T_END:g} s cases at 1 ms, 1:10 model)"
     rates = sweep.throughput(SWEEP_T_END, repeat=repeat, free_pitch=True)
     one, two = rates[sweep.workers_name(1)], rates[sweep.workers_name(2)]
@@ -614,6 +613,62 @@ def bench_sweep(table: Table, repeat: int) -> None:
         "free-pitch sweep: largest relative difference of a peak force between settings",
         f"{rates['peak difference']:.1e}",
     )
+
+
+#: The envelope study: the 1:10 model (128k faces), free pitch, 32 fixed slices, cases of
+#: 0.5 s at 1 ms; a sample of it is run, and 1,000 cases are extrapolated from its rate.
+ENVELOPE_T_END = 0.5
+ENVELOPE_GRID = {"velocity": [-1.0, -2.0], "pitch": [3.0, 5.0, 7.0, 9.0]}
+ENVELOPE_CASES = 1000
+
+
+def bench_envelope(table: Table) -> None:
+    """The envelope case (the 1:10 model, free pitch, 0.5 s at 1 ms, 32 fixed slices): its
+    time per case in this process, and the rate of a sample of such cases on 1 and 2 Dask
+    workers, with the time of :data:`ENVELOPE_CASES` cases on two workers extrapolated."""
+    if any(importlib.util.find_spec(m) is None for m in ("distributed", "xarray")):
+        table.add("envelope cases", 'not run: pip install -e ".[sweep]"')
+        return
+    from hullslice.sweeps.engine import local_client
+
+    sweep = _sweep_module()
+    base, _ = sweep.study(ENVELOPE_T_END, free_pitch=True)
+    grid = ENVELOPE_GRID
+    n = len(grid["velocity"]) * len(grid["pitch"])
+    what = f"envelope: 1:10 model (128k faces), free pitch, {ENVELOPE_T_END:g} s at 1 ms, 32 fixed"
+    own = sweep.measure(base, grid, workers=1)
+    table.add(f"{what}: a case in this process ({n} cases, compute / case)",
+              fmt(own["compute"] / n))  # fmt: skip
+    rates = {}
+    for k in (1, 2):
+        client = local_client(k)
+        try:
+            rates[k] = sweep.measure(base, grid, client=client)["rate"]
+        finally:
+            client.close()
+            client.cluster.close()
+    table.add(f"envelope: {n} cases on 1 / 2 Dask workers",
+              f"{rates[1]:.3f} / {rates[2]:.3f} cases/s")  # fmt: skip
+    ratio = rates[2] / rates[1]
+    table.add("envelope: ratio 2 / 1 workers", f"{ratio:.2f}", ">= 1.7", ratio >= 1.7)
+    total = ENVELOPE_CASES / rates[2]
+    table.add(
+        f"envelope: {ENVELOPE_CASES} cases on 2 workers (at the {n}-case rate)",
+        f"{total / 60:.0f} min",
+        "< 10 min",
+        total < 600,
+    )
+
+
+def _sweep_module():
+    """``benchmarks/sweep.py`` as a module."""
+    spec = importlib.util.spec_from_file_location(
+        "sweep_benchmark", ROOT / "benchmarks" / "sweep.py"
+    )
+    assert spec is not None and spec.loader is not None
+    sweep = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(sweep)
+    return sweep
 
 
 def bench_process(table: Table, repeat: int) -> None:
@@ -652,7 +707,18 @@ def main() -> None:
         help="skip the 64-case free-pitch sweep on 1 and 2 Dask workers (2 to 3 minutes; "
         "--quick skips it too)",
     )
+    ap.add_argument(
+        "--envelope",
+        action="store_true",
+        help="run only the envelope cases (free pitch, 0.5 s at 1 ms, 128k faces) on 1 and 2 "
+        "Dask workers (about 3 minutes)",
+    )
     args = ap.parse_args()
+    if args.envelope:
+        table = Table()
+        bench_envelope(table)
+        table.show()
+        return
     if importlib.util.find_spec("trimesh") is None:
         # the comparison with trimesh runs in a process of its own, after minutes of work
         sys.exit(
@@ -681,6 +747,8 @@ def main() -> None:
             if not args.no_sweep:
                 print("64-case free-pitch sweep ...")
                 bench_sweep(table, 1)
+                print("envelope cases (about 3 minutes) ...")
+                bench_envelope(table)
         bench_process(table, args.repeat)
     table.show()
 

@@ -183,10 +183,12 @@ class PlaneIndex:
         # plus the lowest x): each bin's faces are a contiguous, sorted run of them
         span, x0 = self.key_span, self.key_x0
         base = np.arange(nb) * span
-        lo = base + np.clip(lo - x0, 0.0, 0.5 * span)
-        hi = base + np.clip(hi - x0, 0.0, 0.5 * span)
-        first = np.searchsorted(self.key, lo, side="left")
-        last = np.searchsorted(self.key, hi, side="right")
+        # searched bin by bin (the bounds then ascend where the stations do, and each
+        # search starts from the one before), the results back in station order
+        lo = (base[:, None] + np.clip(lo.T - x0, 0.0, 0.5 * span)).ravel()
+        hi = (base[:, None] + np.clip(hi.T - x0, 0.0, 0.5 * span)).ravel()
+        first = np.searchsorted(self.key, lo, side="left").reshape(nb, -1).T
+        last = np.searchsorted(self.key, hi, side="right").reshape(nb, -1).T
         count = np.maximum(last - first, 0).ravel()
         total = int(count.sum())
         if total == 0:
