@@ -31,8 +31,9 @@ The contours come out as :meth:`hullslice.geometry.Frame.cut` gives manifold3d's
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -57,8 +58,9 @@ class PlaneIndex:
         Vertex coordinates, m, body frame.
     vx, vy, vz : (n,) float
         Their ``x``, ``y`` and ``z``.
-    corner_x, corner_z : (m, 3) float
-        The ``x`` and ``z`` of each face's corners (read in face order).
+    corner_x, corner_y, corner_z : (m, 3) float
+        The coordinates of each face's corners (read in face order: the loops read a
+        crossed edge's ends here, next to the face, not from the vertices).
     faces : (m, 3) int
         The faces in index order (bin by bin, each bin's by lowest ``x``).
     face_edges : (m, 3) int
@@ -86,6 +88,7 @@ class PlaneIndex:
     vy: np.ndarray
     vz: np.ndarray
     corner_x: np.ndarray
+    corner_y: np.ndarray
     corner_z: np.ndarray
     faces: np.ndarray
     face_edges: np.ndarray
@@ -99,6 +102,17 @@ class PlaneIndex:
     key: np.ndarray
     key_span: float
     key_x0: float
+    #: Per thread, the compiled loops' scratch (one integer per edge), kept: a fresh one
+    #: at every cut is mapped anew and faulted in page by page.
+    _scratch: threading.local = field(default_factory=threading.local, repr=False)
+
+    def scratch(self) -> np.ndarray:
+        """This thread's scratch array of one integer per edge (its values are not read
+        before the loops write them)."""
+        slot = getattr(self._scratch, "slot", None)
+        if slot is None:
+            slot = self._scratch.slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
+        return slot
 
     def _map(self, vertex: np.ndarray, matrix: np.ndarray) -> np.ndarray:
         """The cutter's ``(Y, Z)`` of vertices (n,), ``(n, 2)``."""
@@ -132,6 +146,14 @@ class PlaneIndex:
         directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
         key = directed.min(axis=1) * len(v) + directed.max(axis=1)
         _, edge = np.unique(key, return_inverse=True)
+        # numbered in order of first use by the faces (bin by bin, along x), so that the
+        # edges of a station's faces lie near each other in the loops' scratch
+        n_edges = int(edge.max()) + 1 if m else 0
+        first = np.full(n_edges, len(edge))
+        np.minimum.at(first, edge, np.arange(len(edge)))
+        renumber = np.empty(n_edges, dtype=np.int64)
+        renumber[np.argsort(first)] = np.arange(n_edges)
+        edge = renumber[edge]
         full = start[1:] > start[:-1]
         zlo, zhi, reach = np.zeros(nb), np.zeros(nb), np.zeros(nb)
         at = start[:-1][full]
@@ -148,6 +170,7 @@ class PlaneIndex:
             vy=np.ascontiguousarray(v[:, 1]),
             vz=np.ascontiguousarray(v[:, 2]),
             corner_x=np.ascontiguousarray(v[f, 0]),
+            corner_y=np.ascontiguousarray(v[f, 1]),
             corner_z=np.ascontiguousarray(v[f, 2]),
             faces=f,
             face_edges=edge.reshape(m, 3),
@@ -157,7 +180,7 @@ class PlaneIndex:
             bin_zhi=zhi,
             bin_reach=reach,
             margin=1e-9 * size,
-            n_edges=int(edge.max()) + 1 if m else 0,
+            n_edges=n_edges,
             key=key,
             key_span=key_span,
             key_x0=x0,
@@ -268,11 +291,11 @@ class PlaneIndex:
     ) -> list[tuple[np.ndarray, ...]]:
         """:meth:`cut` after the candidates, by :func:`~hullslice.planecut_loops.cut_loops`
         (compiled or not): the same points."""
-        slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
+        slot = self.scratch()
         m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
         points, start, ring_station, status = loops(
-            station, face, self.faces, self.face_edges, self.corner_x, self.corner_z,
-            self.vx, self.vy, self.vz, x_rel, float(cg[0]), float(cg[2]), float(c), float(s),
+            station, face, self.faces, self.face_edges, self.corner_x, self.corner_y,
+            self.corner_z, x_rel, float(cg[0]), float(cg[2]), float(c), float(s),
             m, float(merge), slot, planecut_loops.K_OUT, planecut_loops.K_IN,
         )  # fmt: skip
         if status:

@@ -33,8 +33,8 @@ K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0], dtype=np.int64)
 
 
 def cut_loops(
-    station, face, faces, face_edges, corner_x, corner_z, vx, vy, vz, x_rel, gx, gz, c, s,
-    m, merge, slot, k_out_of, k_in_of,
+    station, face, faces, face_edges, corner_x, corner_y, corner_z, x_rel, gx, gz, c, s, m,
+    merge, slot, k_out_of, k_in_of,
 ):  # fmt: skip
     """The contours of the candidate faces ``face`` of stations ``station`` (grouped by
     station), cut by the planes ``x_rel`` at a pitch (``c``, ``s``: its cosine and sine)
@@ -66,15 +66,16 @@ def cut_loops(
         kn = (ko + 1) % 3
         e_out[n] = face_edges[f, ko]
         e_in[n] = face_edges[f, k_in_of[code]]
-        va, vb = faces[f, ko], faces[f, kn]
-        da, db = d[ko], d[kn]
-        if va > vb:
-            va, vb = vb, va
-            da, db = db, da
-        ya = m[0, 0] * vx[va] + m[0, 1] * vy[va] + m[0, 2] * vz[va] + m[0, 3]
-        za = m[1, 0] * vx[va] + m[1, 1] * vy[va] + m[1, 2] * vz[va] + m[1, 3]
-        yb = m[0, 0] * vx[vb] + m[0, 1] * vy[vb] + m[0, 2] * vz[vb] + m[0, 3]
-        zb = m[1, 0] * vx[vb] + m[1, 1] * vy[vb] + m[1, 2] * vz[vb] + m[1, 3]
+        ka, kb = ko, kn
+        if faces[f, ko] > faces[f, kn]:  # the edge's canonical order: by vertex number
+            ka, kb = kn, ko
+        da, db = d[ka], d[kb]
+        xa, wa, ha = corner_x[f, ka], corner_y[f, ka], corner_z[f, ka]
+        xb, wb, hb = corner_x[f, kb], corner_y[f, kb], corner_z[f, kb]
+        ya = m[0, 0] * xa + m[0, 1] * wa + m[0, 2] * ha + m[0, 3]
+        za = m[1, 0] * xa + m[1, 1] * wa + m[1, 2] * ha + m[1, 3]
+        yb = m[0, 0] * xb + m[0, 1] * wb + m[0, 2] * hb + m[0, 3]
+        zb = m[1, 0] * xb + m[1, 1] * wb + m[1, 2] * hb + m[1, 3]
         if abs(da) <= abs(db):
             t = da / (da - db)
             point[n, 0] = ya + t * (yb - ya)
