@@ -96,9 +96,10 @@ class Outline:
                 a = a / scale
             if origin != (0.0, 0.0):
                 a = a + np.asarray(origin)
-            nxt = np.arange(len(a)) + 1
-            nxt[np.cumsum(sizes) - 1] = np.cumsum(sizes) - sizes  # each contour closes
-            b = a[nxt]
+            ends = np.cumsum(sizes)
+            b = np.empty_like(a)  # each point's next, each contour closing on its first
+            b[:-1] = a[1:]
+            b[ends - 1] = a[ends - sizes]
             contour = np.repeat(np.arange(len(contours)), sizes)
             station = np.repeat(np.repeat(np.arange(s), [len(secs) for secs in polygons]), sizes)
         else:
@@ -132,11 +133,13 @@ class Outline:
         # then each station's edges by the height of their lower end
         zlo = np.minimum(za, zb)
         # one sort of a combined key: the station, and the height scaled into [0, 1)
-        # (heights closer than 1e-10 of the body's may swap; no result depends on it)
+        # (heights closer than 1e-10 of the body's may swap; no result depends on it).
+        # Stable: a contour's heights come in long sorted runs, which a merge sort takes
+        # whole (several times faster than quicksort here), and equal keys keep their order
         if len(zlo):
             lo, span = zlo.min(), np.ptp(zlo)
             key = 2.0 * station + (zlo - lo) / (span * (1.0 + 1e-9) + 1e-300)
-            order = np.argsort(key)
+            order = np.argsort(key, kind="stable")
         else:
             order = np.empty(0, dtype=np.int64)
         station, ya, za, yb, zb, zlo, contour = (
@@ -246,6 +249,8 @@ def _part_areas(contours, c_area: np.ndarray, polygons) -> tuple[np.ndarray, np.
     one outer contour (the usual case) needs no test.
     """
     outer = c_area > 0.0
+    if outer.all():  # no holes (the usual case)
+        return c_area.copy(), np.arange(len(c_area))
     renumber = np.where(outer, np.cumsum(outer) - 1, -1)
     part_area = c_area[outer].copy()
     first = 0
