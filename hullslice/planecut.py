@@ -192,6 +192,22 @@ class PlaneIndex:
         """The faces that the planes at relative stations ``x_rel`` (m) may cross at a pitch
         (rad): ``(station, face)`` pairs, grouped by station (a superset of the crossed
         faces)."""
+        first, last = self.ranges(x_rel, pitch, cg)
+        count = np.maximum(last - first, 0).ravel()
+        total = int(count.sum())
+        if total == 0:
+            return np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
+        offsets = np.repeat(first.ravel() - (np.cumsum(count) - count), count)
+        face = np.arange(total) + offsets
+        station = np.repeat(np.arange(len(x_rel)), count.reshape(first.shape).sum(axis=1))
+        return station, face
+
+    def ranges(
+        self, x_rel: np.ndarray, pitch: float, cg: np.ndarray
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """The candidate faces of :meth:`candidates` as ranges: ``(first, last)``, (s, b)
+        arrays, the faces ``first[i, j] .. last[i, j] - 1`` of bin ``j`` for station ``i``
+        (none where ``last <= first``)."""
         c, s = np.cos(pitch), np.sin(pitch)
         x_rel = np.asarray(x_rel, dtype=np.float64)
         # body x of each plane at a bin's lowest and highest z: r_x = (x_rel + r_z s) / c
@@ -212,14 +228,7 @@ class PlaneIndex:
         hi = (base[:, None] + np.clip(hi.T - x0, 0.0, 0.5 * span)).ravel()
         first = np.searchsorted(self.key, lo, side="left").reshape(nb, -1).T
         last = np.searchsorted(self.key, hi, side="right").reshape(nb, -1).T
-        count = np.maximum(last - first, 0).ravel()
-        total = int(count.sum())
-        if total == 0:
-            return np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
-        offsets = np.repeat(first.ravel() - (np.cumsum(count) - count), count)
-        face = np.arange(total) + offsets
-        station = np.repeat(np.arange(len(x_rel)), count.reshape(len(x_rel), nb).sum(axis=1))
-        return station, face
+        return np.ascontiguousarray(first), np.ascontiguousarray(last)
 
     def cut(
         self,
@@ -242,11 +251,12 @@ class PlaneIndex:
         """
         x_rel = np.asarray(x_rel, dtype=np.float64)
         n_st = len(x_rel)
-        station, face = self.candidates(x_rel, pitch, cg)
         c, s = np.cos(pitch), np.sin(pitch)
         loops = _loops(path)
         if loops is not None:
-            return self._cut_by_loops(loops, station, face, x_rel, c, s, cg, matrix, merge)
+            first, last = self.ranges(x_rel, pitch, cg)
+            return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
+        station, face = self.candidates(x_rel, pitch, cg)
         corner = self.faces[face]  # (q, 3)
         # each vertex's distance ahead of its station's plane, the same for all its faces
         d = (self.corner_x[face] - cg[0]) * c - (self.corner_z[face] - cg[2]) * s
@@ -280,8 +290,8 @@ class PlaneIndex:
     def _cut_by_loops(
         self,
         loops: Callable,
-        station: np.ndarray,
-        face: np.ndarray,
+        first: np.ndarray,
+        last: np.ndarray,
         x_rel: np.ndarray,
         c: float,
         s: float,
@@ -289,12 +299,13 @@ class PlaneIndex:
         matrix: np.ndarray,
         merge: float,
     ) -> list[tuple[np.ndarray, ...]]:
-        """:meth:`cut` after the candidates, by :func:`~hullslice.planecut_loops.cut_loops`
-        (compiled or not): the same points."""
+        """:meth:`cut` over the candidates' ranges ``first`` .. ``last`` (see
+        :meth:`ranges`), by :func:`~hullslice.planecut_loops.cut_loops` (compiled or not):
+        the same points."""
         slot = self.scratch()
         m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
         points, start, ring_station, status = loops(
-            station, face, self.faces, self.face_edges, self.corner_x, self.corner_y,
+            first, last, self.faces, self.face_edges, self.corner_x, self.corner_y,
             self.corner_z, x_rel, float(cg[0]), float(cg[2]), float(c), float(s),
             m, float(merge), slot, planecut_loops.K_OUT, planecut_loops.K_IN,
         )  # fmt: skip

@@ -33,59 +33,66 @@ K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0], dtype=np.int64)
 
 
 def cut_loops(
-    station, face, faces, face_edges, corner_x, corner_y, corner_z, x_rel, gx, gz, c, s, m,
+    first, last, faces, face_edges, corner_x, corner_y, corner_z, x_rel, gx, gz, c, s, m,
     merge, slot, k_out_of, k_in_of,
 ):  # fmt: skip
-    """The contours of the candidate faces ``face`` of stations ``station`` (grouped by
-    station), cut by the planes ``x_rel`` at a pitch (``c``, ``s``: its cosine and sine)
-    about ``(gx, gz)``, mapped by ``m`` (2 x 4) to the cutter's ``(Y, Z)``.
+    """The contours of the candidate faces of each station ``i``, the faces
+    ``first[i, j] .. last[i, j] - 1`` of each bin ``j`` (as
+    :meth:`hullslice.planecut.PlaneIndex.ranges` gives them), cut by the planes ``x_rel``
+    at a pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, mapped by ``m``
+    (2 x 4) to the cutter's ``(Y, Z)``.
 
     Returns ``(points, ring_start, ring_station, status)``: the kept contours' points one
     after another, each kept contour's first point (and the end), its station, and 0, or
     1 where the mesh is not closed along a cut. ``slot`` is scratch space, one integer per
     edge.
     """
-    q = len(face)
+    n_st, n_bins = first.shape
+    q = 0
+    for i in range(n_st):
+        for j in range(n_bins):
+            q += max(last[i, j] - first[i, j], 0)
     seg_station = np.empty(q, dtype=np.int64)
     e_out = np.empty(q, dtype=np.int64)
     e_in = np.empty(q, dtype=np.int64)
     point = np.empty((q, 2))
     d = np.empty(3)
     n = 0
-    for i in range(q):
-        f = face[i]
-        xs = x_rel[station[i]]
-        code = 0
-        for k in range(3):
-            d[k] = (corner_x[f, k] - gx) * c - (corner_z[f, k] - gz) * s - xs
-            if d[k] >= 0.0:
-                code += 1 << k
-        if code == 0 or code == 7:
-            continue
-        ko = k_out_of[code]
-        kn = (ko + 1) % 3
-        e_out[n] = face_edges[f, ko]
-        e_in[n] = face_edges[f, k_in_of[code]]
-        ka, kb = ko, kn
-        if faces[f, ko] > faces[f, kn]:  # the edge's canonical order: by vertex number
-            ka, kb = kn, ko
-        da, db = d[ka], d[kb]
-        xa, wa, ha = corner_x[f, ka], corner_y[f, ka], corner_z[f, ka]
-        xb, wb, hb = corner_x[f, kb], corner_y[f, kb], corner_z[f, kb]
-        ya = m[0, 0] * xa + m[0, 1] * wa + m[0, 2] * ha + m[0, 3]
-        za = m[1, 0] * xa + m[1, 1] * wa + m[1, 2] * ha + m[1, 3]
-        yb = m[0, 0] * xb + m[0, 1] * wb + m[0, 2] * hb + m[0, 3]
-        zb = m[1, 0] * xb + m[1, 1] * wb + m[1, 2] * hb + m[1, 3]
-        if abs(da) <= abs(db):
-            t = da / (da - db)
-            point[n, 0] = ya + t * (yb - ya)
-            point[n, 1] = za + t * (zb - za)
-        else:
-            t = db / (db - da)
-            point[n, 0] = yb + t * (ya - yb)
-            point[n, 1] = zb + t * (za - zb)
-        seg_station[n] = station[i]
-        n += 1
+    for st in range(n_st):
+        for b in range(n_bins):
+            for f in range(first[st, b], last[st, b]):
+                xs = x_rel[st]
+                code = 0
+                for k in range(3):
+                    d[k] = (corner_x[f, k] - gx) * c - (corner_z[f, k] - gz) * s - xs
+                    if d[k] >= 0.0:
+                        code += 1 << k
+                if code == 0 or code == 7:
+                    continue
+                ko = k_out_of[code]
+                kn = (ko + 1) % 3
+                e_out[n] = face_edges[f, ko]
+                e_in[n] = face_edges[f, k_in_of[code]]
+                ka, kb = ko, kn
+                if faces[f, ko] > faces[f, kn]:  # the edge's canonical order: by vertex number
+                    ka, kb = kn, ko
+                da, db = d[ka], d[kb]
+                xa, wa, ha = corner_x[f, ka], corner_y[f, ka], corner_z[f, ka]
+                xb, wb, hb = corner_x[f, kb], corner_y[f, kb], corner_z[f, kb]
+                ya = m[0, 0] * xa + m[0, 1] * wa + m[0, 2] * ha + m[0, 3]
+                za = m[1, 0] * xa + m[1, 1] * wa + m[1, 2] * ha + m[1, 3]
+                yb = m[0, 0] * xb + m[0, 1] * wb + m[0, 2] * hb + m[0, 3]
+                zb = m[1, 0] * xb + m[1, 1] * wb + m[1, 2] * hb + m[1, 3]
+                if abs(da) <= abs(db):
+                    t = da / (da - db)
+                    point[n, 0] = ya + t * (yb - ya)
+                    point[n, 1] = za + t * (zb - za)
+                else:
+                    t = db / (db - da)
+                    point[n, 0] = yb + t * (ya - yb)
+                    point[n, 1] = zb + t * (za - zb)
+                seg_station[n] = st
+                n += 1
     # successors, station by station: the segment leaving from the edge each one enters
     succ = np.empty(n, dtype=np.int64)
     status = 0
