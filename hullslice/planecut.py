@@ -114,9 +114,12 @@ class PlaneIndex:
             slot = self._scratch.slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
         return slot
 
-    def _map(self, vertex: np.ndarray, matrix: np.ndarray) -> np.ndarray:
-        """The cutter's ``(Y, Z)`` of vertices (n,), ``(n, 2)``."""
-        x, y, z = self.vx[vertex], self.vy[vertex], self.vz[vertex]
+    def _ends(self, cx, cz, face, rows, at, matrix) -> np.ndarray:
+        """The cutter's ``(Y, Z)``, ``(n, 2)``, of the corners ``at`` (flat indices into the
+        candidates' ``(q, 3)`` corners ``cx``, ``cz``) of the crossed faces ``face`` (the
+        candidates' ``rows``)."""
+        k = at - 3 * rows
+        x, y, z = cx.ravel()[at], self.corner_y.ravel()[3 * face + k], cz.ravel()[at]
         m = matrix
         return np.stack(
             [m[0, 0] * x + m[0, 1] * y + m[0, 2] * z + m[0, 3],
@@ -258,8 +261,9 @@ class PlaneIndex:
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
         station, face = self.candidates(x_rel, pitch, cg)
         corner = self.faces[face]  # (q, 3)
+        cx, cz = self.corner_x[face], self.corner_z[face]
         # each vertex's distance ahead of its station's plane, the same for all its faces
-        d = (self.corner_x[face] - cg[0]) * c - (self.corner_z[face] - cg[2]) * s
+        d = (cx - cg[0]) * c - (cz - cg[2]) * s
         d -= x_rel[station][:, None]
         ahead = d >= 0.0
         code = ahead[:, 0] + 2 * ahead[:, 1].astype(np.int64) + 4 * ahead[:, 2]
@@ -274,12 +278,14 @@ class PlaneIndex:
         # edge of exactly one segment of its station): from the edge's canonical ends
         at_a = rows * 3 + k_out
         at_b = rows * 3 + _NEXT[k_out]
-        va, vb = corner.ravel()[at_a], corner.ravel()[at_b]
+        swap = corner.ravel()[at_a] > corner.ravel()[at_b]
+        at_a, at_b = np.where(swap, at_b, at_a), np.where(swap, at_a, at_b)
         da, db = d.ravel()[at_a], d.ravel()[at_b]
-        swap = va > vb
-        va, vb = np.where(swap, vb, va), np.where(swap, va, vb)
-        da, db = np.where(swap, db, da), np.where(swap, da, db)
-        pa, pb = self._map(va, matrix), self._map(vb, matrix)
+        # the ends' coordinates from the faces' own corners (the vertices', exactly)
+        pa, pb = (
+            self._ends(cx, cz, face, rows, at_a, matrix),
+            self._ends(cx, cz, face, rows, at_b, matrix),
+        )
         near_a = (np.abs(da) <= np.abs(db))[:, None]
         ta = (da / (da - db))[:, None]
         tb = (db / (db - da))[:, None]
