@@ -320,7 +320,19 @@ class PlaneIndex:
         out: list[list[np.ndarray]] = [[] for _ in range(len(x_rel))]
         for i, st in enumerate(ring_station.tolist()):
             out[st].append(points[start[i] : start[i + 1]])
-        return [tuple(ring) for ring in out]
+        return Rings([tuple(ring) for ring in out], (points, start, ring_station))
+
+
+class Rings(list):
+    """The sections of :meth:`PlaneIndex.cut` by the loops (a list of one tuple of
+    contours per station, the contours views of one array), with that array as the loops
+    gave it: ``flat = (points, ring_start, ring_station)`` (see
+    :func:`~hullslice.planecut_loops.cut_loops`), for
+    :func:`~hullslice.planecut_loops.outline_loops`."""
+
+    def __init__(self, sections: list, flat: tuple[np.ndarray, np.ndarray, np.ndarray]):
+        super().__init__(sections)
+        self.flat = flat
 
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the

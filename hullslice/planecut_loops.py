@@ -12,7 +12,10 @@ hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
 
 :func:`lowest_loops` is :meth:`hullslice.kernel.keel.lower_envelope`'s inner search (the
 lowest of the side view's segments over each abscissa) in the same way: the same
-arithmetic per pair, and a minimum, which does not depend on the order.
+arithmetic per pair, and a minimum, which does not depend on the order. :func:`outline_loops`
+is :meth:`hullslice.kernel.outline.Outline.of` on :func:`cut_loops`'s contours as they
+come (one array of points, the rings' starts and stations), with the same sums in the same
+order and a stable sort: the same outline.
 """
 
 from __future__ import annotations
@@ -24,7 +27,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-__all__ = ["available", "compiled", "cut_loops", "in_use", "lowest_loops"]
+__all__ = ["available", "compiled", "cut_loops", "in_use", "lowest_loops", "outline_loops"]
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -218,3 +221,95 @@ def compiled(name: str = "cut") -> Callable | None:
                 fn = numba.njit(cache=True, nogil=True)(LOOPS[name])
             _COMPILED[name] = fn
         return _COMPILED[name]
+
+
+def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
+    """:meth:`hullslice.kernel.outline.Outline.of` of the exact cut's contours as
+    :func:`cut_loops` gives them (``points``, ``ring_start``, ``ring_station``; the rings
+    grouped by station), each point divided by ``scale`` (unless 1) and moved by
+    ``(oy, oz)`` (unless both are 0): the same arithmetic in the same order, the same
+    arrays. A station with a hole (a clockwise contour) needs the containment tests of
+    numpy's path: then ``ok`` is False and nothing else is meaningful.
+
+    Returns ``(ok, station, ya, za, yb, zb, zlo, start, area, contour, part_area,
+    part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
+    edges in their final order (by station, then by the height of their lower end).
+    """
+    n = ring_start[-1]
+    r = len(ring_station)
+    a = np.empty((n, 2))
+    for i in range(n):
+        y, z = points[i, 0], points[i, 1]
+        if scale != 1.0:
+            y, z = y / scale, z / scale
+        if oy != 0.0 or oz != 0.0:
+            y, z = y + oy, z + oz
+        a[i, 0] = y
+        a[i, 1] = z
+    b = np.empty((n, 2))
+    station = np.empty(n, dtype=np.int64)
+    contour = np.empty(n, dtype=np.int64)
+    area = np.zeros(n_st)
+    c_area = np.zeros(r)
+    for j in range(r):
+        for i in range(ring_start[j], ring_start[j + 1]):
+            k = i + 1 if i + 1 < ring_start[j + 1] else ring_start[j]
+            b[i, 0] = a[k, 0]
+            b[i, 1] = a[k, 1]
+            station[i] = ring_station[j]
+            contour[i] = j
+            cross = a[i, 0] * b[i, 1] - b[i, 0] * a[i, 1]
+            area[ring_station[j]] += 0.5 * cross
+            c_area[j] += cross
+    ok = True
+    for j in range(r):
+        c_area[j] = 0.5 * c_area[j]
+        if not c_area[j] > 0.0:
+            ok = False
+    start = np.zeros(n_st + 1, dtype=np.int64)
+    for i in range(n):
+        start[station[i] + 1] += 1
+    for s in range(n_st):
+        start[s + 1] += start[s]
+    zmin = np.full(n_st, np.inf)
+    ymin = np.full(n_st, np.inf)
+    ymax = np.full(n_st, -np.inf)
+    for i in range(n):
+        s = station[i]
+        zmin[s] = min(zmin[s], a[i, 1])
+        ymin[s] = min(ymin[s], a[i, 0])
+        ymax[s] = max(ymax[s], a[i, 0])
+    z_chine = np.full(n_st, np.inf)
+    for i in range(n):
+        s = station[i]
+        if a[i, 0] >= ymax[s] - tol or a[i, 0] <= ymin[s] + tol:
+            z_chine[s] = min(z_chine[s], a[i, 1])
+    part_station = np.empty(r, dtype=np.int64)
+    part_zmax = np.full(r, -np.inf)
+    part_ymin = np.full(r, np.inf)
+    part_ymax = np.full(r, -np.inf)
+    for j in range(r):
+        part_station[j] = ring_station[j]
+        for i in range(ring_start[j], ring_start[j + 1]):
+            part_zmax[j] = max(part_zmax[j], a[i, 1])
+            part_ymin[j] = min(part_ymin[j], a[i, 0])
+            part_ymax[j] = max(part_ymax[j], a[i, 0])
+    zlo = np.empty(n)
+    for i in range(n):
+        zlo[i] = min(a[i, 1], b[i, 1])
+    order = np.arange(n)
+    if n:
+        lo, hi = zlo.min(), zlo.max()
+        span = hi - lo
+        key = np.empty(n)
+        for i in range(n):
+            key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
+        order = np.argsort(key, kind="mergesort")
+    return (
+        ok, station[order], a[order, 0], a[order, 1], b[order, 0], b[order, 1], zlo[order],
+        start, area, contour[order], c_area.copy(), part_station, part_zmax, part_ymin,
+        part_ymax, zmin, ymin, ymax, z_chine,
+    )  # fmt: skip
+
+
+LOOPS["outline"] = outline_loops

@@ -9,7 +9,7 @@ chines. Pure numpy.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,10 +83,22 @@ class Outline:
         tol: float,
         origin: tuple[float, float] = (0.0, 0.0),
         scale: float = 1.0,
+        loops: Callable | None = None,
     ) -> Outline:
         """The outline of station sections given as contours (each station's outer
         contours counter-clockwise, holes clockwise, ``(y, z)`` in m), each point divided by
-        ``scale`` and moved by ``origin``."""
+        ``scale`` and moved by ``origin``.
+
+        ``loops``, when given (:func:`hullslice.planecut_loops.outline_loops`, compiled),
+        builds it from the exact cut's own array where ``polygons`` carries one (its
+        ``flat``) and no section has a hole: the same outline.
+        """
+        flat = getattr(polygons, "flat", None)
+        if loops is not None and flat is not None:
+            oy, oz = (float(v) for v in origin)
+            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz)
+            if out[0]:
+                return cls(*out[1:])
         s = len(polygons)
         contours = [c for secs in polygons for c in secs]
         if contours:

@@ -10,12 +10,14 @@ length only.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import planecut_loops
 from ..caching import Entry
-from ..geometry import Frame
+from ..geometry import Frame, keel_loops
 from ..kernel.keel import END_FACE_SLOPE
 from ..kernel.outline import Outline, Polygons, prefix_index
 from ..kernel.waterline_table import TABULATED, WaterlineTable
@@ -96,12 +98,16 @@ class FixedCut:
                     hi = min(max(k1, held[1]) + FIXED_PAD, n)
                 polys = self.polys
                 missing = np.array([k for k in range(lo, hi) if k not in polys], dtype=np.int64)
+                cuts: list = []
                 if len(missing):
                     cuts = fr.cut(fr.fixed_stations(n)[1][missing], cutter)
                     polys.update(zip(missing.tolist(), cuts, strict=True))
-                self.rows = [polys[k] for k in range(lo, hi)]
+                # all cut just now (a new pitch): the cut itself, with its own array
+                self.rows = cuts if len(missing) == hi - lo else [polys[k] for k in range(lo, hi)]
                 self.range = held = (lo, hi)
-                self.outline = Outline.of(self.rows, self.tol, fr.origin, fr.scale)
+                self.outline = Outline.of(
+                    self.rows, self.tol, fr.origin, fr.scale, loops=outline_loops()
+                )
             return self.outline, self.rows, held[0]
 
     def tabulated(
@@ -284,7 +290,13 @@ def outline_of(
     """The outline and contours of the sections at relative stations ``rel`` (m), cut
     afresh."""
     polys = fr.cut(rel, cutter)
-    return Outline.of(polys, tol, fr.origin, fr.scale), polys
+    return Outline.of(polys, tol, fr.origin, fr.scale, loops=outline_loops()), polys
+
+
+def outline_loops() -> Callable | None:
+    """The compiled outline builder where the exact cut's loops are compiled in this
+    process (see :func:`hullslice.geometry.keel_loops`), else None (numpy's)."""
+    return planecut_loops.compiled("outline") if keel_loops() else None
 
 
 def _guess_moved(
