@@ -48,7 +48,14 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
   the added mass stay at their values there.
 - **Gravity** (option ``gravity``): the hydrostatic pressure ``rho g`` times the depth
   below the calm water on the wetted contour, integrated as the section's area below the
-  calm water (a vertical force, buoyancy). The contact itself is Wagner's.
+  calm water (a vertical force, buoyancy).
+- **Gravity's correction of the contact** (option ``gravity_contact``, after the approach of
+  Hulin et al. 2022; derived in :mod:`hullslice_mlm.gravity`): gravity pulls the raised
+  free surface down, so the contact is Wagner's at the penetration ``h (1 - delta)``,
+  ``delta = kappa / Fr*^2``, ``Fr*^2 = V^2 / (g h tan(beta_e))``, ``kappa = 0.00894``
+  (a wedge's, to first order), ``tan(beta_e) = pi / (2 c')`` the side's own deadrise at
+  the contact, and ``c'`` times ``1 - 2 delta`` (quasi-steady, at the current speed).
+  ``delta`` is held at 0.2, and such sections flagged. With ``gravity`` both are in.
 
 Sections are flagged (``reason``) where the bottom turns back down (a re-entrant
 contour: the MLM takes the contour's running maximum) and where the section Froude number
@@ -68,6 +75,8 @@ from hullslice import AddedMass, InputError
 from hullslice.solvers import join_reasons
 from hullslice.solvers.base import MomentumFormSolver, SectionPressures
 from hullslice.solvers.contour import contour_heights, submerged_parts, wagner_root
+
+from .gravity import DELTA_MAX, contact_shift
 
 __all__ = [
     "CONTINUATION",
@@ -182,6 +191,9 @@ class MLM(MomentumFormSolver):
         smooth there (no separation); default 75.
     gravity : bool, optional
         Add the hydrostatic pressure (default False).
+    gravity_contact : bool, optional
+        Correct Wagner's contact for gravity, to first order in ``1 / Fr*^2``
+        (:mod:`hullslice_mlm.gravity`; default False).
     froude_min : float, optional
         Smallest section Froude number ``|v| / sqrt(g h)`` inside the range (default 2),
         where ``gravity`` is off (with it the hydrostatic force is in the load).
@@ -195,12 +207,13 @@ class MLM(MomentumFormSolver):
     models_separation = True
     positive_pressure = True
     gives_pressures = True
-    own_checks = ("continuation", "smooth_edge_deg", "gravity", "froude_min")
+    own_checks = ("continuation", "smooth_edge_deg", "gravity", "gravity_contact", "froude_min")
     options: ClassVar[dict[str, Any]] = {
         "section_method": "auto",
         "continuation": CONTINUATION,
         "smooth_edge_deg": SMOOTH_EDGE_DEG,
         "gravity": False,
+        "gravity_contact": False,
         "froude_min": 2.0,
     }
 
@@ -235,6 +248,11 @@ class MLM(MomentumFormSolver):
         s["froude_min"] = _number(self, "froude_min", 0.0, math.inf)
         if not isinstance(s["gravity"], bool):
             raise InputError(f"solver 'mlm': option gravity={s['gravity']!r} is not true or false")
+        if not isinstance(s["gravity_contact"], bool):
+            raise InputError(
+                f"solver 'mlm': option gravity_contact={s['gravity_contact']!r} is not true or "
+                "false (true: gravity's correction of the contact)"
+            )
 
     # -- the sides' contours ---------------------------------------------------------------
 
@@ -353,33 +371,16 @@ class MLM(MomentumFormSolver):
         g, step, e, line, sharp, smooth, (y_last, s_last) = self._continued(
             sections, raw, ds, last, extent, edge_in
         )
-        target = np.broadcast_to(0.5 * np.pi * p, (2, n))
-        c = wagner_root(g, step, target)
-        end = step * (GRID - 1)
-        capped = ~np.isfinite(c)
-        c = np.where(capped, end, c)
-        # c' = (pi / 2) / integral_0^{pi/2} f'(c sin t) sin t dt
-        t = 0.5 * np.pi * _U
-        wt = 0.5 * np.pi * _WU
-        slope = np.diff(g, axis=-1) / step[..., None]
-        fp_c = _slope_at(slope, step, c[..., None] * np.sin(t))
-        denom = (fp_c * np.sin(t)) @ wt
-        with np.errstate(divide="ignore", invalid="ignore"):
-            cp = np.where(denom > 0, 0.5 * np.pi / denom, 0.0)
-        cp = np.where(capped, 0.0, cp)
-        i_end = _interp_rows(g, step, end[..., None] * np.sin(t)) @ wt  # Wagner's, at the end
-        far = capped & edge_in
-        if far.any():  # past the grid the continuation is straight: c grows as a wedge's
-            offset, k_c = line
-            rest = i_end - k_c * end - 0.5 * np.pi * offset  # decays as 1 / c
-            with np.errstate(divide="ignore", invalid="ignore"):
-                c_far = (0.5 * np.pi * (p[None, :] - offset) - rest) / k_c
-            ok = far & (k_c > 0) & (c_far >= end)
-            c = np.where(ok, c_far, c)
-            cp = np.where(ok, 0.5 * np.pi / np.where(k_c > 0, k_c, 1.0), cp)
-            capped = capped & ~ok
+        pen = np.broadcast_to(p, (2, n))
+        c, cp, capped, i_end = _contact(g, step, pen, edge_in, line)
+        shift = held = np.zeros((2, n))
+        if self.settings["gravity_contact"]:  # Wagner's contact at h (1 - delta)
+            shift, held = contact_shift(pen, v, fluid.g, cp)
+            if shift.any():
+                c, cp, capped, i_end = _contact(g, step, pen * (1.0 - shift), edge_in, line)
+                cp = cp * (1.0 - 2.0 * shift)  # quasi-steady: V and the deadrise held
         # past the end of the continuation the contact and the added mass stay
-        h_cap = i_end / (0.5 * np.pi)
+        h_cap = i_end / (0.5 * np.pi) / (1.0 - shift)
         h = np.where(capped, np.minimum(h_cap, p), p)
         # the pressure: on the real body only, up to the velocity term's change of sign
         y_lim = np.where(edge_in, np.minimum(e, c), c)
@@ -425,8 +426,16 @@ class MLM(MomentumFormSolver):
                     re_in,
                     "re-entrant contour (the bottom turns back down): its running maximum used",
                 ),
+                (
+                    np.any(held, axis=0),
+                    f"kappa / Fr*^2 > {DELTA_MAX:g}: gravity's contact correction held there",
+                ),
             ],
         )
+        if self.settings["gravity_contact"]:
+            extra = {"gravity_shift": 0.5 * (shift[0] + shift[1])}
+        else:
+            extra = {}
         pressure = SectionPressures(
             y=np.moveaxis(yk, 0, 1),
             z=np.moveaxis(fk, 0, 1),
@@ -450,10 +459,43 @@ class MLM(MomentumFormSolver):
                 "froude": froude,
                 "buoyancy": vertical,
                 "contour": np.ones(n),
+                **extra,
             },
             girth=girth.sum(axis=0),
             pressure=pressure,
         )
+
+
+def _contact(g, step, pen, edge_in, line):
+    """Wagner's contact ``c`` of the penetrations ``pen`` (2, n) on the continued contours
+    ``g`` (step ``step``), ``c' = dc/dh``, where it is held at the grid's end, and Wagner's
+    integral there."""
+    target = 0.5 * np.pi * pen
+    c = wagner_root(g, step, target)
+    end = step * (GRID - 1)
+    capped = ~np.isfinite(c)
+    c = np.where(capped, end, c)
+    # c' = (pi / 2) / integral_0^{pi/2} f'(c sin t) sin t dt
+    t = 0.5 * np.pi * _U
+    wt = 0.5 * np.pi * _WU
+    slope = np.diff(g, axis=-1) / step[..., None]
+    fp_c = _slope_at(slope, step, c[..., None] * np.sin(t))
+    denom = (fp_c * np.sin(t)) @ wt
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cp = np.where(denom > 0, 0.5 * np.pi / denom, 0.0)
+    cp = np.where(capped, 0.0, cp)
+    i_end = _interp_rows(g, step, end[..., None] * np.sin(t)) @ wt  # Wagner's, at the end
+    far = capped & edge_in
+    if far.any():  # past the grid the continuation is straight: c grows as a wedge's
+        offset, k_c = line
+        rest = i_end - k_c * end - 0.5 * np.pi * offset  # decays as 1 / c
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c_far = (0.5 * np.pi * (pen - offset) - rest) / k_c
+        ok = far & (k_c > 0) & (c_far >= end)
+        c = np.where(ok, c_far, c)
+        cp = np.where(ok, 0.5 * np.pi / np.where(k_c > 0, k_c, 1.0), cp)
+        capped = capped & ~ok
+    return c, cp, capped, i_end
 
 
 def _sign_change(c, cp, body, t_lim):
