@@ -62,7 +62,14 @@ import math
 
 import numpy as np
 
-__all__ = ["DELTA_MAX", "KAPPA", "contact_shift", "wedge_alpha", "wedge_alpha_numerical"]
+__all__ = [
+    "DELTA_MAX",
+    "KAPPA",
+    "contact_shift",
+    "wedge_alpha",
+    "wedge_alpha_numerical",
+    "wedge_plate_force",
+]
 
 #: The largest relative shift ``delta = kappa / Fr*^2`` of the penetration; beyond it the
 #: first-order expansion is not valid (the section is flagged and ``delta`` held there).
@@ -113,12 +120,35 @@ def wedge_alpha_numerical(mu_top: float = 20.0, k_top: float = 30.0, panels: int
     ``Phi_Y = -Phi_nu / sinh(mu)`` on ``nu = 0``:
     ``alpha = integral A(k) k tanh(k pi/2) integral cos(k mu) / cosh(mu)^3 dmu dk``.
     Both transforms by composite Gauss-Legendre on ``(0, mu_top)`` and ``(0, k_top)``."""
+    mu, w_mu, k, w_k, a = _transform(mu_top, k_top, panels)
+    c = np.cos(np.outer(k, mu)) @ (w_mu / np.cosh(mu) ** 3)
+    return float(np.sum(w_k * a * k * np.tanh(0.5 * math.pi * k) * c))
+
+
+def _transform(mu_top: float, k_top: float, panels: int):
+    """The nodes in ``mu`` and ``k`` and the cosine transform ``A(k)`` of ``q(cosh mu)``."""
     mu, w_mu = _composite_gauss(mu_top, panels)
     k, w_k = _composite_gauss(k_top, panels)
-    cos = np.cos(np.outer(k, mu))
-    a = (2.0 / math.pi) * cos @ (w_mu * _q_by_quadrature(np.cosh(mu)))
-    c = cos @ (w_mu / np.cosh(mu) ** 3)
-    return float(np.sum(w_k * a * k * np.tanh(0.5 * math.pi * k) * c))
+    a = (2.0 / math.pi) * np.cos(np.outer(k, mu)) @ (w_mu * _q_by_quadrature(np.cosh(mu)))
+    return mu, w_mu, k, w_k, a
+
+
+def wedge_plate_force(mu_top: float = 20.0, k_top: float = 60.0, panels: int = 80) -> float:
+    """The force of the gravity potential's own pressure ``-rho phi1_t`` on the wetted disc
+    of a wedge at constant speed, in units of the buoyancy ``rho g h^2 / tan(beta)``
+    (not in the MLM's load; an estimate of what the contact correction leaves out).
+
+    ``phi1 = -g V t^2 Phi(x / c0)`` on the disc gives the force
+    ``rho g V gamma t^2 (3 I - 2 q(1))``, ``I = integral_{-1}^{1} Phi dX``, that is
+    ``(pi / 2) (3 I - 2 q(1))`` buoyancies; ``Phi`` on the disc (``mu = 0``) from the
+    elliptic-coordinate solution of :func:`wedge_alpha_numerical`."""
+    _, _, k, w_k, a = _transform(mu_top, k_top, panels)
+    nu, w_nu = _composite_gauss(math.pi, 20)
+    shape = np.cosh(np.outer(k, nu - 0.5 * math.pi)) / np.cosh(0.5 * math.pi * k)[:, None]
+    disc = (w_k * a) @ shape  # Phi(X = cos nu) on the disc
+    integral = float(np.sum(disc * np.sin(nu) * w_nu))
+    q1 = 0.5 * math.pi - 1.5
+    return 0.5 * math.pi * (3.0 * integral - 2.0 * q1)
 
 
 def contact_shift(penetration, speed, g, cp):
