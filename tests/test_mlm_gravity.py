@@ -192,3 +192,12 @@ def test_bad_values_of_the_option_are_refused(bad):
         InputError, match=r"option gravity_contact=.* is not (true or false|a finite)"
     ):
         mlm.MLM(gravity_contact=bad)
+
+
+def test_the_gravity_potentials_force_on_the_disc_converges():
+    # reference: the elliptic-coordinate solution at two resolutions (the estimate quoted
+    # in docs/validation.md, 0.105 buoyancies); Phi on the disc meets q(1) at its edges
+    coarse = gravity.wedge_plate_force(20.0, 30.0, 40)
+    fine = gravity.wedge_plate_force(25.0, 120.0, 160)
+    assert fine == pytest.approx(0.1045992, abs=1e-6)
+    assert coarse == pytest.approx(fine, abs=2e-6)
