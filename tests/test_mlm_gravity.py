@@ -156,34 +156,71 @@ def test_beyond_the_first_order_range_the_shift_is_held_and_flagged():
     assert not r.loads.valid[1]
 
 
-def test_a_round_section_takes_its_local_deadrise():
-    # reference: a circle of radius R, f(y) = R - sqrt(R^2 - y^2): Wagner's
-    # integral_0^{pi/2} f(c sin t) dt = pi h / 2 and c' = (pi / 2) / integral f'(c sin t)
-    # sin t dt by quadrature, so tan(beta_e) = pi / (2 c'), delta = kappa g h tan(beta_e) / V^2
-    from scipy import integrate, optimize
+def parabola(radius: float, half_beam: float) -> hs.Hull:
+    y = np.linspace(-half_beam, half_beam, 801)
+    section = np.stack([y, y * y / (2 * radius)], axis=1)  # counter-clockwise, top closed
+    v, f = shapes.prism_from_sections(np.array([0.0, 1.0]), np.stack([section, section]))
+    return hs.Hull.from_arrays(v, f)
 
-    radius, p, g = 0.5, 0.01, 9.81
-    v, f = shapes.circular_cylinder(length=1.0, radius=radius, points=720)
-    hull = hs.Hull.from_arrays(v, f)
-    r = hs.compute_force(
-        hull, p, -1.0, slices=4, solver=mlm.MLM(gravity_contact=True),
-        acceleration=0.0, fluid=hs.Fluid(RHO, g),
-    )  # fmt: skip
 
-    def f(y):
-        return radius - math.sqrt(radius**2 - y * y)
+def test_beta_2_by_the_keldysh_sedov_kernel():
+    # reference: beta_2 = -(2/pi) integral_1^inf P_2'(s) sqrt(s^2 - 1) K_2(s) ds with the
+    # elementary kernel K_2 = 3 pi / (16 s^2) + pi / (4 s^4) + pi / (2 s^6) and
+    # E_2(xi) = 2 xi (xi - sqrt(xi^2 - 1)) - 1, against the elliptic-coordinate solution
+    from scipy import integrate
 
-    def wagner(c):
-        return integrate.quad(lambda t: f(c * math.sin(t)), 0, 0.5 * math.pi)[0] - 0.5 * math.pi * p
+    def rise_slope(xi):
+        r = math.sqrt(max(xi * xi - 1.0, 0.0))
+        return 4 * xi - 2 * r - 2 * xi * xi / r
 
-    c = optimize.brentq(wagner, 1e-6, radius)
-    fp = integrate.quad(
-        lambda t: c * math.sin(t) / math.sqrt(radius**2 - (c * math.sin(t)) ** 2)
-        * math.sin(t), 0, 0.5 * math.pi,
+    def p_slope(x):  # P_2'(X) = integral_0^1 s^(1/2) E_2'(X s^(-1/2)) ds, s = 1 - v^2
+        return integrate.quad(
+            lambda v: math.sqrt(1 - v * v) * rise_slope(x / math.sqrt(1 - v * v)) * 2 * v,
+            0.0, 1.0, limit=200,
+        )[0]  # fmt: skip
+
+    def kernel(s):
+        return 3 * math.pi / (16 * s**2) + math.pi / (4 * s**4) + math.pi / (2 * s**6)
+
+    beta = -(2 / math.pi) * integrate.quad(
+        lambda th: p_slope(1 / math.sin(th)) * (math.cos(th) / math.sin(th))
+        * kernel(1 / math.sin(th)) * math.cos(th) / math.sin(th) ** 2,
+        1e-9, 0.5 * math.pi, limit=200,
     )[0]  # fmt: skip
-    tan_e = fp  # pi / (2 c') = integral_0^{pi/2} f'(c sin t) sin t dt
-    delta = gravity.KAPPA * g * p * tan_e / 1.0**2
-    assert r.loads.diagnostics["gravity_shift"][1] == pytest.approx(delta, rel=2e-3)
+    assert beta == pytest.approx(gravity.power_law_beta(2.0), rel=1e-7)
+    assert beta == pytest.approx(1 / 15, rel=1e-7)
+
+
+def test_the_lambda_table_is_the_power_laws():
+    # reference: power_law_lambda (the elliptic-coordinate solution) at a coarser
+    # resolution than the table's, and between its points the fit
+    ms, lams = gravity.LAMBDA_TABLE
+    for m, lam in zip(ms[::3], lams[::3], strict=True):
+        assert gravity.power_law_lambda(1 / m) == pytest.approx(lam, rel=1e-8)
+        assert gravity.growth_lambda(m) == pytest.approx(lam, rel=1e-7)
+    assert gravity.growth_lambda(1.0) == pytest.approx(gravity.wedge_alpha() / 2, abs=1e-16)
+    mid = gravity.power_law_lambda(1 / 0.675)  # halfway between two of the table's points
+    assert gravity.growth_lambda(0.675) == pytest.approx(mid, rel=1e-7)
+    assert gravity.LAMBDA_TABLE[1][5] == pytest.approx(16 / (225 * math.pi), rel=1e-9)
+
+
+def test_a_parabolic_section_has_its_power_laws_correction():
+    # reference: f = y^2 / (2 R), c0 = 2 sqrt(R h): c / c0 = 1 - lambda_2 g h^2 / (V^2 c0),
+    # lambda_2 = 16 / (225 pi) (beta_2 = 1/15), to first order (the solver's h (1 - delta)
+    # differs by delta^2 / 8 ~ 1e-5)
+    radius, p, g, speed = 0.5, 0.005, 9.81, 0.105
+    hull = parabola(radius, 0.2)
+    c = []
+    for on in (False, True):
+        r = hs.compute_force(
+            hull, p, -speed, slices=4, solver=mlm.MLM(gravity_contact=on),
+            acceleration=0.0, fluid=hs.Fluid(RHO, g),
+        )  # fmt: skip
+        c.append(r.loads.diagnostics["wetted_half_width"][1])
+    assert c[0] == pytest.approx(2 * math.sqrt(radius * p), rel=2e-3)  # Wagner's
+    expected = 16 / (225 * math.pi) * g * p * p / (speed**2 * c[0])
+    assert 1 - c[1] / c[0] == pytest.approx(expected, rel=1e-2)
+    assert expected == pytest.approx(0.005, rel=0.05)
 
 
 @pytest.mark.parametrize("bad", ["yes", 1, 0.5, None, math.nan])
@@ -201,3 +238,25 @@ def test_the_gravity_potentials_force_on_the_disc_converges():
     fine = gravity.wedge_plate_force(25.0, 120.0, 160)
     assert fine == pytest.approx(0.1045992, abs=1e-6)
     assert coarse == pytest.approx(fine, abs=2e-6)
+
+
+@pytest.mark.parametrize("m", [1.0, 0.5, 0.3])
+def test_the_contact_rate_is_the_corrected_contacts_derivative(m):
+    # reference: for a power-law contact c_W = C h^m, the corrected contact
+    # c(h) = c_W(h (1 - delta(h))) differentiated by central differences at fixed V and g
+    big_c, g, speed = 0.7, 9.81, 0.3
+
+    def wagner(h):
+        return big_c * h**m
+
+    def corrected(h):
+        shift, _, _ = gravity.contact_shift(h, speed, g, wagner(h), m * wagner(h) / h)
+        return wagner(h * (1 - shift)), shift
+
+    h, dh = 0.01, 1e-7
+    _, shift = corrected(h)
+    assert 0.005 < shift < 0.05  # inside the first-order range
+    _, _, factor = gravity.contact_shift(h, speed, g, wagner(h), m * wagner(h) / h)
+    rate = m * wagner(h * (1 - shift)) / (h * (1 - shift)) * factor
+    numeric = (corrected(h + dh)[0] - corrected(h - dh)[0]) / (2 * dh)
+    assert rate == pytest.approx(numeric, rel=1e-6)

@@ -52,9 +52,11 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
 - **Gravity's correction of the contact** (option ``gravity_contact``, after the approach of
   Hulin et al. 2022; derived in :mod:`hullslice_mlm.gravity`): gravity pulls the raised
   free surface down, so the contact is Wagner's at the penetration ``h (1 - delta)``,
-  ``delta = kappa / Fr*^2``, ``Fr*^2 = V^2 / (g h tan(beta_e))``, ``kappa = 0.00894``
-  (a wedge's, to first order), ``tan(beta_e) = pi / (2 c')`` the side's own deadrise at
-  the contact, and ``c'`` times ``1 - 2 delta`` (quasi-steady, at the current speed).
+  to first order exactly for a section ``f = A y^n`` at constant speed:
+  ``delta = lambda(m) g h^2 / (m V^2 c)``, ``m = c' h / c = 1/n`` (a wedge's
+  ``delta = kappa / Fr*^2``, ``Fr*^2 = V^2 / (g h tan(beta))``, ``kappa = 0.00894``), any
+  other section by the power law of its own ``m``; ``c'`` times ``1 - (3 - m) delta``
+  (quasi-steady, at the current speed).
   ``delta`` is held at 0.2, and such sections flagged. With ``gravity`` both are in.
 
 Sections are flagged (``reason``) where the bottom turns back down (a re-entrant
@@ -375,10 +377,10 @@ class MLM(MomentumFormSolver):
         c, cp, capped, i_end = _contact(g, step, pen, edge_in, line)
         shift = held = np.zeros((2, n))
         if self.settings["gravity_contact"]:  # Wagner's contact at h (1 - delta)
-            shift, held = contact_shift(pen, v, fluid.g, cp)
+            shift, held, factor = contact_shift(pen, v, fluid.g, c, cp)
             if shift.any():
                 c, cp, capped, i_end = _contact(g, step, pen * (1.0 - shift), edge_in, line)
-                cp = cp * (1.0 - 2.0 * shift)  # quasi-steady: V and the deadrise held
+                cp = cp * factor  # quasi-steady: V and the growth exponent held
         # past the end of the continuation the contact and the added mass stay
         h_cap = i_end / (0.5 * np.pi) / (1.0 - shift)
         h = np.where(capped, np.minimum(h_cap, p), p)

@@ -47,11 +47,26 @@ variables in elliptic coordinates, both transforms by quadrature, ``q`` from ``e
 quadrature); the two agree to 1e-15.
 Gravity lowers the raised free surface (``eta1 < 0``): the contact grows more slowly.
 
-**Beyond the wedge** (an approximation): the contact of a penetration ``h`` is Wagner's at
-``h (1 - delta)``, ``delta = kappa g h tan(beta_e) / V^2``, with the section's own
-deadrise at the contact ``tan(beta_e) = pi / (2 c')`` from Wagner's ``c' = dc/dh`` (a
-wedge's exactly). ``c'`` is taken quasi-steadily, at the current speed and ``beta_e``
-held: ``dc/dh = c'(h (1 - delta)) (1 - 2 delta)``, as a wedge's at constant speed.
+**Power-law sections** ``f = A y^n`` at constant speed are self-similar too (``c0`` as
+``t^(1/n)``; ``n = 1`` the wedge, ``n = 2`` a parabola, a circle's bottom): with
+``eta0 = V t E_n(x / c0)``, ``phi1 = -g V t^2 P_n(x / c0)`` and ``Phi`` the mixed problem's
+solution for the data ``P_n``, ``eta1(c0, t) = -n g V t^3 beta_n / c0``,
+``beta_n = integral_1^inf Phi_Y X^(-3n) dX``, and Wagner's condition gives
+
+    c / c0 = 1 - lambda_n g h^2 / (V^2 c0),   lambda_n = 2 beta_n I_(3n-1) / pi,
+
+``I_p = integral_0^{pi/2} sin^p``. ``beta_1 = alpha`` (``lambda_1 = alpha / 2``; on the wedge
+``g h^2 / (V^2 c0) = 2 / (pi Fr*^2)``); ``beta_2 = 1/15`` to 1e-12 (numerically, and by
+the Keldysh-Sedov kernel in the tests), ``lambda_2 = 16 / (225 pi)``, 1.61 times the
+wedge's. :data:`LAMBDA_TABLE` holds ``lambda`` against the contact's growth exponent
+``m = 1/n``, by the elliptic-coordinate solution.
+
+**Any section** (an approximation beyond the power laws): the power law with the same
+local exponent ``m = d ln c / d ln h = c' h / c`` (Wagner's ``c'``; ``m`` held in
+``[1/4, 1]``), that is the contact of the penetration ``h (1 - delta)``,
+``delta = lambda(m) g h^2 / (m V^2 c)`` (a wedge's ``delta = kappa / Fr*^2``). ``c'`` is
+taken quasi-steadily, at the current speed with ``m`` held, as a power law's:
+``dc/dh = c'(h (1 - delta)) (1 - (3 - m) delta)`` (a wedge's ``1 - 2 delta``).
 ``delta`` is held at :data:`DELTA_MAX` (the first-order expansion is not valid beyond),
 and such sections are flagged.
 """
@@ -65,7 +80,11 @@ import numpy as np
 __all__ = [
     "DELTA_MAX",
     "KAPPA",
+    "LAMBDA_TABLE",
     "contact_shift",
+    "growth_lambda",
+    "power_law_beta",
+    "power_law_lambda",
     "wedge_alpha",
     "wedge_alpha_numerical",
     "wedge_plate_force",
@@ -92,15 +111,31 @@ def wedge_alpha(nodes: int = 64) -> float:
 KAPPA = wedge_alpha() / math.pi
 
 
-def _q_by_quadrature(x: np.ndarray, nodes: int = 24) -> np.ndarray:
-    """``q(X) = -phi1 / (g V t^2)`` on the free surface from ``eta0``'s history by
-    Gauss-Legendre quadrature: ``q = X^2 integral_0^{asin(1/X)} (w - sin w) cos w dw``
-    (``u = gamma tau / x = sin w``)."""
-    u, wu = np.polynomial.legendre.leggauss(nodes)
-    top = np.arcsin(1.0 / x)[:, None]
-    w = 0.5 * top * (u + 1.0)
-    integrand = (w - np.sin(w)) * np.cos(w)
-    return x**2 * (0.5 * top[:, 0]) * (integrand @ wu)
+_GL_U, _GL_W = np.polynomial.legendre.leggauss(48)
+
+
+def _rise(xi: np.ndarray, n: float) -> np.ndarray:
+    """``E_n(xi) = eta0 / (V t)`` at ``x = xi c0`` (``xi >= 1``) for ``f = A y^n``:
+    ``integral_0^1 (xi / sqrt(xi^2 - s^(2/n)) - 1) ds = n xi^n integral_0^{asin(1/xi)}
+    sin(w)^(n-1) dw - 1``, by Gauss-Legendre."""
+    top = np.arcsin(np.minimum(1.0 / xi, 1.0))[..., None]
+    w = 0.5 * top * (_GL_U + 1.0)
+    return n * xi**n * (0.5 * top[..., 0]) * ((np.sin(w) ** (n - 1.0)) @ _GL_W) - 1.0
+
+
+def _free_surface_potential(x: np.ndarray, n: float = 1.0) -> np.ndarray:
+    """``P_n(X) = -phi1 / (g V t^2)`` on the free surface from ``eta0``'s history by
+    quadrature, ``P_n(X) = integral_0^1 s E_n(X s^(-1/n)) ds`` (``s = tau / t``; ``s = 1 - v^2``
+    takes out ``E_n``'s square root at the contact). ``P_1 = q``."""
+    v = 0.5 * (_GL_U + 1.0)
+    s = 1.0 - v * v
+    xi = np.asarray(x, dtype=np.float64)[:, None] * s[None, :] ** (-1.0 / n)
+    return (s * _rise(xi, n) * 2.0 * v) @ (0.5 * _GL_W)
+
+
+def _q_by_quadrature(x: np.ndarray) -> np.ndarray:
+    """The wedge's ``q(X)`` (:func:`_free_surface_potential` at ``n = 1``)."""
+    return _free_surface_potential(x, 1.0)
 
 
 def _composite_gauss(top: float, panels: int, nodes: int = 16) -> tuple[np.ndarray, np.ndarray]:
@@ -111,25 +146,40 @@ def _composite_gauss(top: float, panels: int, nodes: int = 16) -> tuple[np.ndarr
     return ((edges[:-1, None] + half * (u + 1.0)).ravel(), (half * w).ravel())
 
 
-def wedge_alpha_numerical(mu_top: float = 20.0, k_top: float = 30.0, panels: int = 40) -> float:
-    """``alpha`` by an independent solution of the mixed problem for ``Phi``: in elliptic
+def power_law_beta(
+    n: float = 1.0, mu_top: float = 20.0, k_top: float = 30.0, panels: int = 40
+) -> float:
+    """``beta_n`` by an independent solution of the mixed problem for ``Phi``: in elliptic
     coordinates ``X + i Y = cosh(mu - i nu)`` (``mu > 0``, ``0 < nu < pi``) the disc is
-    ``mu = 0`` (``Phi_mu = 0``) and the free surface ``nu = 0, pi`` (``Phi = q(cosh mu)``),
+    ``mu = 0`` (``Phi_mu = 0``) and the free surface ``nu = 0, pi`` (``Phi = P_n(cosh mu)``),
     so ``Phi = integral_0^inf A(k) cos(k mu) cosh(k (nu - pi/2)) / cosh(k pi/2) dk`` with
-    ``A`` the cosine transform of ``q(cosh mu)`` (``q`` from ``eta0`` by quadrature), and
-    ``Phi_Y = -Phi_nu / sinh(mu)`` on ``nu = 0``:
-    ``alpha = integral A(k) k tanh(k pi/2) integral cos(k mu) / cosh(mu)^3 dmu dk``.
-    Both transforms by composite Gauss-Legendre on ``(0, mu_top)`` and ``(0, k_top)``."""
-    mu, w_mu, k, w_k, a = _transform(mu_top, k_top, panels)
-    c = np.cos(np.outer(k, mu)) @ (w_mu / np.cosh(mu) ** 3)
+    ``A`` the cosine transform of ``P_n(cosh mu)``, and ``Phi_Y = -Phi_nu / sinh(mu)`` on
+    ``nu = 0``: ``beta_n = integral A(k) k tanh(k pi/2) integral cos(k mu) cosh(mu)^(1-3n)
+    / sinh(mu) ... `` (``dX = sinh(mu) dmu``), both transforms by composite Gauss-Legendre
+    on ``(0, mu_top)`` and ``(0, k_top)``."""
+    mu, w_mu, k, w_k, a = _transform(mu_top, k_top, panels, n)
+    c = np.cos(np.outer(k, mu)) @ (w_mu / np.cosh(mu) ** (3.0 * n))
     return float(np.sum(w_k * a * k * np.tanh(0.5 * math.pi * k) * c))
 
 
-def _transform(mu_top: float, k_top: float, panels: int):
-    """The nodes in ``mu`` and ``k`` and the cosine transform ``A(k)`` of ``q(cosh mu)``."""
+def wedge_alpha_numerical(mu_top: float = 20.0, k_top: float = 30.0, panels: int = 40) -> float:
+    """``alpha = beta_1`` by the elliptic-coordinate solution (:func:`power_law_beta`)."""
+    return power_law_beta(1.0, mu_top, k_top, panels)
+
+
+def power_law_lambda(n: float, **resolution: float) -> float:
+    """``lambda_n = 2 beta_n I_(3n-1) / pi`` of ``f = A y^n`` (:func:`power_law_beta`)."""
+    p = 3.0 * n - 1.0
+    wallis = 0.5 * math.sqrt(math.pi) * math.gamma(0.5 * (p + 1.0)) / math.gamma(0.5 * p + 1.0)
+    return 2.0 * power_law_beta(n, **resolution) * wallis / math.pi  # type: ignore[arg-type]
+
+
+def _transform(mu_top: float, k_top: float, panels: int, n: float = 1.0):
+    """The nodes in ``mu`` and ``k`` and the cosine transform ``A(k)`` of ``P_n(cosh mu)``."""
     mu, w_mu = _composite_gauss(mu_top, panels)
     k, w_k = _composite_gauss(k_top, panels)
-    a = (2.0 / math.pi) * np.cos(np.outer(k, mu)) @ (w_mu * _q_by_quadrature(np.cosh(mu)))
+    data = _free_surface_potential(np.cosh(mu), n)
+    a = (2.0 / math.pi) * np.cos(np.outer(k, mu)) @ (w_mu * data)
     return mu, w_mu, k, w_k, a
 
 
@@ -151,19 +201,47 @@ def wedge_plate_force(mu_top: float = 20.0, k_top: float = 60.0, panels: int = 8
     return 0.5 * math.pi * (3.0 * integral - 2.0 * q1)
 
 
-def contact_shift(penetration, speed, g, cp):
+#: ``lambda`` against the contact's growth exponent ``m = 1/n`` of ``f = A y^n``
+#: (:func:`power_law_lambda` at ``mu_top, k_top, panels = 25, 120, 160``), m = 0.25 to 1.
+LAMBDA_TABLE = (
+    np.round(np.arange(0.25, 1.0001, 0.05), 2),
+    np.array([
+        0.0303535636683, 0.0285002331866, 0.02682583857, 0.0253032640286, 0.0239118890611,
+        0.0226353696841, 0.0214603596865, 0.020375720296, 0.0193720015739, 0.0184410841044,
+        0.0175759206947, 0.0167703439464, 0.0160189193279, 0.0153168308303, 0.0146597905335,
+        0.0140439659895,
+    ]),
+)  # fmt: skip
+#: ``(lambda(m) - lambda_1) / (1 - m)`` as a polynomial (``lambda(1) = alpha / 2`` exactly).
+_LAMBDA_FIT = np.polynomial.Polynomial.fit(
+    LAMBDA_TABLE[0][:-1],
+    (LAMBDA_TABLE[1][:-1] - 0.5 * wedge_alpha()) / (1.0 - LAMBDA_TABLE[0][:-1]),
+    9,
+)
+
+
+def growth_lambda(m):
+    """``lambda`` of the power law whose contact grows as ``h^m`` (``m`` held in [1/4, 1])."""
+    m = np.clip(m, LAMBDA_TABLE[0][0], 1.0)
+    return 0.5 * wedge_alpha() + (1.0 - m) * _LAMBDA_FIT(m)
+
+
+def contact_shift(penetration, speed, g, c, cp):
     """The relative shift ``delta`` of the penetration that gives the contact with gravity
-    (Wagner's contact at ``h (1 - delta)``), held at :data:`DELTA_MAX`, and where it was
-    held. ``cp`` is Wagner's ``c' = dc/dh`` per side (its local deadrise
-    ``tan(beta_e) = pi / (2 c')``); no shift where ``c'`` is not positive or ``g`` is 0."""
+    (Wagner's contact at ``h (1 - delta)``), held at :data:`DELTA_MAX`, where it was held,
+    and the factor of ``c'``. ``c, cp`` are Wagner's contact and ``c' = dc/dh`` per side
+    (the growth exponent ``m = c' h / c``); no shift where ``c`` or ``c'`` is not
+    positive or ``g`` is 0."""
+    c = np.asarray(c, dtype=np.float64)
     cp = np.asarray(cp, dtype=np.float64)
     h = np.broadcast_to(np.asarray(penetration, dtype=np.float64), cp.shape)
     v2 = np.broadcast_to(np.asarray(speed, dtype=np.float64) ** 2, cp.shape)
+    ok = (c > 0) & (cp > 0) & (h > 0) & (g > 0)
+    c_ok = np.where(ok, c, 1.0)
+    m = np.clip(np.where(ok, cp * h / c_ok, 1.0), LAMBDA_TABLE[0][0], 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):
-        k_e = np.where(cp > 0, 0.5 * np.pi / np.where(cp > 0, cp, 1.0), 0.0)
-        raw = np.where(
-            (k_e > 0) & (h > 0) & (g > 0), KAPPA * g * np.maximum(h, 0.0) * k_e / v2, 0.0
-        )
+        raw = np.where(ok, growth_lambda(m) * g * h * h / (m * v2 * c_ok), 0.0)
     raw = np.where(np.isnan(raw), np.inf, raw)
     held = raw > DELTA_MAX
-    return np.minimum(raw, DELTA_MAX), held
+    shift = np.minimum(raw, DELTA_MAX)
+    return shift, held, 1.0 - (3.0 - m) * shift
