@@ -260,3 +260,71 @@ def test_the_contact_rate_is_the_corrected_contacts_derivative(m):
     rate = m * wagner(h * (1 - shift)) / (h * (1 - shift)) * factor
     numeric = (corrected(h + dh)[0] - corrected(h - dh)[0]) / (2 * dh)
     assert rate == pytest.approx(numeric, rel=1e-6)
+
+
+def _wallis(p: float) -> float:  # integral_0^{pi/2} sin^p
+    return 0.5 * math.sqrt(math.pi) * math.gamma(0.5 * (p + 1)) / math.gamma(0.5 * p + 1)
+
+
+def _march(n: float, g: float, beta: float, steps: int = 400) -> tuple[np.ndarray, np.ndarray]:
+    """Wagner's condition with gravity marched on the contacts ``c_j = j dc`` of
+    ``f = y^n`` entering at ``V = 1``: the times ``t_j`` where
+    ``integral_0^t c / sqrt(c^2 - c(tau)^2) dtau = c^n - eta1(t)`` (``eta0`` of the marched
+    history at its own contact, exact for ``t(c)`` linear between the contacts), the
+    surface lowered at the contact by ``eta1 = -n g t^3 beta_n / c``."""
+    from scipy import optimize
+
+    c = np.linspace(0.0, 1.0, steps + 1)
+    dc = c[1]
+    t = np.zeros(steps + 1)
+    for i in range(1, steps + 1):
+        w = (np.arcsin(c[1 : i + 1] / c[i]) - np.arcsin(c[:i] / c[i])) * c[i] / dc
+        known = float(np.sum(np.diff(t[:i]) * w[: i - 1]))
+
+        def residual(ti, i=i, w=w, known=known):
+            return known + (ti - t[i - 1]) * w[-1] - c[i] ** n - n * g * ti**3 * beta / c[i]
+
+        t[i] = optimize.brentq(residual, t[i - 1], t[i - 1] + 2.0, xtol=1e-15, rtol=1e-15)
+    return c, t
+
+
+@pytest.mark.parametrize("n", [1.0, 2.0])
+def test_wagners_condition_marched_in_time_gives_the_contacts_shift(n):
+    # reference: c / c0 = 1 - lambda_n g h^2 / (V^2 c0), lambda_n = 2 beta_n I_(3n-1) / pi,
+    # against Wagner's condition marched in time (no use of Wagner's integral form): at
+    # the same contact the time is longer by eps / m, m = 1/n (the same grid without
+    # gravity takes out the marching's own error)
+    beta = gravity.power_law_beta(n)
+    c, t0 = _march(n, 0.0, beta)
+    _, tg = _march(n, 1e-3, beta)
+    assert t0[-1] == pytest.approx(2 * _wallis(n) / math.pi, rel=1e-4)  # Wagner: c^n I_n = pi h/2
+    lam = 2 * beta * _wallis(3 * n - 1) / math.pi
+    eps = lam * 1e-3 * t0[-1] ** 2 / c[-1]
+    assert tg[-1] / t0[-1] - 1 == pytest.approx(n * eps, rel=1e-3)
+
+
+def test_the_surface_lowered_at_the_contact_is_the_time_integral_of_phi1_y():
+    # reference: eta1(c0(t), t) = integral_0^t phi1_y(c0(t), tau) dtau with
+    # phi1_y(x, tau) = -(g V tau^2 / c0(tau)) Phi_Y(x / c0(tau)) (Phi_Y by the Hilbert
+    # formula) equals -alpha g V t^2 / gamma on the wedge (g = V = gamma = t = 1)
+    from scipy import integrate
+
+    def qp(s):
+        return math.asin(min(1 / s, 1.0)) + 2 * math.sqrt(max(s * s - 1, 0.0)) - 2 * s
+
+    def phi_y_root(x):  # Phi_Y(X) sqrt(X - 1), smooth at the contact
+        x = max(x, 1.0 + 1e-9)
+
+        def f(s, x=x):
+            return qp(s) * math.sqrt(max(s * s - 1, 0.0)) / (s + x)
+
+        pv = integrate.quad(f, 1.0, 3 * x, weight="cauchy", wvar=x, limit=400)[0]
+        pv += integrate.quad(lambda s, x=x, f=f: f(s) / (s - x), 3 * x, np.inf, limit=400)[0]
+        return -2 * x / (math.pi * math.sqrt(x + 1)) * pv
+
+    # tau = 1 / X: Phi_Y(1 / tau) ~ (1 - tau)^(-1/2) at the contact, taken out by the weight
+    eta1 = -integrate.quad(
+        lambda tau: tau * phi_y_root(1 / tau) * math.sqrt(tau), 1e-6, 1.0,
+        weight="alg", wvar=(0.0, -0.5), limit=200,
+    )[0]  # fmt: skip
+    assert eta1 == pytest.approx(-gravity.wedge_alpha(), rel=1e-6)
