@@ -56,10 +56,11 @@ solution for the data ``P_n``, ``eta1(c0, t) = -n g V t^3 beta_n / c0``,
     c / c0 = 1 - lambda_n g h^2 / (V^2 c0),   lambda_n = 2 beta_n I_(3n-1) / pi,
 
 ``I_p = integral_0^{pi/2} sin^p``. ``beta_1 = alpha`` (``lambda_1 = alpha / 2``; on the wedge
-``g h^2 / (V^2 c0) = 2 / (pi Fr*^2)``); ``beta_2 = 1/15`` to 1e-12 (numerically, and by
-the Keldysh-Sedov kernel in the tests), ``lambda_2 = 16 / (225 pi)``, 1.61 times the
-wedge's. :data:`LAMBDA_TABLE` holds ``lambda`` against the contact's growth exponent
-``m = 1/n``, by the elliptic-coordinate solution.
+``g h^2 / (V^2 c0) = 2 / (pi Fr*^2)``); ``beta_2 = 1/15``, to 1e-12 by the
+elliptic-coordinate solution and to 1e-7 by the Keldysh-Sedov kernel (in the tests), so
+``lambda_2 = 16 / (225 pi)``, 1.61 times the wedge's. :data:`LAMBDA_TABLE` holds
+``lambda`` against the contact's growth exponent ``m = 1/n``, by the elliptic-coordinate
+solution.
 
 **Any section** (an approximation beyond the power laws): the power law with the same
 local exponent ``m = d ln c / d ln h = c' h / c`` (Wagner's ``c'``; ``m`` held in
@@ -90,8 +91,8 @@ __all__ = [
     "wedge_plate_force",
 ]
 
-#: The largest relative shift ``delta = kappa / Fr*^2`` of the penetration; beyond it the
-#: first-order expansion is not valid (the section is flagged and ``delta`` held there).
+#: The largest relative shift ``delta`` of the penetration (a wedge's ``kappa / Fr*^2``);
+#: beyond it the first-order expansion is not valid (the section is flagged, ``delta`` held).
 DELTA_MAX = 0.2
 
 
@@ -154,9 +155,9 @@ def power_law_beta(
     ``mu = 0`` (``Phi_mu = 0``) and the free surface ``nu = 0, pi`` (``Phi = P_n(cosh mu)``),
     so ``Phi = integral_0^inf A(k) cos(k mu) cosh(k (nu - pi/2)) / cosh(k pi/2) dk`` with
     ``A`` the cosine transform of ``P_n(cosh mu)``, and ``Phi_Y = -Phi_nu / sinh(mu)`` on
-    ``nu = 0``: ``beta_n = integral A(k) k tanh(k pi/2) integral cos(k mu) cosh(mu)^(1-3n)
-    / sinh(mu) ... `` (``dX = sinh(mu) dmu``), both transforms by composite Gauss-Legendre
-    on ``(0, mu_top)`` and ``(0, k_top)``."""
+    ``nu = 0``, so with ``dX = sinh(mu) dmu``
+    ``beta_n = integral A(k) k tanh(k pi/2) [integral cos(k mu) cosh(mu)^(-3n) dmu] dk``,
+    both transforms by composite Gauss-Legendre on ``(0, mu_top)`` and ``(0, k_top)``."""
     mu, w_mu, k, w_k, a = _transform(mu_top, k_top, panels, n)
     c = np.cos(np.outer(k, mu)) @ (w_mu / np.cosh(mu) ** (3.0 * n))
     return float(np.sum(w_k * a * k * np.tanh(0.5 * math.pi * k) * c))
