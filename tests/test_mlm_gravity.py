@@ -1,4 +1,5 @@
-"""Gravity's correction of Wagner's contact in the ``mlm`` plugin (``gravity_contact``).
+"""Gravity's first-order correction in the ``mlm`` plugin (``gravity = "hulin"``): the
+contact and the gravity potential's pressure.
 
 References:
 
@@ -8,6 +9,9 @@ References:
   quadrature) and, independently, by separation of variables in elliptic coordinates.
 - Korobkin (2004): the MLM's closed-form force on a wedge at constant speed, here with the
   contact ``c`` and ``c' = dc/dh`` of the derivation.
+- The gravity potential on the disc by the Keldysh-Sedov form, ``Phi(X) = q(1) + (2/pi)
+  integral_1^inf q'(s) atan(sqrt(1 - X^2) / sqrt(s^2 - 1)) ds``, against the
+  elliptic-coordinate solution; its pressure ``rho g h (2 Phi - m X Phi')``.
 - The free surface's potential ``q(X) = X asin(1/X) + X sqrt(X^2 - 1) - X^2 - 1/2`` from
   the time integral of Wagner's free-surface rise.
 """
@@ -35,7 +39,8 @@ def wedge(deadrise_deg: float) -> hs.Hull:
 
 def wedge_case(deadrise_deg: float, froude_star: float, **options):
     """The middle slice of a wedge at constant speed, its keel ``0.02 tan(beta)`` deep,
-    ``g`` set for the section's ``Fr* = V / sqrt(g h tan(beta))``."""
+    ``g`` set for the section's ``Fr* = V / sqrt(g h tan(beta))``: the result, the force
+    per metre, the wetted half-width, ``h`` and ``g``."""
     k = math.tan(math.radians(deadrise_deg))
     p = 0.02 * k
     g = 0.0 if math.isinf(froude_star) else SPEED**2 / (froude_star**2 * p * k)
@@ -45,6 +50,15 @@ def wedge_case(deadrise_deg: float, froude_star: float, **options):
     )  # fmt: skip
     force = np.asarray(r.force) / np.asarray(r.sections.dx)
     return r, force, np.asarray(r.loads.diagnostics["wetted_half_width"]), p, g
+
+
+def parts(r) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The force per metre with the corrected contact alone, the gravity potential's
+    pressure force (``extra``) and the buoyancy (``vertical``), N/m."""
+    force = np.asarray(r.force) / np.asarray(r.sections.dx)
+    extra = np.asarray(r.loads.diagnostics["extra_force"])
+    vertical = np.asarray(r.loads.diagnostics["vertical_force"])
+    return force - extra - vertical, extra, vertical
 
 
 def closed_form(k: float, c: float, cp: float, speed: float) -> float:
@@ -111,8 +125,9 @@ def test_the_hilbert_formula_gives_the_numerical_solutions_vertical_velocity():
 @pytest.mark.parametrize("froude_star", [2.0, 4.0, 8.0])
 def test_a_wedges_contact_and_force_with_gravity(deadrise_deg, froude_star):
     k = math.tan(math.radians(deadrise_deg))
-    _, f0, c0, p, _ = wedge_case(deadrise_deg, froude_star)
-    r1, f1, c1, _, _ = wedge_case(deadrise_deg, froude_star, gravity_contact=True)
+    _, f0, c0, p, g = wedge_case(deadrise_deg, froude_star)
+    r1, _, c1, _, _ = wedge_case(deadrise_deg, froude_star, gravity="hulin")
+    f_contact, f_pressure, f_buoyancy = parts(r1)
     delta = gravity.KAPPA / froude_star**2
     # reference: the derivation, c / c0 = 1 - kappa / Fr*^2
     assert c1[1] / c0[1] == pytest.approx(1.0 - delta, abs=1e-10)
@@ -120,35 +135,44 @@ def test_a_wedges_contact_and_force_with_gravity(deadrise_deg, froude_star):
     # reference: Korobkin's closed form with c = c0 (1 - delta), c' = c0' (1 - 2 delta)
     cp0 = math.pi / (2 * k)
     ref = closed_form(k, cp0 * p * (1 - delta), cp0 * (1 - 2 * delta), SPEED)
-    assert f1[1] == pytest.approx(ref, rel=1e-6)
-    # gravity lowers the force: about three times the contact's shift (f ~ c c')
-    assert 2.0 * delta < 1.0 - f1[1] / f0[1] < 4.0 * delta
+    assert f_contact[1] == pytest.approx(ref, rel=1e-6)
+    # the contact lowers the force: about three times its shift (f ~ c c')
+    assert 2.0 * delta < 1.0 - f_contact[1] / f0[1] < 4.0 * delta
+    # reference: the buoyancy rho g A of the option gravity, A = h^2 / tan(beta)
+    assert f_buoyancy[1] == pytest.approx(RHO * g * p * p / k, rel=1e-6)
+    # the gravity potential's pressure: 0.12 to 0.14 buoyancies (up to the sign change)
+    assert 0.11 * f_buoyancy[1] < f_pressure[1] < 0.14 * f_buoyancy[1]
 
 
 def test_without_gravity_or_fast_the_correction_vanishes():
-    # reference: today's MLM (the option off), to 1e-12
+    # reference: today's MLM (gravity off, or buoyancy only), to 1e-12
     _, f_off, c_off, _, _ = wedge_case(20.0, math.inf)
-    _, f_on, c_on, _, _ = wedge_case(20.0, math.inf, gravity_contact=True)  # g = 0
+    _, f_on, c_on, _, _ = wedge_case(20.0, math.inf, gravity="hulin")  # g = 0
     np.testing.assert_allclose(f_on, f_off, rtol=1e-12, atol=0)
     np.testing.assert_allclose(c_on, c_off, rtol=1e-12, atol=0)
-    _, f_off, c_off, _, _ = wedge_case(20.0, 1e7)  # Fr* = 1e7: kappa / Fr*^2 ~ 1e-16
-    _, f_on, c_on, _, _ = wedge_case(20.0, 1e7, gravity_contact=True)
+    _, f_off, c_off, _, _ = wedge_case(20.0, 1e7, gravity=True)  # kappa / Fr*^2 ~ 1e-16
+    _, f_on, c_on, _, _ = wedge_case(20.0, 1e7, gravity="hulin")
     np.testing.assert_allclose(f_on, f_off, rtol=1e-12, atol=0)
     np.testing.assert_allclose(c_on, c_off, rtol=1e-12, atol=0)
 
 
-def test_with_the_hydrostatic_pressure_both_are_in():
-    # reference: the buoyancy rho g A of the option gravity, A = h^2 / tan(beta)
-    r, f, _, p, g = wedge_case(20.0, 2.0, gravity=True, gravity_contact=True)
-    _, f_contact, _, _, _ = wedge_case(20.0, 2.0, gravity_contact=True)
+def test_the_option_gravity_true_is_the_buoyancy_alone():
+    # reference: gravity off plus rho g A, A = h^2 / tan(beta); the contact as without gravity
+    r, f, c, p, g = wedge_case(20.0, 2.0, gravity=True)
+    _, f_off, c_off, _, _ = wedge_case(20.0, 2.0)
     buoyancy = RHO * g * p * p / math.tan(math.radians(20.0))
     assert r.loads.diagnostics["buoyancy"][1] == pytest.approx(buoyancy, rel=1e-6)
-    assert f[1] - f_contact[1] == pytest.approx(buoyancy, rel=1e-6)
+    assert f[1] - f_off[1] == pytest.approx(buoyancy, rel=1e-6)
+    assert c[1] == pytest.approx(c_off[1], rel=1e-15)
+    assert r.loads.diagnostics["extra_force"][1] == 0.0
+    assert "gravity_shift" not in r.loads.diagnostics
+    for spelled in ("Hulin", " hulin "):  # the choice's spelling is free
+        assert mlm.MLM(gravity=spelled).settings["gravity"] == "hulin"
 
 
 def test_beyond_the_first_order_range_the_shift_is_held_and_flagged():
     # reference: kappa / Fr*^2 = 0.894 at Fr* = 0.1, above DELTA_MAX = 0.2
-    r, _, c1, _, _ = wedge_case(20.0, 0.1, gravity=True, gravity_contact=True)
+    r, _, c1, _, _ = wedge_case(20.0, 0.1, gravity="hulin")
     _, _, c0, _, _ = wedge_case(20.0, 0.1, gravity=True)
     assert r.loads.diagnostics["gravity_shift"][1] == pytest.approx(gravity.DELTA_MAX, abs=1e-15)
     assert c1[1] / c0[1] == pytest.approx(1.0 - gravity.DELTA_MAX, abs=1e-10)
@@ -163,21 +187,28 @@ def parabola(radius: float, half_beam: float) -> hs.Hull:
     return hs.Hull.from_arrays(v, f)
 
 
-def test_beta_2_by_the_keldysh_sedov_kernel():
-    # reference: beta_2 = -(2/pi) integral_1^inf P_2'(s) sqrt(s^2 - 1) K_2(s) ds with the
-    # elementary kernel K_2 = 3 pi / (16 s^2) + pi / (4 s^4) + pi / (2 s^6) and
-    # E_2(xi) = 2 xi (xi - sqrt(xi^2 - 1)) - 1, against the elliptic-coordinate solution
+def _parabola_p_slope(x: float) -> float:
+    """P_2'(X) = integral_0^1 s^(1/2) E_2'(X s^(-1/2)) ds (s = 1 - v^2), with
+    E_2(xi) = 2 xi (xi - sqrt(xi^2 - 1)) - 1."""
     from scipy import integrate
 
     def rise_slope(xi):
         r = math.sqrt(max(xi * xi - 1.0, 0.0))
         return 4 * xi - 2 * r - 2 * xi * xi / r
 
-    def p_slope(x):  # P_2'(X) = integral_0^1 s^(1/2) E_2'(X s^(-1/2)) ds, s = 1 - v^2
-        return integrate.quad(
-            lambda v: math.sqrt(1 - v * v) * rise_slope(x / math.sqrt(1 - v * v)) * 2 * v,
-            0.0, 1.0, limit=200,
-        )[0]  # fmt: skip
+    return integrate.quad(
+        lambda v: math.sqrt(1 - v * v) * rise_slope(x / math.sqrt(1 - v * v)) * 2 * v,
+        0.0, 1.0, limit=200,
+    )[0]  # fmt: skip
+
+
+def test_beta_2_by_the_keldysh_sedov_kernel():
+    # reference: beta_2 = -(2/pi) integral_1^inf P_2'(s) sqrt(s^2 - 1) K_2(s) ds with the
+    # elementary kernel K_2 = 3 pi / (16 s^2) + pi / (4 s^4) + pi / (2 s^6) and
+    # E_2(xi) = 2 xi (xi - sqrt(xi^2 - 1)) - 1, against the elliptic-coordinate solution
+    from scipy import integrate
+
+    p_slope = _parabola_p_slope
 
     def kernel(s):
         return 3 * math.pi / (16 * s**2) + math.pi / (4 * s**4) + math.pi / (2 * s**6)
@@ -213,7 +244,7 @@ def test_a_parabolic_section_has_its_power_laws_correction():
     c = []
     for on in (False, True):
         r = hs.compute_force(
-            hull, p, -speed, slices=4, solver=mlm.MLM(gravity_contact=on),
+            hull, p, -speed, slices=4, solver=mlm.MLM(gravity="hulin" if on else False),
             acceleration=0.0, fluid=hs.Fluid(RHO, g),
         )  # fmt: skip
         c.append(r.loads.diagnostics["wetted_half_width"][1])
@@ -221,14 +252,24 @@ def test_a_parabolic_section_has_its_power_laws_correction():
     expected = 16 / (225 * math.pi) * g * p * p / (speed**2 * c[0])
     assert 1 - c[1] / c[0] == pytest.approx(expected, rel=1e-2)
     assert expected == pytest.approx(0.005, rel=0.05)
+    # reference: the gravity potential's pressure of the power law n = 2 (plate_pressure,
+    # the elliptic-coordinate solution) up to the pressure's sign change, 2 rho g h c
+    # integral_0^{y*/c} S_2 dX by Gauss-Legendre (the contour's own growth exponent m is
+    # 1/2 to 2e-3)
+    top = r.loads.diagnostics["pressure_half_width"][1] / c[1]
+    u, w = np.polynomial.legendre.leggauss(64)
+    t = 0.5 * math.asin(top) * (u + 1)
+    shape = 0.5 * math.asin(top) * np.sum(w * gravity.plate_pressure(np.sin(t), 2.0) * np.cos(t))
+    extra = r.loads.diagnostics["extra_force"][1]
+    assert extra == pytest.approx(2 * RHO * g * p * c[1] * shape, rel=2e-3)
 
 
-@pytest.mark.parametrize("bad", ["yes", 1, 0.5, None, math.nan])
+@pytest.mark.parametrize("bad", ["yes", "hulin2022", 1, 0.5, None, math.nan])
 def test_bad_values_of_the_option_are_refused(bad):
     with pytest.raises(
-        InputError, match=r"option gravity_contact=.* is not (true or false|a finite)"
+        InputError, match=r"option gravity=.* is not (true, false or 'hulin'|a finite)"
     ):
-        mlm.MLM(gravity_contact=bad)
+        mlm.MLM(gravity=bad)
 
 
 def test_the_gravity_potentials_force_on_the_disc_converges():
@@ -328,3 +369,96 @@ def test_the_surface_lowered_at_the_contact_is_the_time_integral_of_phi1_y():
         weight="alg", wvar=(0.0, -0.5), limit=200,
     )[0]  # fmt: skip
     assert eta1 == pytest.approx(-gravity.wedge_alpha(), rel=1e-6)
+
+
+Q1 = 0.5 * math.pi - 1.5  # q(1), the free surface's potential at the contact
+
+
+def _q_slope(s: float) -> float:  # q'(s)
+    return math.asin(min(1 / s, 1.0)) + 2 * math.sqrt(max(s * s - 1, 0.0)) - 2 * s
+
+
+def _disc_phi(x: float, slope=_q_slope, edge: float = Q1) -> float:
+    """Phi on the disc by the Keldysh-Sedov form: P(1) + (2/pi) integral_1^inf P'(s)
+    atan(sqrt(1 - X^2) / sqrt(s^2 - 1)) ds."""
+    from scipy import integrate
+
+    r = math.sqrt(1 - x * x)
+    tail = integrate.quad(
+        lambda s: slope(s) * math.atan(r / math.sqrt(s * s - 1)), 1, np.inf, limit=400
+    )[0]
+    return edge + 2 / math.pi * tail
+
+
+def _disc_phi_x(x: float) -> float:
+    """Phi' on the disc, -Im H / sqrt(1 - X^2) (H by Hilbert's formula)."""
+    from scipy import integrate
+
+    tail = integrate.quad(
+        lambda s: _q_slope(s) * math.sqrt(s * s - 1) / (s * s - x * x), 1, np.inf, limit=400
+    )[0]
+    return -2 * x / (math.pi * math.sqrt(1 - x * x)) * tail
+
+
+def test_the_gravity_potential_on_the_disc_by_two_solutions():
+    # reference: the Keldysh-Sedov form against the elliptic-coordinate solution, Phi and
+    # Phi' on the wedge's disc; Phi meets q(1) at the contact
+    x = np.array([0.0, 0.3, 0.7, 0.95])
+    phi, phi_t = gravity.plate_potential(np.arcsin(x))
+    for xi, f, ft in zip(x, phi, phi_t, strict=True):
+        assert f == pytest.approx(_disc_phi(xi), rel=1e-9)
+        assert ft / math.sqrt(1 - xi * xi) == pytest.approx(_disc_phi_x(xi), rel=1e-7, abs=1e-12)
+    edge, _ = gravity.plate_potential(np.array([0.5 * math.pi]))
+    assert edge[0] == pytest.approx(Q1, rel=1e-4)
+    assert phi[0] == pytest.approx(0.0296238437559, rel=1e-9)
+
+
+def test_the_pressure_of_the_gravity_potential_on_the_whole_disc():
+    # reference: the force (2 + m) I - 2 m P(1) per rho g h c with I = integral Phi dX by
+    # the Keldysh-Sedov form, I = 2 P(1) + 2 integral_1^inf P'(s) (s - sqrt(s^2 - 1)) ds,
+    # against the elliptic-coordinate solution (plate_force, and wedge_plate_force by a
+    # quadrature over the disc); the wedge's 0.1046 buoyancies
+    from scipy import integrate
+
+    tail = integrate.quad(lambda s: _q_slope(s) * (s - math.sqrt(s * s - 1)), 1, np.inf)
+    big_i = 2 * Q1 + 2 * tail[0]
+    wedge_force = 0.5 * math.pi * (3 * big_i - 2 * Q1)
+    assert wedge_force == pytest.approx(0.5 * math.pi * gravity.plate_force(1.0), abs=1e-9)
+    assert wedge_force == pytest.approx(gravity.wedge_plate_force(25.0, 120.0, 160), abs=1e-9)
+    assert wedge_force == pytest.approx(0.1045992, abs=1e-7)
+    # the parabola: P_2(1) = integral_0^1 s E_2(s^(-1/2)) ds, E_2(xi) = 2 xi (xi -
+    # sqrt(xi^2 - 1)) - 1, and its force 2/9 per rho g h c
+    p1 = integrate.quad(
+        lambda s: s * (2 / s * (1 - math.sqrt(max(1 - s, 0.0))) - 1), 0, 1, limit=200
+    )[0]
+    assert p1 == pytest.approx(
+        float(gravity._free_surface_potential(np.array([1.0]), 2.0)[0]), rel=1e-12
+    )
+    tail = integrate.quad(lambda s: _parabola_p_slope(s) * (s - math.sqrt(s * s - 1)), 1, np.inf)
+    big_i = 2 * p1 + 2 * tail[0]
+    assert 2.5 * big_i - p1 == pytest.approx(gravity.plate_force(2.0), rel=1e-7)
+    assert gravity.plate_force(2.0) == pytest.approx(2 / 9, rel=1e-8)
+
+
+@pytest.mark.parametrize("deadrise_deg", [10.0, 20.0, 30.0])
+def test_the_solvers_gravity_pressure_on_a_wedge(deadrise_deg):
+    # reference: 2 rho g h c integral_0^{y*/c} (2 Phi - X Phi') dX with Phi and Phi' by the
+    # Keldysh-Sedov form (no use of the solver's table), y* the pressure's sign change
+    from scipy import integrate
+
+    r, _, c, p, g = wedge_case(deadrise_deg, 2.0, gravity="hulin")
+    _, f_pressure, _ = parts(r)
+    top = r.loads.diagnostics["pressure_half_width"][1] / c[1]
+    shape = integrate.quad(lambda x: 2 * _disc_phi(x) - x * _disc_phi_x(x), 0, top, limit=200)
+    assert f_pressure[1] == pytest.approx(2 * RHO * g * p * c[1] * shape[0], rel=3e-5)
+
+
+def test_the_disc_table_is_the_power_laws():
+    # reference: plate_pressure (the elliptic-coordinate solution of each power law) against
+    # the solver's table, between its nodes in m and in t
+    t = np.linspace(0.0, 1.5, 11)
+    for m in (1.0, 0.675, 0.4, 0.25):
+        ref = gravity.plate_pressure(np.sin(t), 1 / m)
+        got = gravity.disc_pressure(np.broadcast_to(t, (2, 1, len(t))), np.full((2, 1), m))
+        np.testing.assert_allclose(got[0, 0], ref, rtol=0, atol=5e-4)
+        np.testing.assert_allclose(got[0, 0, :8], ref[:8], rtol=0, atol=2e-5)  # t < 1.05

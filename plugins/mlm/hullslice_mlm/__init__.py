@@ -46,18 +46,24 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
   with the same slope), and the pressure is integrated over the real body's lower half.
   Once the contact has passed the reflection (a circle under water to its top), ``c`` and
   the added mass stay at their values there.
-- **Gravity** (option ``gravity``): the hydrostatic pressure ``rho g`` times the depth
-  below the calm water on the wetted contour, integrated as the section's area below the
-  calm water (a vertical force, buoyancy).
-- **Gravity's correction of the contact** (option ``gravity_contact``, after the approach of
-  Hulin et al. 2022; derived in :mod:`hullslice_mlm.gravity`): gravity pulls the raised
-  free surface down, so the contact is Wagner's at the penetration ``h (1 - delta)``,
-  to first order exactly for a section ``f = A y^n`` at constant speed:
+- **Gravity** (option ``gravity = true``): the hydrostatic pressure ``rho g`` times the
+  depth below the calm water on the wetted contour, integrated as the section's area below
+  the calm water (a vertical force, buoyancy).
+- **Gravity's first-order correction** (``gravity = "hulin"``: the buoyancy and both
+  terms below, after the approach of Hulin et al. 2022; derived in
+  :mod:`hullslice_mlm.gravity`). *The contact*: gravity pulls the raised free surface
+  down, so the contact is Wagner's at the penetration ``h (1 - delta)``, to first order
+  exactly for a section ``f = A y^n`` at constant speed:
   ``delta = lambda(m) g h^2 / (m V^2 c)``, ``m = c' h / c = 1/n`` (a wedge's
   ``delta = kappa / Fr*^2``, ``Fr*^2 = V^2 / (g h tan(beta))``, ``kappa = 0.00894``), any
   other section by the power law of its own ``m``; ``c'`` times ``1 - (3 - m) delta``
-  (quasi-steady, at the current speed).
-  ``delta`` is held at 0.2, and such sections flagged. With ``gravity`` both are in.
+  (quasi-steady, at the current speed); ``delta`` is held at 0.2, and such sections
+  flagged. *The gravity potential's pressure* ``p1 = -rho phi1_t = rho g h S_m(y / c)``
+  on the same points as the rest of the pressure (up to its change of sign), a force
+  normal to the keel line that does not depend on ``V`` at a given ``h`` (``extra``: on a
+  wedge 0.105 buoyancies over the whole disc); on entering sections (``v < 0``) only.
+  Neither the hydrostatic pressure nor ``p1`` is in the returned ``SectionPressures``,
+  whose points carry the ``v^2`` and acceleration terms only.
 
 Sections are flagged (``reason``) where the bottom turns back down (a re-entrant
 contour: the MLM takes the contour's running maximum) and where the section Froude number
@@ -86,7 +92,7 @@ from .contours import (
     side_contours,
     sign_change,
 )
-from .gravity import DELTA_MAX, contact_shift
+from .gravity import DELTA_MAX, contact_shift, disc_pressure, growth_exponent
 from .options import check_options
 
 __all__ = [
@@ -175,11 +181,11 @@ class MLM(MomentumFormSolver):
     smooth_edge_deg : float, optional
         A side meeting its widest point at a deadrise above this (deg, in (0, 90]) is
         smooth there (no separation); default 75.
-    gravity : bool, optional
-        Add the hydrostatic pressure (default False).
-    gravity_contact : bool, optional
-        Correct Wagner's contact for gravity, to first order in ``1 / Fr*^2``
-        (:mod:`hullslice_mlm.gravity`; default False).
+    gravity : bool or str, optional
+        False (default): no gravity in the water; True: the hydrostatic pressure
+        (buoyancy); ``"hulin"``: the buoyancy and gravity's first-order correction of the
+        flow, the contact and the gravity potential's pressure
+        (:mod:`hullslice_mlm.gravity`).
     froude_min : float, optional
         Smallest section Froude number ``|v| / sqrt(g h)`` inside the range (default 2),
         where ``gravity`` is off (with it the hydrostatic force is in the load).
@@ -193,13 +199,12 @@ class MLM(MomentumFormSolver):
     models_separation = True
     positive_pressure = True
     gives_pressures = True
-    own_checks = ("continuation", "smooth_edge_deg", "gravity", "gravity_contact", "froude_min")
+    own_checks = ("continuation", "smooth_edge_deg", "gravity", "froude_min")
     options: ClassVar[dict[str, Any]] = {
         "section_method": "auto",
         "continuation": CONTINUATION,
         "smooth_edge_deg": SMOOTH_EDGE_DEG,
         "gravity": False,
-        "gravity_contact": False,
         "froude_min": 2.0,
     }
 
@@ -230,7 +235,9 @@ class MLM(MomentumFormSolver):
         pen = np.broadcast_to(p, (2, n))
         c, cp, capped, i_end = contact(g, step, pen, edge_in, line)
         shift = held = np.zeros((2, n))
-        if self.settings["gravity_contact"]:  # Wagner's contact at h (1 - delta)
+        hulin = self.settings["gravity"] == "hulin"
+        if hulin:  # Wagner's contact at h (1 - delta)
+            m, grows = growth_exponent(pen, c, cp)
             shift, held, factor = contact_shift(pen, v, fluid.g, c, cp)
             if shift.any():
                 c, cp, capped, i_end = contact(g, step, pen * (1.0 - shift), edge_in, line)
@@ -262,6 +269,11 @@ class MLM(MomentumFormSolver):
         girth = dy.sum(axis=-1)
         added = rho * ma.sum(axis=0)
         rate = rho * np.maximum(phi, 0.0).sum(axis=0)
+        extra = np.zeros(n)
+        if hulin and fluid.g > 0:  # the gravity potential's pressure, rho g h S_m(y / c)
+            entering = grows & (v < 0.0) & (c > 0)
+            p_g = rho * fluid.g * pen[..., None] * disc_pressure(tk, m)
+            extra = (np.where(entering[..., None], p_g, 0.0) * dy).sum(axis=(0, -1))
         vertical = np.zeros(n)
         if self.settings["gravity"]:
             area, _ = submerged_parts(sections)
@@ -288,10 +300,7 @@ class MLM(MomentumFormSolver):
                 ),
             ],
         )
-        if self.settings["gravity_contact"]:
-            extra = {"gravity_shift": 0.5 * (shift[0] + shift[1])}
-        else:
-            extra = {}
+        more = {"gravity_shift": 0.5 * (shift[0] + shift[1])} if hulin else {}
         pressure = SectionPressures(
             y=np.moveaxis(yk, 0, 1),
             z=np.moveaxis(fk, 0, 1),
@@ -304,6 +313,7 @@ class MLM(MomentumFormSolver):
             rate=rate,
             valid=reason == "",
             reason=reason,
+            extra=extra,
             vertical=vertical,
             diagnostics={
                 "wetted_half_width": 0.5 * (c[0] + c[1]),
@@ -315,7 +325,7 @@ class MLM(MomentumFormSolver):
                 "froude": froude,
                 "buoyancy": vertical,
                 "contour": np.ones(n),
-                **extra,
+                **more,
             },
             girth=girth.sum(axis=0),
             pressure=pressure,

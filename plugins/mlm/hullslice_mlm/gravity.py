@@ -1,4 +1,5 @@
-"""Gravity's correction of Wagner's contact at low Froude number (option ``gravity_contact``).
+"""Gravity's first-order correction of Wagner's flow at low Froude number (option
+``gravity = "hulin"``): the contact and the gravity potential's own pressure.
 
 After the approach of Hulin, Del Buono, Tassin, Bernardini & Iafrati (2022, J. Fluid Mech.
 944, "Gravity effects in two-dimensional and axisymmetric water impact models": Wagner's
@@ -70,10 +71,39 @@ taken quasi-steadily, at the current speed with ``m`` held, as a power law's:
 ``dc/dh = c'(h (1 - delta)) (1 - (3 - m) delta)`` (a wedge's ``1 - 2 delta``).
 ``delta`` is held at :data:`DELTA_MAX` (the first-order expansion is not valid beyond),
 and such sections are flagged.
+
+**The gravity potential's pressure.** ``phi1`` has its own pressure on the disc,
+``p1 = -rho phi1_t``, first order in ``1 / Fr*^2`` like the contact's shift. On
+``f = A y^n`` at constant speed ``phi1 = -g V t^2 Phi(x / c0)`` on the disc (``Phi`` the
+mixed problem's solution above, now on ``|X| < 1``) and ``c0`` grows as ``t^m``,
+``m = 1/n``, so
+
+    p1 = rho g h S_m(x / c),   S_m(X) = 2 Phi(X) - m X Phi'(X),
+
+a pressure of the buoyancy's scale ``rho g h``, independent of ``V`` at a given ``h``.
+``Phi'`` grows as ``1 / sqrt(1 - X^2)`` at the contact (``S`` falls to minus infinity
+there, as the MLM's velocity term does). Two solutions of the mixed problem give ``Phi``
+on the disc: in elliptic coordinates (``mu = 0``, ``X = sin t``,
+``Phi = integral A(k) cosh(k t) / cosh(k pi/2) dk``, :func:`plate_potential`), and by the
+Keldysh-Sedov form (``Phi_X = -Im H / sqrt(1 - X^2)`` on the disc, integrated in from the
+contact, where ``Phi = P(1)``), which leaves one integral:
+
+    Phi(X) = P(1) + (2/pi) integral_1^inf P'(s) atan(sqrt(1 - X^2) / sqrt(s^2 - 1)) ds.
+
+Over the whole disc the force is ``rho g h c integral_{-1}^{1} S dX = rho g h c ((2 + m) I
+- 2 m P(1))``, ``I = integral_{-1}^{1} Phi dX`` (:func:`plate_force`); on the wedge
+``(pi / 2)(3 I - 2 q(1)) = 0.1046`` buoyancies ``rho g h^2 / tan(beta)``, on the parabola
+``I = 7/45``. In the MLM the pressure is taken, as Logvinovich's, on the real body's wetted
+part up to the velocity term's change of sign (:func:`disc_pressure`, ``S`` of the
+section's own ``m``; ``phi1_y = 0`` on the disc, so the body's offset ``f - h`` adds
+nothing at first order). The cross term ``rho grad(phi0) . grad(phi1)`` of Bernoulli's
+equation is left out: it is smaller by the deadrise's slope, ``O(tan(beta))``, and not
+integrable at the contact in the flat-disc approximation.
 """
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -83,7 +113,12 @@ __all__ = [
     "KAPPA",
     "LAMBDA_TABLE",
     "contact_shift",
+    "disc_pressure",
+    "growth_exponent",
     "growth_lambda",
+    "plate_force",
+    "plate_potential",
+    "plate_pressure",
     "power_law_beta",
     "power_law_lambda",
     "wedge_alpha",
@@ -227,22 +262,114 @@ def growth_lambda(m):
     return 0.5 * wedge_alpha() + (1.0 - m) * _LAMBDA_FIT(m)
 
 
+def growth_exponent(penetration, c, cp):
+    """The contact's growth exponent ``m = c' h / c`` (held in ``[1/4, 1]``) and where the
+    correction applies (``c``, ``c'`` and ``h`` positive)."""
+    c = np.asarray(c, dtype=np.float64)
+    cp = np.asarray(cp, dtype=np.float64)
+    h = np.broadcast_to(np.asarray(penetration, dtype=np.float64), cp.shape)
+    ok = (c > 0) & (cp > 0) & (h > 0)
+    m = np.where(ok, cp * h / np.where(ok, c, 1.0), 1.0)
+    return np.clip(m, LAMBDA_TABLE[0][0], 1.0), ok
+
+
 def contact_shift(penetration, speed, g, c, cp):
     """The relative shift ``delta`` of the penetration that gives the contact with gravity
     (Wagner's contact at ``h (1 - delta)``), held at :data:`DELTA_MAX`, where it was held,
     and the factor of ``c'``. ``c, cp`` are Wagner's contact and ``c' = dc/dh`` per side
     (the growth exponent ``m = c' h / c``); no shift where ``c`` or ``c'`` is not
     positive or ``g`` is 0."""
-    c = np.asarray(c, dtype=np.float64)
+    m, ok = growth_exponent(penetration, c, cp)
+    ok = ok & (g > 0)
     cp = np.asarray(cp, dtype=np.float64)
     h = np.broadcast_to(np.asarray(penetration, dtype=np.float64), cp.shape)
     v2 = np.broadcast_to(np.asarray(speed, dtype=np.float64) ** 2, cp.shape)
-    ok = (c > 0) & (cp > 0) & (h > 0) & (g > 0)
     c_ok = np.where(ok, c, 1.0)
-    m = np.clip(np.where(ok, cp * h / c_ok, 1.0), LAMBDA_TABLE[0][0], 1.0)
     with np.errstate(divide="ignore", invalid="ignore"):
         raw = np.where(ok, growth_lambda(m) * g * h * h / (m * v2 * c_ok), 0.0)
     raw = np.where(np.isnan(raw), np.inf, raw)
     held = raw > DELTA_MAX
     shift = np.minimum(raw, DELTA_MAX)
     return shift, held, 1.0 - (3.0 - m) * shift
+
+
+def _on_disc(t, k: np.ndarray, wa: np.ndarray):
+    """``Phi`` and ``dPhi/dt`` on the disc at ``X = sin(t)`` from the transform ``wa``
+    (weights times ``A(k)``, ``(K,)`` or ``(K, j)``): ``cosh(k t) / cosh(k pi/2)`` and its
+    ``t`` derivative, written without overflow."""
+    t = np.asarray(t, dtype=np.float64)[..., None]
+    down = 1.0 + np.exp(-math.pi * k)
+    up = np.exp(k * (t - 0.5 * math.pi)) / down
+    low = np.exp(-k * (t + 0.5 * math.pi)) / down
+    return (up + low) @ wa, (up - low) @ (k[:, None] * wa if wa.ndim == 2 else k * wa)
+
+
+def plate_potential(t, n: float = 1.0, mu_top: float = 25.0, k_top: float = 120.0,
+                    panels: int = 160):  # fmt: skip
+    """``Phi`` and ``dPhi/dt`` on the disc at ``X = sin(t)`` for ``f = A y^n`` by the
+    elliptic-coordinate solution (``mu = 0``, ``nu = pi/2 - t``):
+    ``Phi = integral_0^inf A(k) cosh(k t) / cosh(k pi/2) dk``."""
+    _, _, k, w_k, a = _transform(mu_top, k_top, panels, n)
+    return _on_disc(t, k, w_k * a)
+
+
+def plate_pressure(x, n: float = 1.0, **resolution: float):
+    """``S_n(X) = p1 / (rho g h) = 2 Phi - X Phi' / n`` on the disc, ``X`` in ``[0, 1)``."""
+    t = np.arcsin(np.asarray(x, dtype=np.float64))
+    phi, phi_t = plate_potential(t, n, **resolution)  # type: ignore[arg-type]
+    return 2.0 * phi - np.tan(t) * phi_t / n
+
+
+def plate_force(n: float = 1.0, mu_top: float = 25.0, k_top: float = 120.0,
+                panels: int = 160) -> float:  # fmt: skip
+    """``integral_{-1}^{1} S_n dX = (2 + m) I - 2 m P_n(1)``: the force of ``p1`` on the
+    whole disc in units of ``rho g h c``, ``I = integral Phi dX = 2 integral A(k) /
+    (1 + k^2) dk`` (the elliptic-coordinate solution)."""
+    _, _, k, w_k, a = _transform(mu_top, k_top, panels, n)
+    integral = 2.0 * float(np.sum(w_k * a / (1.0 + k * k)))
+    m = 1.0 / n
+    edge = float(_free_surface_potential(np.array([1.0]), n)[0])
+    return (2.0 + m) * integral - 2.0 * m * edge
+
+
+#: Points of the disc's table over ``t`` in ``[0, pi/2]`` (``X = sin t``) and its
+#: Chebyshev nodes in the growth exponent ``m`` over ``[1/4, 1]``.
+PLATE_POINTS, PLATE_EXPONENTS = 513, 9
+
+
+@functools.lru_cache(maxsize=1)
+def _plate_table() -> tuple[np.ndarray, np.ndarray]:
+    """Chebyshev coefficients in ``m`` of ``Phi`` and ``dPhi/dt`` on the disc, each
+    ``(PLATE_EXPONENTS, PLATE_POINTS)``, one transform for every node (``P_n`` is below
+    1e-10 past ``mu = 12``)."""
+    lo = LAMBDA_TABLE[0][0]
+    x = np.cos(math.pi * (np.arange(PLATE_EXPONENTS) + 0.5) / PLATE_EXPONENTS)
+    ms = lo + 0.5 * (1.0 - lo) * (x + 1.0)
+    mu, w_mu = _composite_gauss(12.0, 80)
+    k, w_k = _composite_gauss(120.0, 160)
+    data = np.stack([_free_surface_potential(np.cosh(mu), 1.0 / m) for m in ms], axis=1)
+    wa = w_k[:, None] * ((2.0 / math.pi) * np.cos(np.outer(k, mu)) @ (w_mu[:, None] * data))
+    phi, phi_t = _on_disc(np.linspace(0.0, 0.5 * math.pi, PLATE_POINTS), k, wa)
+    fit = np.polynomial.chebyshev.chebfit
+    return fit(x, phi.T, PLATE_EXPONENTS - 1), fit(x, phi_t.T, PLATE_EXPONENTS - 1)
+
+
+def disc_pressure(t, m):
+    """``S_m(sin t) = p1 / (rho g h)`` at the points ``t`` ((2, n, k), in ``[0, pi/2)``) of
+    sections whose contacts grow with the exponents ``m`` ((2, n), in ``[1/4, 1]``), from
+    the table of :func:`_plate_table` (linear in ``t``)."""
+    lo = LAMBDA_TABLE[0][0]
+    m = np.clip(np.asarray(m, dtype=np.float64), lo, 1.0)
+    x = 2.0 * (m - lo) / (1.0 - lo) - 1.0
+    c_phi, c_phi_t = _plate_table()
+    t = np.asarray(t, dtype=np.float64)
+    pos = np.clip(t / (0.5 * math.pi) * (PLATE_POINTS - 1), 0.0, PLATE_POINTS - 1)
+    i0 = np.minimum(np.floor(pos).astype(np.int64), PLATE_POINTS - 2)
+    frac = pos - i0
+
+    def at(coef):
+        rows = np.moveaxis(np.polynomial.chebyshev.chebval(x, coef), 0, -1)  # (2, n, T)
+        a = np.take_along_axis(rows, i0, axis=-1)
+        return a + frac * (np.take_along_axis(rows, i0 + 1, axis=-1) - a)
+
+    return 2.0 * at(c_phi) - m[..., None] * np.tan(t) * at(c_phi_t)

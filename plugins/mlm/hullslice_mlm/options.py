@@ -54,11 +54,13 @@ def check_options(solver: Any, options: dict[str, Any]) -> tuple[float | None, b
         cont_tan = math.tan(math.radians(deg))
     s["smooth_edge_deg"] = _number(solver, "smooth_edge_deg", 0.0, 90.0, open_lo=True)
     s["froude_min"] = _number(solver, "froude_min", 0.0, math.inf)
-    if not isinstance(s["gravity"], bool):
-        raise InputError(f"solver 'mlm': option gravity={s['gravity']!r} is not true or false")
-    if not isinstance(s["gravity_contact"], bool):
+    grav = s["gravity"]
+    if isinstance(grav, str) and grav.strip().lower() == "hulin":
+        s["gravity"] = "hulin"
+    elif not isinstance(grav, bool):
         raise InputError(
-            f"solver 'mlm': option gravity_contact={s['gravity_contact']!r} is not true or "
-            "false (true: gravity's correction of the contact)"
+            f"solver 'mlm': option gravity={grav!r} is not true, false or 'hulin' (true: the "
+            "hydrostatic pressure; 'hulin': with gravity's correction of the contact and its "
+            "pressure)"
         )
     return cont_tan, given
