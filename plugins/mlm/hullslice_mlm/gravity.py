@@ -222,7 +222,8 @@ def _transform(mu_top: float, k_top: float, panels: int, n: float = 1.0):
 def wedge_plate_force(mu_top: float = 20.0, k_top: float = 60.0, panels: int = 80) -> float:
     """The force of the gravity potential's own pressure ``-rho phi1_t`` on the wetted disc
     of a wedge at constant speed, in units of the buoyancy ``rho g h^2 / tan(beta)``
-    (not in the MLM's load; an estimate of what the contact correction leaves out).
+    (over the whole disc; the MLM takes it up to the pressure's change of sign,
+    :func:`disc_pressure`).
 
     ``phi1 = -g V t^2 Phi(x / c0)`` on the disc gives the force
     ``rho g V gamma t^2 (3 I - 2 q(1))``, ``I = integral_{-1}^{1} Phi dX``, that is
