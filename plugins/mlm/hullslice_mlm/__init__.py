@@ -59,9 +59,10 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
   other section by the power law of its own ``m``; ``c'`` times ``1 - (3 - m) delta``
   (quasi-steady, at the current speed); ``delta`` is held at 0.2, and such sections
   flagged. *The gravity potential's pressure* ``p1 = -rho phi1_t = rho g h S_m(y / c)``
-  on the same points as the rest of the pressure (up to its change of sign), a force
-  normal to the keel line that does not depend on ``V`` at a given ``h`` (``extra``: on a
-  wedge 0.105 buoyancies over the whole disc); on entering sections (``v < 0``) only.
+  on the same points as the rest of the pressure (up to the velocity term's change of
+  sign), a force normal to the keel line that does not depend on ``V`` at a given ``h``
+  (``extra``: on wedges of 10 to 30 deg 0.12 to 0.14 buoyancies ``rho g h^2 / tan(beta)``,
+  0.105 over the whole disc); on entering sections (``v < 0``) only.
   Neither the hydrostatic pressure nor ``p1`` is in the returned ``SectionPressures``,
   whose points carry the ``v^2`` and acceleration terms only.
 
