@@ -1,0 +1,245 @@
+"""The sides' contours for the MLM: each side's bottom as cut, continued past its edge on
+a fictitious body, Wagner's contact on it and the pressure's change of sign.
+
+Every array is per side (0: port, 1: starboard) and per section, ``(2, n)``, or sampled
+along the side, ``(2, n, K)``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hullslice import InputError
+from hullslice.solvers.contour import contour_heights, wagner_root
+
+#: Gauss-Legendre nodes over ``t`` in ``(0, t*)`` per side (the pressure's points).
+NODES = 32
+#: Points of the scan for the pressure's change of sign.
+SCAN = 64
+#: Samples of each side's contour as cut, and of its continued contour.
+RAW, GRID = 129, 257
+#: How far the continuation runs past a sharp edge, in edge half-widths.
+SHARP_REACH = 4.0
+_X, _WX = np.polynomial.legendre.leggauss(NODES)
+U = 0.5 * (_X + 1.0)  # (0, 1)
+WU = 0.5 * _WX
+
+
+def side_contours(sections, method: str):
+    """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising),
+    the side's extent ``E`` to its widest point (the sampled reach where the grid ends
+    before it),
+    the grid's step, and the sides whose contour turns back down."""
+    n = len(sections)
+    p = np.asarray(sections.penetration, dtype=np.float64)
+    calm = np.maximum(np.stack([sections.half_beam_port, sections.half_beam_stbd]), 0.0)
+    chine = np.asarray(sections.part_half_beam, dtype=np.float64)
+    extent = _extents(sections)  # (2, n) from the polygons
+    tb = np.tan(np.stack([sections.deadrise_port, sections.deadrise_stbd]))
+    wedge = np.full(n, method == "wedge")
+    if method != "wedge":
+        reach = np.where(2.5 * calm < extent, 2.5 * calm, 1.02 * extent)
+        reach = np.where(reach > 0, reach, 2.5 * np.maximum(calm, 1e-9))
+        raw = contour_heights(sections, reach, RAW)
+        ds = reach / (RAW - 1)
+        finite = np.isfinite(raw)
+        near = raw[:, :, : max(2, RAW // 10)]
+        flat = np.any(np.all(np.abs(near) <= 1e-9 * p[None, :, None] + 1e-12, axis=2), axis=0)
+        flat |= ~finite[:, :, 1].all(axis=0)
+        wedge |= flat
+        last = np.where(finite.all(axis=-1), RAW - 1, np.argmin(finite, axis=-1) - 1)
+        last = np.maximum(last, 1)
+        gap = (last < RAW - 1) & ((last + 1) * ds < extent)
+        extent = np.where(gap, (last + 1) * ds, extent)  # a side that ends before
+        edge_in = extent <= reach * (1.0 + 1e-12)
+        filled = np.where(finite, raw, -np.inf)
+        rising = np.maximum.accumulate(filled, axis=-1)
+        drop = rising - np.where(finite, raw, rising)
+        reentrant = np.any(drop > 1e-6 * p[None, :, None] + 1e-9, axis=-1)
+        raw = np.where(np.isfinite(rising), rising, 0.0)
+    else:
+        reach = np.maximum(extent, 1e-12)
+        ds = reach / (RAW - 1)
+        raw = np.zeros((2, n, RAW))
+        last = np.full((2, n), RAW - 1)
+        edge_in = np.ones((2, n), dtype=bool)
+        reentrant = np.zeros((2, n), dtype=bool)
+    if wedge.any():  # the equivalent wedge, its chine at the section's widest point
+        ext_w = np.broadcast_to(chine[wedge], (2, int(wedge.sum())))
+        extent[:, wedge] = ext_w
+        ds[:, wedge] = np.maximum(ext_w, 1e-12) / (RAW - 1)
+        raw[:, wedge] = tb[:, wedge, None] * ds[:, wedge, None] * np.arange(RAW)
+        last[:, wedge] = RAW - 1
+        edge_in[:, wedge] = True
+        reentrant[:, wedge] = False
+    return raw, ds, last, extent, edge_in, reentrant
+
+
+def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_tan, cont_given):
+    """The sides' contours for the contact, on an even grid of GRID points: the real
+    bottom up to the departure point, a straight fictitious line past it (at a sharp
+    edge, the edge; on a smooth side, where it becomes as steep as the continuation).
+
+    Returns the heights (2, n, GRID) and their step, the edge ``e`` (the side's
+    widest point), the line's ``(offset, slope)`` (``f = offset + slope y`` past the
+    departure), which sides are sharp and smooth there, and the last sample of the real
+    bottom with its slope ``(y_last, s_edge)`` (:func:`real_bottom` goes on with it)."""
+    k_raw = raw.shape[-1]
+    slope_raw = np.diff(raw, axis=-1) / ds[..., None]
+    i_last = np.clip(last, 1, k_raw - 1)
+    s_edge = np.take_along_axis(slope_raw, (i_last - 1)[..., None], axis=-1)[..., 0]
+    y_last = i_last * ds
+    e = np.where(edge_in, extent, y_last)
+    f_edge = real_bottom(raw, ds, y_last, s_edge, e[..., None])[0][..., 0]
+    sharp = edge_in & (np.degrees(np.arctan(s_edge)) < settings["smooth_edge_deg"])
+    smooth = edge_in & ~sharp
+    if cont_tan is None:
+        s_cont = s_edge
+        tan_dep = math.tan(math.radians(settings["smooth_edge_deg"]))
+    else:
+        s_cont = np.maximum(s_edge, cont_tan)  # the default: at least the tangent
+        tan_dep = cont_tan
+        steep = sharp & (s_edge > cont_tan * (1.0 + 1e-9))
+        if cont_given and steep.any():
+            side, i = (int(a[0]) for a in np.nonzero(steep))
+            raise InputError(
+                f"solver 'mlm': continuation={settings['continuation']:g} deg is not "
+                f"steeper than the bottom at the sharp edge of the section at x = "
+                f"{float(sections.x[i]):.6g} m ({math.degrees(math.atan(s_edge[side, i])):.4g}"
+                " deg there): give a steeper continuation or continuation=tangent"
+            )
+    # a smooth side leaves its contour where it is first as steep as the continuation
+    index = np.arange(k_raw - 1)
+    steep_at = (slope_raw >= tan_dep) & (index <= (i_last - 1)[..., None])
+    found = steep_at.any(axis=-1)
+    i_dep = np.argmax(steep_at, axis=-1)
+    d_smooth = np.where(found, i_dep * ds, e)
+    f_smooth = np.where(found, np.take_along_axis(raw, i_dep[..., None], axis=-1)[..., 0], f_edge)
+    s_smooth = np.where(found, tan_dep, np.maximum(s_edge, tan_dep))
+    dep = np.where(smooth, d_smooth, e)
+    f_dep = np.where(smooth, f_smooth, f_edge)
+    slope = np.where(smooth, s_smooth, s_cont)
+    end = np.where(edge_in, SHARP_REACH * e, e)
+    step = end / (GRID - 1)
+    y = step[..., None] * np.arange(GRID)
+    inside = real_bottom(raw, ds, y_last, s_edge, np.minimum(y, e[..., None]))[0]
+    line = f_dep[..., None] + (y - dep[..., None]) * slope[..., None]
+    g = np.where(edge_in[..., None] & (y > dep[..., None]), line, inside)
+    g = np.maximum.accumulate(g, axis=-1)
+    return g, step, e, (f_dep - slope * dep, slope), sharp, smooth, (y_last, s_edge)
+
+
+def contact(g, step, pen, edge_in, line):
+    """Wagner's contact ``c`` of the penetrations ``pen`` (2, n) on the continued contours
+    ``g`` (step ``step``), ``c' = dc/dh``, where it is held at the grid's end, and Wagner's
+    integral there."""
+    target = 0.5 * np.pi * pen
+    c = wagner_root(g, step, target)
+    end = step * (GRID - 1)
+    capped = ~np.isfinite(c)
+    c = np.where(capped, end, c)
+    # c' = (pi / 2) / integral_0^{pi/2} f'(c sin t) sin t dt
+    t = 0.5 * np.pi * U
+    wt = 0.5 * np.pi * WU
+    slope = np.diff(g, axis=-1) / step[..., None]
+    fp_c = _slope_at(slope, step, c[..., None] * np.sin(t))
+    denom = (fp_c * np.sin(t)) @ wt
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cp = np.where(denom > 0, 0.5 * np.pi / denom, 0.0)
+    cp = np.where(capped, 0.0, cp)
+    i_end = _interp_rows(g, step, end[..., None] * np.sin(t)) @ wt  # Wagner's, at the end
+    far = capped & edge_in
+    if far.any():  # past the grid the continuation is straight: c grows as a wedge's
+        offset, k_c = line
+        rest = i_end - k_c * end - 0.5 * np.pi * offset  # decays as 1 / c
+        with np.errstate(divide="ignore", invalid="ignore"):
+            c_far = (0.5 * np.pi * (pen - offset) - rest) / k_c
+        ok = far & (k_c > 0) & (c_far >= end)
+        c = np.where(ok, c_far, c)
+        cp = np.where(ok, 0.5 * np.pi / np.where(k_c > 0, k_c, 1.0), cp)
+        capped = capped & ~ok
+    return c, cp, capped, i_end
+
+
+def sign_change(c, cp, body, t_lim):
+    """The first ``t`` in ``(0, t_lim)`` where the velocity term's pressure changes sign
+    (``t_lim`` where it does not; 0 where it is not positive at the keel); ``body(y)``
+    gives the real bottom's height and slope."""
+
+    def bracket(t):
+        fp = body(c[..., None] * np.sin(t))[1]
+        return cp[..., None] - 0.5 * np.cos(t) - np.sin(t) ** 2 / (2.0 * np.cos(t) * (1.0 + fp**2))
+
+    grid = t_lim[..., None] * np.linspace(0.0, 1.0, SCAN + 1)
+    b = bracket(grid)
+    neg = b <= 0.0
+    first = np.where(neg.any(axis=-1), np.argmax(neg, axis=-1), SCAN + 1)
+    none = first > SCAN
+    at_keel = first == 0
+    j = np.clip(first, 1, SCAN)
+    lo = np.take_along_axis(grid, (j - 1)[..., None], axis=-1)[..., 0]
+    hi = np.take_along_axis(grid, j[..., None], axis=-1)[..., 0]
+    for _ in range(40):
+        mid = 0.5 * (lo + hi)
+        pos = bracket(mid[..., None])[..., 0] > 0.0
+        lo, hi = np.where(pos, mid, lo), np.where(pos, hi, mid)
+    t = 0.5 * (lo + hi)
+    return np.where(none, t_lim, np.where(at_keel, 0.0, t))
+
+
+def real_bottom(raw, ds, y_last, s_last, y):
+    """The real bottom's height and slope at ``y`` ((2, n, m)): the samples up to the last
+    one, the last interval's slope on to the widest point."""
+    k = raw.shape[-1]
+    yc = np.minimum(y, y_last[..., None])
+    f = _interp_rows(raw, ds, yc) + np.maximum(y - y_last[..., None], 0.0) * s_last[..., None]
+    slope = np.diff(raw, axis=-1) / np.where(ds > 0, ds, 1.0)[..., None]
+    fp = _slope_at(slope, ds, np.minimum(y, (k - 1.5) * ds[..., None]))
+    fp = np.where(y >= y_last[..., None], s_last[..., None], fp)
+    return f, fp
+
+
+def _extents(sections) -> np.ndarray:
+    """(2, n): how far each side of each entry reaches from its keel (port: +y), m, from
+    its station's polygons."""
+    n = len(sections)
+    station = np.asarray(sections.station, dtype=np.int64)
+    stations, index = np.unique(station, return_inverse=True)
+    lo = np.full(len(stations), np.inf)
+    hi = np.full(len(stations), -np.inf)
+    for j, st in enumerate(stations):
+        for poly in sections.polygons[int(st)]:
+            a = np.asarray(poly, dtype=np.float64)
+            if len(a):
+                lo[j] = min(lo[j], float(a[:, 0].min()))
+                hi[j] = max(hi[j], float(a[:, 0].max()))
+    yk = np.asarray(sections.y_keel, dtype=np.float64)
+    out = np.stack([hi[index] - yk, yk - lo[index]]) if n else np.zeros((2, 0))
+    chine = 2.0 * np.asarray(sections.part_half_beam, dtype=np.float64)
+    out = np.where(np.isfinite(out), out, chine)
+    return np.minimum(np.maximum(out, 0.0), np.maximum(chine, 1e-300))
+
+
+def _interp_rows(f: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """Rows of ``f`` ((2, n, K), sampled every ``ds`` (2, n) from 0), linearly at ``y``
+    ((2, n, m)); held at the ends."""
+    k = f.shape[-1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(ds[..., None] > 0, y / ds[..., None], 0.0)
+    x = np.clip(x, 0.0, k - 1)
+    i0 = np.clip(np.floor(x).astype(np.int64), 0, k - 2)
+    frac = x - i0
+    a = np.take_along_axis(f, i0, axis=-1)
+    b = np.take_along_axis(f, i0 + 1, axis=-1)
+    return a * (1.0 - frac) + b * frac
+
+
+def _slope_at(slope: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """The piecewise-constant slope ((2, n, K-1)) of rows sampled every ``ds`` at ``y``."""
+    k = slope.shape[-1]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        x = np.where(ds[..., None] > 0, y / ds[..., None], 0.0)
+    i = np.clip(np.floor(x).astype(np.int64), 0, k - 1)
+    return np.take_along_axis(slope, i, axis=-1)
