@@ -28,6 +28,7 @@ turning the whole once.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -281,7 +282,7 @@ def _frame(hull, pitch: float) -> Frame:
             [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
         ]
     )
-    keel = lower_envelope(ta, tb, planecut_loops.compiled("lowest") if keel_loops() else None)
+    keel = lower_envelope(ta, tb, loops_in_use("lowest"))
     return Frame(
         pitch=pitch,
         cg=g,
@@ -293,6 +294,14 @@ def _frame(hull, pitch: float) -> Frame:
         _offset=np.array([oy, oz, ox]),
         _scale=scale,
     )
+
+
+def loops_in_use(name: str) -> Callable | None:
+    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"lowest"``,
+    ``"outline"``, ``"wetted"``) where :func:`keel_loops` holds, else None (numpy's path):
+    a new pitch's keel line, outline and wetted properties by the compiler once its cut
+    is."""
+    return planecut_loops.compiled(name) if keel_loops() else None
 
 
 def keel_loops() -> bool:

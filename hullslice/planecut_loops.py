@@ -27,6 +27,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .wetted_loops import wetted_loops
+
 __all__ = ["available", "compiled", "cut_loops", "in_use", "lowest_loops", "outline_loops"]
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
@@ -218,7 +220,8 @@ def compiled(name: str = "cut") -> Callable | None:
             if available():
                 import numba
 
-                fn = numba.njit(cache=True, nogil=True)(LOOPS[name])
+                # IEEE division (an infinity or NaN by zero, as numpy's), no exception
+                fn = numba.njit(cache=True, nogil=True, error_model="numpy")(LOOPS[name])
             _COMPILED[name] = fn
         return _COMPILED[name]
 
@@ -276,14 +279,19 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     ymax = np.full(n_st, -np.inf)
     for i in range(n):
         s = station[i]
-        zmin[s] = min(zmin[s], a[i, 1])
-        ymin[s] = min(ymin[s], a[i, 0])
-        ymax[s] = max(ymax[s], a[i, 0])
+        y, z = a[i, 0], a[i, 1]
+        if not (zmin[s] < z or zmin[s] != zmin[s]):  # np.minimum's: the second on a tie
+            zmin[s] = z
+        if not (ymin[s] < y or ymin[s] != ymin[s]):
+            ymin[s] = y
+        if not (ymax[s] > y or ymax[s] != ymax[s]):
+            ymax[s] = y
     z_chine = np.full(n_st, np.inf)
     for i in range(n):
         s = station[i]
         if a[i, 0] >= ymax[s] - tol or a[i, 0] <= ymin[s] + tol:
-            z_chine[s] = min(z_chine[s], a[i, 1])
+            if not (z_chine[s] < a[i, 1] or z_chine[s] != z_chine[s]):
+                z_chine[s] = a[i, 1]
     part_station = np.empty(r, dtype=np.int64)
     part_zmax = np.full(r, -np.inf)
     part_ymin = np.full(r, np.inf)
@@ -291,12 +299,16 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     for j in range(r):
         part_station[j] = ring_station[j]
         for i in range(ring_start[j], ring_start[j + 1]):
-            part_zmax[j] = max(part_zmax[j], a[i, 1])
-            part_ymin[j] = min(part_ymin[j], a[i, 0])
-            part_ymax[j] = max(part_ymax[j], a[i, 0])
+            y, z = a[i, 0], a[i, 1]
+            if not (part_zmax[j] > z or part_zmax[j] != part_zmax[j]):
+                part_zmax[j] = z
+            if not (part_ymin[j] < y or part_ymin[j] != part_ymin[j]):
+                part_ymin[j] = y
+            if not (part_ymax[j] > y or part_ymax[j] != part_ymax[j]):
+                part_ymax[j] = y
     zlo = np.empty(n)
     for i in range(n):
-        zlo[i] = min(a[i, 1], b[i, 1])
+        zlo[i] = a[i, 1] if (a[i, 1] < b[i, 1] or a[i, 1] != a[i, 1]) else b[i, 1]
     order = np.arange(n)
     if n:
         lo, hi = zlo.min(), zlo.max()
@@ -313,3 +325,4 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
 
 
 LOOPS["outline"] = outline_loops
+LOOPS["wetted"] = wetted_loops

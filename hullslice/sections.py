@@ -41,7 +41,7 @@ import numpy as np
 
 from .constants import TOL
 from .errors import InputError
-from .geometry import frame
+from .geometry import frame, loops_in_use
 from .kernel.outline import Outline, Polygons
 from .kernel.wetted import DEADRISE_ESTIMATORS, section_properties, wetted_properties
 from .limits import check_slice_count
@@ -212,7 +212,8 @@ def sections_at(
         bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
         dx = np.diff(np.clip(bounds, x0, x1))
     polys = fr.cut(rel, cutter)
-    props = wetted_properties(Outline.of(polys, tol, fr.origin, fr.scale), level, tol, deadrise)
+    outline = Outline.of(polys, tol, fr.origin, fr.scale, loops=loops_in_use("outline"))
+    props = wetted_properties(outline, level, tol, deadrise, loops_in_use("wetted"))
     return assemble(
         hull,
         fr,

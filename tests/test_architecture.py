@@ -54,6 +54,7 @@ LAYERS: dict[str, int] = {
     # 3 cut: frames, caches of cuts, the slicing API
     "hullslice.planecut": 3,
     "hullslice.planecut_loops": 3,
+    "hullslice.wetted_loops": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

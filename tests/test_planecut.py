@@ -261,6 +261,67 @@ def test_the_outline_by_the_loops_equals_numpy(name):
                     assert np.array_equal(getattr(got, key), value), (key, loops)
 
 
+def _same(a, b) -> bool:
+    """Equal to the last bit: values (NaN as NaN) and, for floats, the signs of zeros."""
+    a, b = np.asarray(a), np.asarray(b)
+    if a.shape != b.shape:
+        return False
+    if a.dtype.kind == "f":
+        return np.array_equal(a, b, equal_nan=True) and np.array_equal(np.signbit(a),
+                                                                       np.signbit(b))  # fmt: skip
+    return np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("name", OUTLINED)
+@pytest.mark.parametrize("deadrise", ["wedge", "waterline-slope"])
+def test_the_wetted_properties_by_the_loops_equal_numpy(name, deadrise):
+    """hullslice.wetted_loops (run as Python, and compiled where numba is installed) gives
+    numpy's wetted properties to the last bit (signs of zeros included): the kernel's cuts
+    at three pitches, the water low, middling, high, above the body, and at a random height
+    per station."""
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.wetted import wetted_properties
+    from hullslice.wetted_loops import wetted_loops
+
+    hull = BODIES[name]
+    paths = [wetted_loops]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("wetted"))
+    tol = 1e-9 * hull.size
+    rng = np.random.default_rng(7)
+    for cut in _kernel_cuts(hull, "numpy"):
+        outline = Outline.of(cut, tol, (0.1, -0.2), 3.0)
+        lo, hi = float(np.min(outline.zmin)), float(np.max(outline.part_zmax))
+        levels = [lo + f * (hi - lo) for f in (0.01, 0.3, 0.7)] + [hi + 1.0]
+        for level in [*levels, rng.uniform(lo, hi, outline.n_stations)]:
+            ref = wetted_properties(outline, level, tol, deadrise)
+            for loops in paths:
+                with np.errstate(all="ignore"):
+                    got = wetted_properties(outline, level, tol, deadrise, loops)
+                assert ref.keys() == got.keys()
+                assert all(_same(ref[k], got[k]) for k in ref), [
+                    k for k in ref if not _same(ref[k], got[k])
+                ]
+
+
+def test_the_keel_fit_estimator_keeps_numpy(monkeypatch):
+    """The loops serve the wedge and waterline-slope estimators; keel-fit stays numpy's."""
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.wetted import wetted_properties
+
+    def refuse(*args):
+        raise AssertionError("the loops were called for keel-fit")
+
+    hull = BODIES["cylinder"]
+    cut = _kernel_cuts(hull, "numpy")[0]
+    outline = Outline.of(cut, 1e-9 * hull.size)
+    level = float(np.min(outline.zmin)) + 0.1 * hull.size
+    ref = wetted_properties(outline, level, 1e-9 * hull.size, "keel-fit")
+    got = wetted_properties(outline, level, 1e-9 * hull.size, "keel-fit", refuse)
+    assert all(_same(ref[k], got[k]) for k in ref)
+    assert float(np.nanmax(ref["penetration"])) > 0.0  # a wetted section was compared
+
+
 def test_a_section_with_a_hole_is_outlined_by_numpy():
     """A hole (a clockwise contour) needs numpy's containment tests: the loops decline."""
     ring = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])

@@ -19,7 +19,7 @@ The two sides combine by the harmonic mean of ``tan(beta)``.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 import numpy as np
 
@@ -64,15 +64,23 @@ def section_properties(
 
 
 def wetted_properties(
-    outline: Outline, level: float | np.ndarray, tol: float, deadrise: str = "wedge"
+    outline: Outline,
+    level: float | np.ndarray,
+    tol: float,
+    deadrise: str = "wedge",
+    loops: Callable | None = None,
 ) -> dict[str, np.ndarray]:
     """Properties of the sections of an :class:`Outline` with the water at height ``level``
     (m; or one height per station, ``(s,)``: each station's properties are those it has
     alone at its own).
 
-    See :func:`section_properties` for the result.
+    ``loops``, when given (:func:`hullslice.wetted_loops.wetted_loops`, compiled), does it
+    for the ``wedge`` and ``waterline-slope`` estimators: the same numbers. See
+    :func:`section_properties` for the result.
     """
     s = outline.n_stations
+    if loops is not None and deadrise in ("wedge", "waterline-slope"):
+        return _by_loops(loops, outline, level, tol, deadrise)
     station, ya, za, yb, zb, contour = outline.below(level)
     chine_station = outline.z_chine - level <= tol
 
@@ -160,6 +168,39 @@ def wetted_properties(
         "part_half_beam": col(0.5 * (outline.part_ymax - outline.part_ymin)[part], nan_d),
         "mass_share": col(share, 1.0),
         "chine_wetted": col(chine_station[ps], False).astype(bool),
+    }
+
+
+def _by_loops(
+    loops: Callable, outline: Outline, level: float | np.ndarray, tol: float, deadrise: str
+) -> dict[str, np.ndarray]:
+    """:func:`wetted_properties` by ``loops``; the deadrise's arctangent by numpy, on the
+    wetted pieces' tangents as numpy's path takes it."""
+    o = outline
+    levels = np.ascontiguousarray(np.broadcast_to(np.asarray(level, dtype=np.float64),
+                                                  (o.n_stations,)))  # fmt: skip
+    st, wet, p, hb, port, stbd, tm, tp, ts, yk, phb, share, chine = loops(
+        o.station, o.ya, o.za, o.yb, o.zb, o.zlo, o.start, o.area, o.contour, o.part_area,
+        o.part_station, o.part_zmax, o.part_ymin, o.part_ymax, o.z_chine, levels,
+        float(tol), deadrise == "waterline-slope",
+    )  # fmt: skip
+    angles = {}
+    for key, tan in (("deadrise", tm), ("deadrise_port", tp), ("deadrise_stbd", ts)):
+        angle = np.full(len(tan), np.nan)
+        angle[wet] = np.arctan(tan[wet])  # the pieces' tangents, in order, as numpy's path
+        angles[key] = angle
+    return {
+        "area": o.area,
+        "station": st,
+        "penetration": p,
+        "half_beam": hb,
+        "half_beam_port": port,
+        "half_beam_stbd": stbd,
+        **angles,
+        "y_keel": yk,
+        "part_half_beam": phb,
+        "mass_share": share,
+        "chine_wetted": chine,
     }
 
 

@@ -10,14 +10,12 @@ length only.
 from __future__ import annotations
 
 import threading
-from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import planecut_loops
 from ..caching import Entry
-from ..geometry import Frame, keel_loops
+from ..geometry import Frame, loops_in_use
 from ..kernel.keel import END_FACE_SLOPE
 from ..kernel.outline import Outline, Polygons, prefix_index
 from ..kernel.waterline_table import TABULATED, WaterlineTable
@@ -106,7 +104,7 @@ class FixedCut:
                 self.rows = cuts if len(missing) == hi - lo else [polys[k] for k in range(lo, hi)]
                 self.range = held = (lo, hi)
                 self.outline = Outline.of(
-                    self.rows, self.tol, fr.origin, fr.scale, loops=outline_loops()
+                    self.rows, self.tol, fr.origin, fr.scale, loops=loops_in_use("outline")
                 )
             return self.outline, self.rows, held[0]
 
@@ -290,13 +288,7 @@ def outline_of(
     """The outline and contours of the sections at relative stations ``rel`` (m), cut
     afresh."""
     polys = fr.cut(rel, cutter)
-    return Outline.of(polys, tol, fr.origin, fr.scale, loops=outline_loops()), polys
-
-
-def outline_loops() -> Callable | None:
-    """The compiled outline builder where the exact cut's loops are compiled in this
-    process (see :func:`hullslice.geometry.keel_loops`), else None (numpy's)."""
-    return planecut_loops.compiled("outline") if keel_loops() else None
+    return Outline.of(polys, tol, fr.origin, fr.scale, loops=loops_in_use("outline")), polys
 
 
 def _guess_moved(
@@ -342,7 +334,7 @@ def _window_properties(
     nwin = k1 - k0
     stations = np.concatenate([np.arange(k0, k1), source[guess]])
     levels = np.concatenate([np.full(nwin, level), level - lift[guess]])
-    both = wetted_properties(outline.take(stations), levels, tol, deadrise)
+    both = wetted_properties(outline.take(stations), levels, tol, deadrise, loops_in_use("wetted"))
     ends = np.searchsorted(both["station"], np.arange(nwin, len(stations) + 1))
     props = {key: val[: ends[0]] for key, val in both.items() if key != "area"}
     props["area"] = both["area"][:nwin]
@@ -365,7 +357,9 @@ def _station_at(
     if table is not None and table.outline is outline:
         props = table.at(level, k, k + 1)
     if props is None:
-        props = wetted_properties(outline.window(k, k + 1), level, tol, deadrise)
+        props = wetted_properties(
+            outline.window(k, k + 1), level, tol, deadrise, loops_in_use("wetted")
+        )
     return props
 
 
@@ -385,7 +379,7 @@ def _with_fresh(
     by a cut at their position."""
     idx = np.flatnonzero(fresh)
     outline, polys = outline_of(fr, x[idx], tol, cutter)
-    new = wetted_properties(outline, level, tol, deadrise)
+    new = wetted_properties(outline, level, tol, deadrise, loops_in_use("wetted"))
     keep = ~np.isin(sel["station"], idx)
     out = {}
     for key in sel:
