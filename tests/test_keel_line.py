@@ -93,8 +93,9 @@ def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
 
     e = np.array(ends, dtype=np.float64)
     a, b = e[:, :2], e[:, 2:]
-    line = lower_envelope(a, b)
-    assert np.all(np.diff(line.x) >= 0)
+    line, every = lower_envelope(a, b), lower_envelope(a, b, every_pair)
+    np.testing.assert_array_equal(_bits(line.x), _bits(every.x))
+    np.testing.assert_array_equal(_bits(line.z), _bits(every.z))
     want = np.array([lowest_brute_force(a, b, x) for x in line.x])
     np.testing.assert_allclose(line.z, want, rtol=0.0, atol=1e-12)
     ends_x = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
@@ -181,6 +182,11 @@ def lowest_every_pair(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarra
     return z
 
 
+def every_pair(xs, xa, za, xb, zb):
+    """:func:`lowest_every_pair` in the loops' signature, for ``lower_envelope(a, b, loops)``."""
+    return lowest_every_pair(np.column_stack([xa, za]), np.column_stack([xb, zb]), xs)
+
+
 def _bits(z: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(z, dtype=np.float64).view(np.int64)
 
@@ -255,5 +261,6 @@ def test_the_lowest_segment_taken_in_parts_equals_every_pair_at_once(seed, n, fl
         i0 = np.searchsorted(xs, segments.lo, side="left")
         i1 = np.searchsorted(xs, segments.hi, side="right")
         assert (i1 - i0).sum() > 2 * _PAIRS
-    line = lower_envelope(a, b)
-    assert np.all(np.diff(line.x) >= 0)
+    line, every = lower_envelope(a, b), lower_envelope(a, b, every_pair)
+    np.testing.assert_array_equal(_bits(line.x), _bits(every.x))
+    np.testing.assert_array_equal(_bits(line.z), _bits(every.z))

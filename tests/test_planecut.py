@@ -270,12 +270,6 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             np.testing.assert_array_equal(got.z, want.z)
 
 
-def _every_pair(xs, xa, za, xb, zb):
-    from .test_keel_line import lowest_every_pair
-
-    return lowest_every_pair(np.column_stack([xa, za]), np.column_stack([xb, zb]), xs)
-
-
 @pytest.mark.parametrize("name", sorted(BODIES))
 def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
     """numpy's lowest silhouette segment over each abscissa, taken a few thousand pairs at a
@@ -284,7 +278,7 @@ def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
     from hullslice.geometry import _turn, silhouette_edges
     from hullslice.kernel.keel import KeelLine, _Segments, lower_envelope
 
-    from .test_keel_line import _abscissae, _bits, lowest_every_pair
+    from .test_keel_line import _abscissae, _bits, every_pair, lowest_every_pair
 
     hull = BODIES[name]
     a, b = silhouette_edges(hull)
@@ -297,6 +291,6 @@ def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
             want = lowest_every_pair(ta, tb, xs)
             np.testing.assert_array_equal(_bits(segments.lowest(xs)), _bits(want))
         got: KeelLine = lower_envelope(ta, tb)
-        every = lower_envelope(ta, tb, _every_pair)
+        every = lower_envelope(ta, tb, every_pair)
         np.testing.assert_array_equal(_bits(got.x), _bits(every.x))
         np.testing.assert_array_equal(_bits(got.z), _bits(every.z))

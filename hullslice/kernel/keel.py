@@ -264,9 +264,13 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
         xs = xs[np.concatenate([[True], new])]
     segments = _Segments(a, b)
     if loops is None:
-        z = segments.lowest(xs)
+        # the end abscissae and the middles in one sorted array (each middle lies between
+        # its ends): each abscissa has the same pairs in the same order as on its own
         mid = 0.5 * (xs[1:] + xs[:-1])
-        zm = segments.lowest(mid)
+        both = np.empty(len(xs) + len(mid))
+        both[0::2], both[1::2] = xs, mid
+        lowest = segments.lowest(both)
+        z, zm = lowest[0::2], lowest[1::2]
     else:
         ends = (segments.xa, segments.za, segments.xb, segments.zb)
         z = loops(xs, *ends)
