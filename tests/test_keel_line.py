@@ -93,8 +93,9 @@ def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
 
     e = np.array(ends, dtype=np.float64)
     a, b = e[:, :2], e[:, 2:]
-    line = lower_envelope(a, b)
-    assert np.all(np.diff(line.x) >= 0)
+    line, every = lower_envelope(a, b), lower_envelope(a, b, every_pair)
+    np.testing.assert_array_equal(_bits(line.x), _bits(every.x))
+    np.testing.assert_array_equal(_bits(line.z), _bits(every.z))
     want = np.array([lowest_brute_force(a, b, x) for x in line.x])
     np.testing.assert_allclose(line.z, want, rtol=0.0, atol=1e-12)
     ends_x = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
@@ -151,3 +152,115 @@ def test_the_outline_edges_are_every_edge_between_port_and_starboard_faces(body)
     }
     assert len(got) == len(a) > 0
     assert got == outline_edges_brute_force(hull)
+
+
+def lowest_every_pair(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    """The lowest height of the segments over each of the sorted abscissae ``xs``, every
+    pair of a segment and an abscissa within its span at once (the numpy path as it was
+    before it took the pairs a few thousand at a time)."""
+    xa, za, xb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
+    dx, dz = xb - xa, zb - za
+    i0 = np.searchsorted(xs, np.minimum(xa, xb), side="left")
+    i1 = np.searchsorted(xs, np.maximum(xa, xb), side="right")
+    count = np.maximum(i1 - i0, 0)
+    total = int(count.sum())
+    z = np.full(len(xs), np.inf)
+    if total == 0:
+        return z
+    seg = np.repeat(np.arange(len(count)), count)
+    step = np.ones(total, dtype=np.int64)
+    starts = np.cumsum(count) - count
+    has = count > 0
+    step[starts[has]] = i0[has] - np.concatenate([[0], (i0 + count - 1)[has][:-1]])
+    idx = np.cumsum(step)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (xs[idx] - xa[seg]) / dx[seg]
+    z_on = za[seg] + t * dz[seg]
+    vertical = dx[seg] == 0.0
+    z_on[vertical] = np.minimum(za, zb)[seg[vertical]]
+    np.minimum.at(z, idx, z_on)
+    return z
+
+
+def every_pair(xs, xa, za, xb, zb):
+    """:func:`lowest_every_pair` in the loops' signature, for ``lower_envelope(a, b, loops)``."""
+    return lowest_every_pair(np.column_stack([xa, za]), np.column_stack([xb, zb]), xs)
+
+
+def _bits(z: np.ndarray) -> np.ndarray:
+    return np.ascontiguousarray(z, dtype=np.float64).view(np.int64)
+
+
+def _abscissae(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    xs = np.unique(np.concatenate([a[:, 0], b[:, 0]]))
+    return xs, 0.5 * (xs[1:] + xs[:-1])
+
+
+def _random_segments(
+    rng: np.random.Generator, n: int, floor: bool
+) -> tuple[np.ndarray, np.ndarray]:
+    """Segments on a coarse grid (ties between ends, duplicates), with long ones across the
+    whole range, near-vertical and vertical ones, fans from a common end, and heights of
+    +0 and -0 (on a floor, when ``floor``, that nothing is under: the lowest height is
+    then +0 or -0 over much of the range, and which depends on the order of the pairs)."""
+    grid = np.arange(-300, 301) / 64.0
+    a = rng.choice(grid, size=(n, 2))
+    b = a + rng.integers(-4, 5, size=(n, 2)) / 64.0  # short ones
+    k = n // 5
+    b[:k, 0] = rng.choice(grid, size=k)  # long ones
+    near = slice(k, 2 * k)  # near-vertical: a tiny run, a large rise
+    b[near, 0] = a[near, 0] + rng.choice([-1.0, 1.0], size=k) * 2.0**-40
+    b[near, 1] = a[near, 1] + rng.uniform(-3.0, 3.0, size=k)
+    vert = slice(2 * k, 2 * k + k // 2)
+    b[vert, 0] = a[vert, 0]
+    fan = slice(3 * k, 4 * k)  # a fan from one point, all but collinear
+    a[fan] = (0.5, -1.0)
+    b[fan, 0] = rng.uniform(-4.0, 0.4, size=k)
+    b[fan, 1] = -1.0 + (b[fan, 0] - 0.5) * -0.7 + rng.uniform(0.0, 1e-15, size=k)
+    if floor:
+        a[:, 1], b[:, 1] = np.abs(a[:, 1]), np.abs(b[:, 1])
+    zero = rng.random((n, 2)) < 0.05
+    a[:, 1][zero[:, 0]] = rng.choice([0.0, -0.0], size=int(zero[:, 0].sum()))
+    b[:, 1][zero[:, 1]] = rng.choice([0.0, -0.0], size=int(zero[:, 1].sum()))
+    if floor:
+        level = rng.random(n) < 0.1
+        a[level, 1] = rng.choice([0.0, -0.0], size=int(level.sum()))
+        b[level, 1] = rng.choice([0.0, -0.0], size=int(level.sum()))
+    dup = rng.integers(0, n, size=n // 10)  # duplicates, in both directions
+    a, b = np.concatenate([a, a[dup], b[dup]]), np.concatenate([b, b[dup], a[dup]])
+    order = rng.permutation(len(a))
+    return a[order], b[order]
+
+
+@pytest.mark.parametrize(
+    "seed, n, floor",
+    [(0, 40, False), (1, 300, False), (2, 3000, False), (3, 12000, False), (4, 40, True),
+     (5, 3000, True), (6, 12000, True)],
+)  # fmt: skip
+def test_the_lowest_segment_taken_in_parts_equals_every_pair_at_once(seed, n, floor):
+    # to the last bit, the sign of a zero included; the larger sets hold more pairs (and
+    # segments spanning more abscissae) than are taken at once
+    from hullslice import planecut_loops
+    from hullslice.kernel.keel import _PAIRS, _Segments, lower_envelope
+
+    a, b = _random_segments(np.random.default_rng(seed), n, floor)
+    segments = _Segments(a, b)
+    for xs in _abscissae(a, b):
+        want = lowest_every_pair(a, b, xs)
+        got = segments.lowest(xs)
+        np.testing.assert_array_equal(_bits(got), _bits(want))
+        compiled = planecut_loops.compiled("lowest") if planecut_loops.available() else None
+        for loops in [compiled] if compiled is not None else []:
+            # the loops keep the first of equal values: +0 and -0 compare as values
+            np.testing.assert_array_equal(loops(xs, a[:, 0], a[:, 1], b[:, 0], b[:, 1]), got)
+        if n <= 300:
+            got = planecut_loops.lowest_loops(xs, a[:, 0], a[:, 1], b[:, 0], b[:, 1])
+            np.testing.assert_array_equal(got, want)
+    if n >= 3000:
+        xs, _ = _abscissae(a, b)
+        i0 = np.searchsorted(xs, segments.lo, side="left")
+        i1 = np.searchsorted(xs, segments.hi, side="right")
+        assert (i1 - i0).sum() > 2 * _PAIRS
+    line, every = lower_envelope(a, b), lower_envelope(a, b, every_pair)
+    np.testing.assert_array_equal(_bits(line.x), _bits(every.x))
+    np.testing.assert_array_equal(_bits(line.z), _bits(every.z))

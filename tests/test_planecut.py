@@ -372,3 +372,29 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             got = lower_envelope(ta, tb, loops)
             np.testing.assert_array_equal(got.x, want.x)
             np.testing.assert_array_equal(got.z, want.z)
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
+    """numpy's lowest silhouette segment over each abscissa, taken a few thousand pairs at a
+    time, equals all pairs at once to the last bit at pitches from -20 to 40 degrees, and
+    so does the keel line."""
+    from hullslice.geometry import _turn, silhouette_edges
+    from hullslice.kernel.keel import KeelLine, _Segments, lower_envelope
+
+    from .test_keel_line import _abscissae, _bits, every_pair, lowest_every_pair
+
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+        segments = _Segments(ta, tb)
+        for xs in _abscissae(ta, tb):
+            want = lowest_every_pair(ta, tb, xs)
+            np.testing.assert_array_equal(_bits(segments.lowest(xs)), _bits(want))
+        got: KeelLine = lower_envelope(ta, tb)
+        every = lower_envelope(ta, tb, every_pair)
+        np.testing.assert_array_equal(_bits(got.x), _bits(every.x))
+        np.testing.assert_array_equal(_bits(got.z), _bits(every.z))

@@ -7,6 +7,7 @@ slice. Pure numpy.
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -263,9 +264,13 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
         xs = xs[np.concatenate([[True], new])]
     segments = _Segments(a, b)
     if loops is None:
-        z = segments.lowest(xs)
+        # the end abscissae and the middles in one sorted array (each middle lies between
+        # its ends): each abscissa has the same pairs in the same order as on its own
         mid = 0.5 * (xs[1:] + xs[:-1])
-        zm = segments.lowest(mid)
+        both = np.empty(len(xs) + len(mid))
+        both[0::2], both[1::2] = xs, mid
+        lowest = segments.lowest(both)
+        z, zm = lowest[0::2], lowest[1::2]
     else:
         ends = (segments.xa, segments.za, segments.xb, segments.zb)
         z = loops(xs, *ends)
@@ -283,6 +288,11 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     return KeelLine(xs, z)
 
 
+#: Pairs of a segment and an abscissa that :meth:`_Segments.lowest` takes at a time (their
+#: temporaries, 64 kB each, stay below the size the allocator maps afresh).
+_PAIRS = 8192
+
+
 class _Segments:
     """Segments from ``a`` to ``b`` ((e, 2) arrays of x, z), their columns apart."""
 
@@ -297,26 +307,40 @@ class _Segments:
         self.z_vertical = np.minimum(self.za, self.zb)
 
     def lowest(self, xs: np.ndarray) -> np.ndarray:
-        """Lowest height of the segments over each of the sorted abscissae ``xs``."""
+        """Lowest height of the segments over each of the sorted abscissae ``xs``.
+
+        Every pair of a segment and an abscissa within its span, in the order of the
+        segments and of the abscissae along each, taken :data:`_PAIRS` pairs or so at a
+        time: the same values and the same order of :func:`np.minimum.at`'s as all pairs at
+        once (so the same result to the last bit, the sign of a zero included), with
+        temporaries small enough to be served from the allocator's heap. A large mesh's
+        silhouette has tens of thousands of pairs (an end cap's fan of edges, edge-on in the
+        side view, spans a couple of hundred abscissae per edge), and arrays of that size
+        are mapped afresh, page by page, at every call: that was most of the cost.
+        """
         i0 = np.searchsorted(xs, self.lo, side="left")
         i1 = np.searchsorted(xs, self.hi, side="right")  # abscissae i0 .. i1-1 on a segment
-        count = np.maximum(i1 - i0, 0)
-        total = int(count.sum())
         z = np.full(len(xs), np.inf)
-        if total == 0:
+        on = np.flatnonzero(i1 > i0)
+        if not len(on):
             return z
-        seg = np.repeat(np.arange(len(count)), count)
-        # each pair's abscissa: i0 of its segment plus its rank within the segment
-        step = np.ones(total, dtype=np.int64)
-        starts = np.cumsum(count) - count
-        has = count > 0
-        step[starts[has]] = i0[has] - np.concatenate([[0], (i0 + count - 1)[has][:-1]])
-        idx = np.cumsum(step)
+        i0, count = i0[on], (i1 - i0)[on]
+        xa, dx, za, dz = self.xa[on], self.dx[on], self.za[on], self.dz[on]
+        vertical = self.vertical[on]
+        end = np.cumsum(count)  # the pairs of segment k are first[k] .. end[k]-1
+        first = end - count
+        base = i0 - first  # a pair's abscissa is its rank among the pairs plus this
+        cuts = np.searchsorted(end, np.arange(_PAIRS, int(end[-1]), _PAIRS), side="right")
+        bounds = np.unique(np.concatenate([[0], cuts, [len(on)]])).tolist()
         with np.errstate(divide="ignore", invalid="ignore"):
-            t = (xs[idx] - self.xa[seg]) / self.dx[seg]
-        z_on = self.za[seg] + t * self.dz[seg]
-        vertical = self.vertical[seg]
-        if vertical.any():
-            z_on[vertical] = self.z_vertical[seg[vertical]]
-        np.minimum.at(z, idx, z_on)
+            for a, b in itertools.pairwise(bounds):  # segments a .. b-1
+                c = count[a:b]
+                idx = np.repeat(base[a:b], c)
+                idx += np.arange(first[a], end[b - 1])
+                t = (xs[idx] - np.repeat(xa[a:b], c)) / np.repeat(dx[a:b], c)
+                z_on = np.repeat(za[a:b], c) + t * np.repeat(dz[a:b], c)
+                if vertical[a:b].any():
+                    up = np.repeat(vertical[a:b], c)
+                    z_on[up] = np.repeat(self.z_vertical[on[a:b]], c)[up]
+                np.minimum.at(z, idx, z_on)
         return z
