@@ -282,7 +282,7 @@ def _frame(hull, pitch: float) -> Frame:
             [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
         ]
     )
-    keel = lower_envelope(ta, tb, loops_in_use("lowest"))
+    keel = lower_envelope(ta, tb, loops_in_use("envelope"))
     return Frame(
         pitch=pitch,
         cg=g,
@@ -297,7 +297,7 @@ def _frame(hull, pitch: float) -> Frame:
 
 
 def loops_in_use(name: str) -> Callable | None:
-    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"lowest"``,
+    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"envelope"``,
     ``"outline"``, ``"wetted"``) where :func:`keel_loops` holds, else None (numpy's path):
     a new pitch's keel line, outline and wetted properties by the compiler once its cut
     is."""

@@ -29,7 +29,15 @@ import numpy as np
 
 from .wetted_loops import wetted_loops
 
-__all__ = ["available", "compiled", "cut_loops", "in_use", "lowest_loops", "outline_loops"]
+__all__ = [
+    "available",
+    "compiled",
+    "cut_loops",
+    "envelope_loops",
+    "in_use",
+    "lowest_loops",
+    "outline_loops",
+]
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -184,6 +192,28 @@ def lowest_loops(xs, xa, za, xb, zb):
     return z
 
 
+def envelope_loops(xa, za, xb, zb):
+    """:func:`hullslice.kernel.keel.lower_envelope`'s search by loops, on the segments
+    from ``(xa, za)`` to ``(xb, zb)``: the end abscissae sorted, each once (NaNs, sorted
+    last, as one), their interval middles, and the lowest height over each of both as
+    :func:`lowest_loops` finds it. Returns ``(xs, mid, z, zm)``: numpy's very arrays."""
+    e = len(xa)
+    xs = np.empty(2 * e)
+    xs[:e] = xa
+    xs[e:] = xb
+    xs.sort()
+    n = 0
+    for i in range(len(xs)):
+        if i == 0 or (xs[i] != xs[i - 1] and not (xs[i] != xs[i] and xs[i - 1] != xs[i - 1])):
+            xs[n] = xs[i]
+            n += 1
+    xs = xs[:n].copy()
+    mid = np.empty(max(n - 1, 0))
+    for i in range(n - 1):
+        mid[i] = 0.5 * (xs[i + 1] + xs[i])
+    return xs, mid, lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
+
+
 _LOCK = threading.Lock()
 _COMPILED: dict[str, Callable | None] = {}
 
@@ -221,7 +251,12 @@ def compiled(name: str = "cut") -> Callable | None:
                 import numba
 
                 # IEEE division (an infinity or NaN by zero, as numpy's), no exception
-                fn = numba.njit(cache=True, nogil=True, error_model="numpy")(LOOPS[name])
+                jit = numba.njit(cache=True, nogil=True, error_model="numpy")
+                space = globals()
+                for helper in CALLS.get(name, ()):  # what the loops call: compiled first,
+                    if not isinstance(space[helper], numba.core.dispatcher.Dispatcher):
+                        space[helper] = jit(LOOPS[_NAMES[helper]])  # in this namespace
+                fn = jit(LOOPS[name])
             _COMPILED[name] = fn
         return _COMPILED[name]
 
@@ -325,4 +360,9 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
 
 
 LOOPS["outline"] = outline_loops
+LOOPS["envelope"] = envelope_loops
+#: The loops that others call, by caller: compiled in this module's namespace before it
+#: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
+CALLS = {"envelope": ("lowest_loops",)}
+_NAMES = {"lowest_loops": "lowest"}
 LOOPS["wetted"] = wetted_loops

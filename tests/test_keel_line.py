@@ -182,9 +182,25 @@ def lowest_every_pair(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarra
     return z
 
 
-def every_pair(xs, xa, za, xb, zb):
-    """:func:`lowest_every_pair` in the loops' signature, for ``lower_envelope(a, b, loops)``."""
+def every_pair_lowest(xs, xa, za, xb, zb):
+    """:func:`lowest_every_pair` in the signature of ``planecut_loops.lowest_loops``."""
     return lowest_every_pair(np.column_stack([xa, za]), np.column_stack([xb, zb]), xs)
+
+
+def as_envelope(lowest):
+    """A lowest-segment search in the signature of ``lower_envelope``'s ``loops``
+    (``planecut_loops.envelope_loops``): the end abscissae sorted, each once, their
+    middles, and ``lowest`` over both."""
+
+    def envelope(xa, za, xb, zb):
+        xs = np.unique(np.concatenate([xa, xb]))
+        mid = 0.5 * (xs[1:] + xs[:-1])
+        return xs, mid, lowest(xs, xa, za, xb, zb), lowest(mid, xa, za, xb, zb)
+
+    return envelope
+
+
+every_pair = as_envelope(every_pair_lowest)
 
 
 def _bits(z: np.ndarray) -> np.ndarray:
@@ -253,8 +269,8 @@ def test_the_lowest_segment_taken_in_parts_equals_every_pair_at_once(seed, n, fl
         for loops in [compiled] if compiled is not None else []:
             # the loops keep the first of equal values: +0 and -0 compare as values
             np.testing.assert_array_equal(loops(xs, a[:, 0], a[:, 1], b[:, 0], b[:, 1]), got)
-        if n <= 300:
-            got = planecut_loops.lowest_loops(xs, a[:, 0], a[:, 1], b[:, 0], b[:, 1])
+        if n <= 300:  # the loops as Python
+            got = planecut_loops.LOOPS["lowest"](xs, a[:, 0], a[:, 1], b[:, 0], b[:, 1])
             np.testing.assert_array_equal(got, want)
     if n >= 3000:
         xs, _ = _abscissae(a, b)

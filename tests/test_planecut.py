@@ -361,9 +361,12 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
     hull = BODIES[name]
     a, b = silhouette_edges(hull)
     g = np.asarray(hull.cg)
-    paths = [planecut_loops.lowest_loops]
+    from .test_keel_line import as_envelope
+
+    paths = [planecut_loops.envelope_loops, as_envelope(planecut_loops.LOOPS["lowest"])]
     if planecut_loops.available():
-        paths.append(planecut_loops.compiled("lowest"))
+        paths.append(planecut_loops.compiled("envelope"))
+        paths.append(as_envelope(planecut_loops.compiled("lowest")))
     for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
         c, s = np.cos(pitch), np.sin(pitch)
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)

@@ -252,9 +252,14 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     Evaluated exactly at every end point; where two segments cross between end points the
     envelope is refined at the middle of that interval (the crossing point itself is not
     found, so there the line may lie a little high). ``loops``, when given, finds the
-    lowest segment over each abscissa instead of numpy (``loops(xs, xa, za, xb, zb)``, as
-    :func:`hullslice.planecut_loops.lowest_loops`, compiled: the same numbers).
+    abscissae and the lowest segment over each instead of numpy
+    (``loops(xa, za, xb, zb) -> (xs, mid, z, zm)``, as
+    :func:`hullslice.planecut_loops.envelope_loops`, compiled: the same numbers).
     """
+    if loops is not None:
+        columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
+        xs, mid, z, zm = loops(*columns)
+        return _refined(xs, mid, z, zm)
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
     if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
@@ -263,19 +268,18 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
             new &= ~np.isnan(xs[:-1])
         xs = xs[np.concatenate([[True], new])]
     segments = _Segments(a, b)
-    if loops is None:
-        # the end abscissae and the middles in one sorted array (each middle lies between
-        # its ends): each abscissa has the same pairs in the same order as on its own
-        mid = 0.5 * (xs[1:] + xs[:-1])
-        both = np.empty(len(xs) + len(mid))
-        both[0::2], both[1::2] = xs, mid
-        lowest = segments.lowest(both)
-        z, zm = lowest[0::2], lowest[1::2]
-    else:
-        ends = (segments.xa, segments.za, segments.xb, segments.zb)
-        z = loops(xs, *ends)
-        mid = 0.5 * (xs[1:] + xs[:-1])
-        zm = loops(mid, *ends)
+    # the end abscissae and the middles in one sorted array (each middle lies between its
+    # ends): each abscissa has the same pairs in the same order as on its own
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    both = np.empty(len(xs) + len(mid))
+    both[0::2], both[1::2] = xs, mid
+    lowest = segments.lowest(both)
+    return _refined(xs, mid, lowest[0::2], lowest[1::2])
+
+
+def _refined(xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray) -> KeelLine:
+    """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
+    at the middles ``mid`` where the heights there, ``zm``, lie below the straight line."""
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
