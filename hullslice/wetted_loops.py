@@ -91,27 +91,14 @@ def wetted_loops(
         for t in range(b - a):
             order[a + t] = a + sub[t]
         a = b
-    n_open = 0
-    winding = 0
-    for t in range(n_cross):
-        o = order[t]
-        winding += c_step[o]
-        if winding == 1 and c_step[o] == 1:
-            n_open += 1
-    crossed = np.zeros(n_parts, dtype=np.bool_)
-    for t in range(n_cross):
-        crossed[c_part[t]] = True
-    n_sub = 0
-    for c in range(n_parts):
-        if not crossed[c] and part_zmax[c] - level[part_station[c]] < 0.0:
-            n_sub += 1
-    m = n_open + n_sub
-    ps = np.empty(m, dtype=np.int64)
-    yl = np.empty(m)
-    yr = np.empty(m)
-    tl = np.empty(m)
-    tr = np.empty(m)
-    part = np.empty(m, dtype=np.int64)
+    # the pieces: at most one per crossing and one per part under water altogether
+    room = n_cross + n_parts
+    ps = np.empty(room, dtype=np.int64)
+    yl = np.empty(room)
+    yr = np.empty(room)
+    tl = np.empty(room)
+    tr = np.empty(room)
+    part = np.empty(room, dtype=np.int64)
     n_o = 0
     n_c = 0
     winding = 0
@@ -125,21 +112,25 @@ def wetted_loops(
             tl[n_o] = c_slope[o]
             n_o += 1
         elif winding == 0 and c_step[o] == -1:
-            if n_c < m:
+            if n_c < room:
                 yr[n_c] = c_y[o]
                 tr[n_c] = c_slope[o]
             n_c += 1
-    if n_sub:  # parts under water altogether: one piece each, then all by (station, y)
-        q = n_open
-        for c in range(n_parts):
-            if not crossed[c] and part_zmax[c] - level[part_station[c]] < 0.0:
-                ps[q] = part_station[c]
-                yl[q] = part_ymin[c]
-                yr[q] = part_ymax[c]
-                tl[q] = np.inf
-                tr[q] = np.inf
-                part[q] = c
-                q += 1
+    crossed = np.zeros(n_parts, dtype=np.bool_)
+    for t in range(n_cross):
+        crossed[c_part[t]] = True
+    m = n_o
+    for c in range(n_parts):  # parts under water altogether: one piece each
+        if not crossed[c] and part_zmax[c] - level[part_station[c]] < 0.0:
+            ps[m] = part_station[c]
+            yl[m] = part_ymin[c]
+            yr[m] = part_ymax[c]
+            tl[m] = np.inf
+            tr[m] = np.inf
+            part[m] = c
+            m += 1
+    ps, yl, yr, tl, tr, part = ps[:m], yl[:m], yr[:m], tl[:m], tr[:m], part[:m]
+    if m > n_o:  # then all by (station, y_left), stably
         o2 = np.argsort(ps, kind="mergesort")
         a = 0
         while a < m:  # within a station, by y_left, stably
