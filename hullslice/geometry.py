@@ -37,7 +37,7 @@ import numpy as np
 from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
 from .errors import InputError
-from .kernel.keel import KeelLine, lower_envelope
+from .kernel.keel import KeelLine, lower_envelope, refined
 from .planecut import plane_index
 
 __all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
@@ -262,9 +262,16 @@ def _frame(hull, pitch: float) -> Frame:
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
     a, b = silhouette_edges(hull)
-    ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
-    lowest = float(min(ta[:, 1].min(), tb[:, 1].min()))
-    highest = float(max(ta[:, 1].max(), tb[:, 1].max()))
+    side = loops_in_use("side")
+    if side is not None:  # the turn and the keel line's search in one compiled call
+        za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
+        keel = refined(xs, mid, z, zm)
+    else:
+        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+        za, zb = ta[:, 1], tb[:, 1]
+        keel = lower_envelope(ta, tb)
+    lowest = float(min(za.min(), zb.min()))
+    highest = float(max(za.max(), zb.max()))
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
     box = hull.bounds.mean(axis=0) - g
@@ -282,7 +289,6 @@ def _frame(hull, pitch: float) -> Frame:
             [c, 0.0, -s, -(c * g[0] - s * g[2]) - ox],
         ]
     )
-    keel = lower_envelope(ta, tb, loops_in_use("envelope"))
     return Frame(
         pitch=pitch,
         cg=g,
@@ -297,7 +303,7 @@ def _frame(hull, pitch: float) -> Frame:
 
 
 def loops_in_use(name: str) -> Callable | None:
-    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"envelope"``,
+    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"side"``,
     ``"outline"``, ``"wetted"``) where :func:`keel_loops` holds, else None (numpy's path):
     a new pitch's keel line, outline and wetted properties by the compiler once its cut
     is."""

@@ -37,6 +37,7 @@ __all__ = [
     "in_use",
     "lowest_loops",
     "outline_loops",
+    "side_view_loops",
 ]
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
@@ -214,6 +215,25 @@ def envelope_loops(xa, za, xb, zb):
     return xs, mid, lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
 
 
+def side_view_loops(a, b, gx, gz, c, s):
+    """The silhouette edges from ``a`` to ``b`` ((e, 3) body points) turned nose up by a
+    pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, as
+    :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them.
+    Returns ``(za, zb, xs, mid, z, zm)``: the turned ends' heights and the envelope's
+    arrays."""
+    e = len(a)
+    xa, za, xb, zb = np.empty(e), np.empty(e), np.empty(e), np.empty(e)
+    for i in range(e):
+        rx, rz = a[i, 0] - gx, a[i, 2] - gz
+        xa[i] = rx * c - rz * s
+        za[i] = rx * s + rz * c
+        rx, rz = b[i, 0] - gx, b[i, 2] - gz
+        xb[i] = rx * c - rz * s
+        zb[i] = rx * s + rz * c
+    xs, mid, z, zm = envelope_loops(xa, za, xb, zb)
+    return za, zb, xs, mid, z, zm
+
+
 _LOCK = threading.Lock()
 _COMPILED: dict[str, Callable | None] = {}
 
@@ -361,8 +381,9 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
 
 LOOPS["outline"] = outline_loops
 LOOPS["envelope"] = envelope_loops
+LOOPS["side"] = side_view_loops
 #: The loops that others call, by caller: compiled in this module's namespace before it
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
-CALLS = {"envelope": ("lowest_loops",)}
-_NAMES = {"lowest_loops": "lowest"}
+CALLS = {"envelope": ("lowest_loops",), "side": ("lowest_loops", "envelope_loops")}
+_NAMES = {"lowest_loops": "lowest", "envelope_loops": "envelope"}
 LOOPS["wetted"] = wetted_loops

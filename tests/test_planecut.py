@@ -354,9 +354,10 @@ def test_an_unknown_loops_path_is_refused():
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder"])
 def test_the_keel_line_by_the_loops_equals_numpy(name):
     """The keel line's loops (run as Python, and compiled where numba is installed) give
-    numpy's keel line to the last bit at pitches from -20 to 40 degrees."""
+    numpy's keel line to the last bit at pitches from -20 to 40 degrees, the side view's
+    turn included."""
     from hullslice.geometry import _turn, silhouette_edges
-    from hullslice.kernel.keel import lower_envelope
+    from hullslice.kernel.keel import lower_envelope, refined
 
     hull = BODIES[name]
     a, b = silhouette_edges(hull)
@@ -367,6 +368,9 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
     if planecut_loops.available():
         paths.append(planecut_loops.compiled("envelope"))
         paths.append(as_envelope(planecut_loops.compiled("lowest")))
+    sides = [planecut_loops.side_view_loops]
+    if planecut_loops.available():
+        sides.append(planecut_loops.compiled("side"))
     for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
         c, s = np.cos(pitch), np.sin(pitch)
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
@@ -375,6 +379,11 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             got = lower_envelope(ta, tb, loops)
             np.testing.assert_array_equal(got.x, want.x)
             np.testing.assert_array_equal(got.z, want.z)
+        for side in sides:  # the turn too, in the loops
+            za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
+            assert _same(za, ta[:, 1]) and _same(zb, tb[:, 1])
+            got = refined(xs, mid, z, zm)
+            assert _same(got.x, want.x) and _same(got.z, want.z)
 
 
 @pytest.mark.parametrize("name", sorted(BODIES))

@@ -259,7 +259,7 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
-        return _refined(xs, mid, z, zm)
+        return refined(xs, mid, z, zm)
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
     if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
@@ -274,10 +274,10 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     both = np.empty(len(xs) + len(mid))
     both[0::2], both[1::2] = xs, mid
     lowest = segments.lowest(both)
-    return _refined(xs, mid, lowest[0::2], lowest[1::2])
+    return refined(xs, mid, lowest[0::2], lowest[1::2])
 
 
-def _refined(xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray) -> KeelLine:
+def refined(xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray) -> KeelLine:
     """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
     at the middles ``mid`` where the heights there, ``zm``, lie below the straight line."""
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
