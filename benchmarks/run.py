@@ -629,29 +629,17 @@ def bench_envelope(table: Table) -> None:
     if any(importlib.util.find_spec(m) is None for m in ("distributed", "xarray")):
         table.add("envelope cases", 'not run: pip install -e ".[sweep]"')
         return
-    from hullslice.sweeps.engine import local_client
-
     sweep = _sweep_module()
-    base, _ = sweep.study(ENVELOPE_T_END, free_pitch=True)
-    grid = ENVELOPE_GRID
-    n = len(grid["velocity"]) * len(grid["pitch"])
+    n = len(ENVELOPE_GRID["velocity"]) * len(ENVELOPE_GRID["pitch"])
+    rows = sweep.settings(ENVELOPE_T_END, 1, free_pitch=True, grid=ENVELOPE_GRID)
+    run = {name: runs[0] for name, _, _, runs in rows}
     what = f"envelope: 1:10 model (128k faces), free pitch, {ENVELOPE_T_END:g} s at 1 ms, 32 fixed"
-    own = sweep.measure(base, grid, workers=1)
     table.add(f"{what}: a case in this process ({n} cases, compute / case)",
-              fmt(own["compute"] / n))  # fmt: skip
-    rates = {}
-    for k in (1, 2):
-        client = local_client(k)
-        try:
-            rates[k] = sweep.measure(base, grid, client=client)["rate"]
-        finally:
-            client.close()
-            client.cluster.close()
-    table.add(f"envelope: {n} cases on 1 / 2 Dask workers",
-              f"{rates[1]:.3f} / {rates[2]:.3f} cases/s")  # fmt: skip
-    ratio = rates[2] / rates[1]
-    table.add("envelope: ratio 2 / 1 workers", f"{ratio:.2f}", ">= 1.7", ratio >= 1.7)
-    total = ENVELOPE_CASES / rates[2]
+              fmt(run[sweep.IN_PROCESS]["compute"] / n))  # fmt: skip
+    one, two = (run[sweep.workers_name(k)]["rate"] for k in (1, 2))
+    table.add(f"envelope: {n} cases on 1 / 2 Dask workers", f"{one:.3f} / {two:.3f} cases/s")
+    table.add("envelope: ratio 2 / 1 workers", f"{two / one:.2f}", ">= 1.7", two >= 1.7 * one)
+    total = ENVELOPE_CASES / two
     table.add(
         f"envelope: {ENVELOPE_CASES} cases on 2 workers (at the {n}-case rate)",
         f"{total / 60:.0f} min",

@@ -85,14 +85,20 @@ def measure(base, grid, client=None, workers=None) -> dict:
 
 
 def settings(
-    t_end: float, repeat: int = 1, free_pitch: bool = False, in_process: bool = True
+    t_end: float,
+    repeat: int = 1,
+    free_pitch: bool = False,
+    in_process: bool = True,
+    grid: dict | None = None,
 ) -> list[tuple[str, int, float | None, list[dict]]]:
     """The sweep measured ``repeat`` times in this process (unless ``in_process`` is
     False) and on a local Dask cluster of 1 and of 2 workers: rows of (setting, workers,
-    the cluster's start in s or None, the runs' :func:`measure` figures)."""
+    the cluster's start in s or None, the runs' :func:`measure` figures). ``grid``, when
+    given, replaces the study's 8 sink rates by 8 pitches."""
     from hullslice.sweeps.engine import local_client
 
-    base, grid = study(t_end, free_pitch)
+    base, own_grid = study(t_end, free_pitch)
+    grid = own_grid if grid is None else grid
     rows: list[tuple[str, int, float | None, list[dict]]] = []
     if in_process:
         runs = [measure(base, grid, workers=1) for _ in range(repeat)]

@@ -56,8 +56,6 @@ class PlaneIndex:
     ----------
     vertices : (n, 3) float
         Vertex coordinates, m, body frame.
-    vx, vy, vz : (n,) float
-        Their ``x``, ``y`` and ``z``.
     corner_x, corner_y, corner_z : (m, 3) float
         The coordinates of each face's corners (read in face order: the loops read a
         crossed edge's ends here, next to the face, not from the vertices).
@@ -84,9 +82,6 @@ class PlaneIndex:
     """
 
     vertices: np.ndarray
-    vx: np.ndarray
-    vy: np.ndarray
-    vz: np.ndarray
     corner_x: np.ndarray
     corner_y: np.ndarray
     corner_z: np.ndarray
@@ -107,8 +102,8 @@ class PlaneIndex:
     _scratch: threading.local = field(default_factory=threading.local, repr=False)
 
     def scratch(self) -> np.ndarray:
-        """This thread's scratch array of one integer per edge (its values are not read
-        before the loops write them)."""
+        """This thread's scratch array of one integer per edge (a value left by an earlier
+        cut is never trusted: the loops check each one against their own segments)."""
         slot = getattr(self._scratch, "slot", None)
         if slot is None:
             slot = self._scratch.slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
@@ -169,9 +164,6 @@ class PlaneIndex:
         key = b * key_span + (fx0 - x0)
         return cls(
             vertices=v,
-            vx=np.ascontiguousarray(v[:, 0]),
-            vy=np.ascontiguousarray(v[:, 1]),
-            vz=np.ascontiguousarray(v[:, 2]),
             corner_x=np.ascontiguousarray(v[f, 0]),
             corner_y=np.ascontiguousarray(v[f, 1]),
             corner_z=np.ascontiguousarray(v[f, 2]),

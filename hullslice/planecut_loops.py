@@ -273,9 +273,10 @@ def compiled(name: str = "cut") -> Callable | None:
                 # IEEE division (an infinity or NaN by zero, as numpy's), no exception
                 jit = numba.njit(cache=True, nogil=True, error_model="numpy")
                 space = globals()
-                for helper in CALLS.get(name, ()):  # what the loops call: compiled first,
+                for callee in CALLS.get(name, ()):  # what the loops call: compiled first,
+                    helper = LOOPS[callee].__name__  # in this module's namespace
                     if not isinstance(space[helper], numba.core.dispatcher.Dispatcher):
-                        space[helper] = jit(LOOPS[_NAMES[helper]])  # in this namespace
+                        space[helper] = jit(LOOPS[callee])
                 fn = jit(LOOPS[name])
             _COMPILED[name] = fn
         return _COMPILED[name]
@@ -384,6 +385,5 @@ LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
 #: The loops that others call, by caller: compiled in this module's namespace before it
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
-CALLS = {"envelope": ("lowest_loops",), "side": ("lowest_loops", "envelope_loops")}
-_NAMES = {"lowest_loops": "lowest", "envelope_loops": "envelope"}
+CALLS = {"envelope": ("lowest",), "side": ("lowest", "envelope")}
 LOOPS["wetted"] = wetted_loops
