@@ -14,7 +14,12 @@ Two references, each computed by hullslice on a prism mesh (every slice the 2D s
   slamming coefficient ``C_s = F / (rho R V^2)`` that Campbell & Weynberg (1980, Offshore
   Technology Report OTH 80 033) fitted to their drop tests, in the form of DNV-RP-C205
   (section 8): ``C_s = 5.15 / (1 + 19 s / D) + 0.55 s / D`` at the penetration ``s``.
-  ``zarnick`` (Wagner's momentum with the contour) is beside it.
+  ``zarnick`` (Wagner's momentum with the contour) is beside it, and other published
+  models of the same impact computed here on the exact circle (Wagner's contact from his
+  condition in elliptic integrals): Wagner (1932), von Karman (1929), the flat plate's
+  potential with the whole Bernoulli pressure, Wienke & Oumeraci's (2005, Coastal Eng. 52,
+  435-462) formula for ``t <= D / (8 V)``, and the MLM's own pressure integrated on the
+  exact circle (a check of the solver's sampled contour).
 """
 
 from __future__ import annotations
@@ -25,6 +30,9 @@ import sys
 import warnings
 
 import numpy as np
+from scipy.integrate import quad
+from scipy.optimize import brentq
+from scipy.special import ellipe, ellipk
 
 import hullslice as hs
 from hullslice import shapes
@@ -49,6 +57,45 @@ S_OVER_D = (0.0025, 0.005, 0.01, 0.02, 0.05, 0.1, 0.15, 0.18, 0.2, 0.3, 0.5, 0.7
 def campbell_weynberg(s_over_d: float) -> float:
     """Campbell & Weynberg's (1980) slamming coefficient, in DNV-RP-C205's form."""
     return 5.15 / (1.0 + 19.0 * s_over_d) + 0.55 * s_over_d
+
+
+def circle_contact(s_over_r: float) -> tuple[float, float]:
+    """Wagner's contact on the exact circle of radius 1 at the penetration ``s / R``:
+    ``(c / R, dc/ds)``. Wagner's condition ``integral_0^{pi/2} f(c sin t) dt = pi s / 2`` on
+    ``f = R - sqrt(R^2 - y^2)`` is ``s / R = 1 - (2 / pi) E(k)``, ``k = c / R`` (``E`` the
+    complete elliptic integral of the second kind, modulus ``k``), so
+    ``dc/ds = pi k / (2 (K(k) - E(k)))``; the contact reaches the widest point at
+    ``s / D = 0.1817``."""
+    k = brentq(lambda k: 1.0 - 2.0 / math.pi * ellipe(k * k) - s_over_r, 1e-12, 1.0 - 1e-15,
+               xtol=1e-15)  # fmt: skip
+    return k, math.pi * k / (2.0 * (ellipk(k * k) - ellipe(k * k)))
+
+
+def circle_models(s_over_d: float) -> dict[str, float]:
+    """The slamming coefficient ``F / (rho R V^2)`` of a circle at constant speed by other
+    models (no gravity), at ``s / D``; each uses Wagner's contact on the exact circle but
+    von Karman's and Wienke & Oumeraci's. ``x = c sin(t)`` along the contact."""
+    e = 2.0 * s_over_d  # s / R
+    c, cp = circle_contact(e)
+    out = {"Wagner": math.pi * c * cp, "von Karman": math.pi * (1.0 - e)}  # d(pi c^2 / 2)/ds
+
+    # the flat plate's potential -V sqrt(c^2 - x^2) and the whole Bernoulli pressure,
+    # p / (rho V^2) = c c' / sqrt(c^2 - x^2) - x^2 / (2 (c^2 - x^2)) - 1 / 2, its positive part
+    t = math.acos(min(1.0, 1.0 / (2.0 * cp)))
+    out["plate, Bernoulli"] = 2.0 * (c * cp * t - 0.5 * c * math.atanh(math.sin(t)))
+
+    def mlm_bracket(t: float) -> float:  # the MLM's pressure (Korobkin 2004) times cos(t)
+        y = c * math.sin(t)  # on the circle 1 + f'^2 = 1 / (1 - y^2)
+        return cp - 0.5 * math.cos(t) - math.sin(t) ** 2 * (1.0 - y * y) / (2.0 * math.cos(t))
+
+    end = brentq(mlm_bracket, 0.0, 0.5 * math.pi * (1.0 - 1e-14), xtol=1e-15)
+    out["MLM, exact circle"] = 2.0 * c * quad(mlm_bracket, 0.0, end, epsabs=1e-13, limit=200)[0]
+    # Wienke & Oumeraci (2005), their Eq. for 0 <= t <= D / (8 V)
+    if s_over_d <= 0.125:
+        out["Wienke & Oumeraci"] = 2.0 * math.pi - 2.0 * math.sqrt(e) * math.atanh(
+            math.sqrt(1.0 - e / 4.0)
+        )
+    return out
 
 
 def wedge_run(deadrise_deg: float) -> tuple[float, float, float]:
@@ -103,6 +150,14 @@ def main(argv: list[str] | None = None) -> int:
     for s, a, b in zip(S_OVER_D, mlm, zar, strict=True):
         ref = campbell_weynberg(s)
         print(f"  {s:6.4f}  {ref:10.3f}  {a:6.3f} ({a / ref:5.3f})  {b:7.3f} ({b / ref:5.3f})")
+    print("\nOther models of the same impact (C_s and its ratio to Campbell & Weynberg's)")
+    names = list(circle_models(S_OVER_D[0]))
+    print("     s/D" + "".join(f"  {name:>19s}" for name in names))
+    for s in (x for x in S_OVER_D if x <= 0.15):
+        ref, row = campbell_weynberg(s), circle_models(s)
+        cells = (f"{row[n]:11.3f} ({row[n] / ref:5.3f})" if n in row else f"{'':19s}"
+                 for n in names)  # fmt: skip
+        print(f"  {s:6.4f}" + "".join(f"  {cell}" for cell in cells))
     if args.plot:
         plot(mlm, zar, args.plot)
         print(f"\nwrote {args.plot}")
@@ -122,8 +177,15 @@ def plot(mlm: np.ndarray, zar: np.ndarray, path: str) -> None:
     ax.plot(fine, [campbell_weynberg(x) for x in fine], "k-", label="Campbell & Weynberg (1980)")
     ax.plot(s, mlm, "o-", label="mlm")
     ax.plot(s, zar, "s--", label="zarnick")
-    ax.axvline(0.18, color="0.6", lw=0.8, ls=":")
-    ax.text(0.185, 5.6, "Wagner's contact at the\nwidest point", fontsize=8, color="0.4")
+    # where the solver's contact leaves the circle: the side as steep as the continuation
+    k = math.sin(math.radians(float(hs.get_solver("mlm").settings["continuation"])))
+    leave = 0.5 * (1.0 - 2.0 / math.pi * ellipe(k * k))
+    ax.axvline(leave, color="0.6", lw=0.8, ls=":")
+    ax.text(leave + 0.005, 5.6, "contact leaves the circle\nfor the continuation", fontsize=8,
+            color="0.4")  # fmt: skip
+    ax.axvline(0.1817, color="0.6", lw=0.8, ls=":")
+    ax.text(0.187, 4.6, "Wagner's contact on the\ncircle at its widest point", fontsize=8,
+            color="0.4")  # fmt: skip
     ax.set(xlabel="penetration s / D", ylabel="slamming coefficient F / (rho R V^2)")
     ax.grid(alpha=0.3)
     ax.legend()

@@ -10,6 +10,10 @@ References:
   the force per metre ``rate v^2 - m_a a``.
 - Far past a sharp edge a straight continuation of deadrise ``beta_c`` gives the drag
   ``rho V^2 b (pi / tan(beta_c) - 1)`` per metre (:func:`continuation_for_drag`).
+- On a circle Wagner's condition is ``s / R = 1 - (2 / pi) E(c / R)`` (complete elliptic
+  integral of the second kind); the MLM's pressure integrated on the exact circle with that
+  contact is the reference of a meshed cylinder's force until its contact leaves the
+  circle, where the circle is as steep as the continuation.
 - Water cannot pull harder than ``p_atm - p_vapour``: no section's force per metre is
   below that times its wetted girth.
 """
@@ -111,6 +115,40 @@ def test_a_round_section_keeps_its_load_past_its_widest_point():
     assert np.all(np.diff(cs) < 0.0)
     assert np.all(cs > 1.0)
     assert cs[-1] == pytest.approx(1.0, abs=0.15)
+
+
+def _mlm_on_the_exact_circle(s_over_r: float) -> float:
+    """``F / (rho R V^2)`` of the MLM on a circle at constant speed, by quadrature."""
+    from scipy.integrate import quad
+    from scipy.optimize import brentq
+    from scipy.special import ellipe, ellipk
+
+    def depth(k: float) -> float:  # Wagner's condition on the circle, R = 1
+        return 1.0 - 2.0 / math.pi * ellipe(k * k) - s_over_r
+
+    c = brentq(depth, 1e-12, 1.0 - 1e-15, xtol=1e-15)
+    dc = math.pi * c / (2.0 * (ellipk(c * c) - ellipe(c * c)))
+
+    def bracket(t: float) -> float:  # p / (rho V^2) times cos(t), y = c sin(t)
+        y = c * math.sin(t)
+        return dc - 0.5 * math.cos(t) - math.sin(t) ** 2 * (1.0 - y * y) / (2.0 * math.cos(t))
+
+    end = brentq(bracket, 0.0, 0.5 * math.pi * (1.0 - 1e-14), xtol=1e-15)
+    return 2.0 * c * quad(bracket, 0.0, end, epsabs=1e-13, limit=200)[0]
+
+
+def test_a_meshed_cylinder_has_the_mlm_force_of_the_exact_circle():
+    R, V = 0.5, 5.0
+    v, f = shapes.circular_cylinder(length=1.0, radius=R, points=1440)
+    hull = hs.Hull.from_arrays(v, f)
+    fluid = hs.Fluid(RHO, 0.0)
+    # up to s/D = 0.107 the contact stays on the circle (its side is less steep than the
+    # default continuation's 57.5 deg)
+    for s_d in (0.005, 0.02, 0.05, 0.1):
+        r = hs.compute_force(hull, 2 * R * s_d, -V, slices=2, solver="mlm", fluid=fluid,
+                             acceleration=0.0)  # fmt: skip
+        cs = r.total / (RHO * R * V**2)
+        assert cs == pytest.approx(_mlm_on_the_exact_circle(2 * s_d), rel=5e-3), s_d
 
 
 def test_a_re_entrant_section_is_flagged():

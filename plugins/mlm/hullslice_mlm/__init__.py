@@ -40,12 +40,12 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
   bottom's own slope at the edge), and the pressure is integrated over the real body
   only (``y`` up to the edge).
 - **A smooth widest point** (a round section, whose side is steeper than
-  ``smooth_edge_deg`` there): the flow does not separate. The contact goes on along the
-  contour reflected through its widest point, ``f(E + d) = 2 f(E) - f(E - d)`` (for a
-  circle, the circle's own upper half unrolled outwards: the wetted girth keeps growing
-  with the same slope), and the pressure is integrated over the real body's lower half.
-  Once the contact has passed the reflection (a circle under water to its top), ``c`` and
-  the added mass stay at their values there.
+  ``smooth_edge_deg`` there): the flow does not separate. The side leaves its contour for
+  the same straight fictitious line where it first becomes as steep as the continuation
+  (on a circle at the default 57.5 deg, ``s/D = 0.107``), so that the contact goes on
+  growing (on the circle itself Wagner's contact would stop at the widest point), and the
+  pressure is integrated over the real body up to its widest point; the load falls
+  steadily towards the line's drag. A section wholly under water keeps its added mass.
 - **Gravity** (option ``gravity = true``): the hydrostatic pressure ``rho g`` times the
   depth below the calm water on the wetted contour, integrated as the section's area below
   the calm water (a vertical force, buoyancy).
