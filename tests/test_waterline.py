@@ -142,6 +142,44 @@ def test_a_catamaran_is_tabulated_per_float():
     assert all(served)  # separate parts carry their own mass: constant shares
 
 
+def catamaran_hull():
+    vs, fs = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    vp, fp = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    vs = vs - np.array([0.0, 0.3, vs[:, 2].min()])
+    vp = vp + np.array([0.0, 0.3, -vp[:, 2].min() + 0.01])
+    return hs.Hull.from_arrays(np.vstack([vs, vp]), np.vstack([fs, fp + len(vs)]), mass=2.0)
+
+
+@pytest.mark.parametrize("deadrise", ["wedge", "waterline-slope"])
+@pytest.mark.parametrize(
+    "make, pitch_deg, n",
+    [(fuselage_hull, 6.0, 24), (catamaran_hull, 0.0, 4), (asymmetric_hull, 3.0, 6)],
+)
+def test_stations_at_levels_of_their_own_are_as_each_alone(make, pitch_deg, n, deadrise):
+    # at_each (the partial slices' stations, each at its own water) against at, station by
+    # station: the same entries, in the same order, to the last bit
+    outline, tol, fr = outline_of(make(), pitch_deg, n)
+    table = WaterlineTable.of(outline, fr.highest, tol, deadrise, budget=10**8)
+    rng = np.random.default_rng(3)
+    served = 0
+    for _ in range(40):
+        stations = rng.integers(0, n, size=int(rng.integers(1, 5)))
+        lv = rng.uniform(fr.lowest, min(table.top, fr.highest), size=len(stations))
+        alone = [table.at(float(h), int(k), int(k) + 1) for k, h in zip(stations, lv, strict=True)]
+        got = table.at_each(stations, lv)
+        if any(a is None for a in alone):
+            assert got is None
+            continue
+        served += 1
+        assert set(got) == set(alone[0]) - {"area"}
+        for key in got:
+            want = np.concatenate([a[key] if key != "station" else a[key] + j
+                                   for j, a in enumerate(alone)])  # fmt: skip
+            np.testing.assert_array_equal(got[key], want, err_msg=key)
+    assert served > 20
+    assert table.at_each(np.array([0]), np.array([table.top + 1.0])) is None
+
+
 def test_twin_keels_of_one_part_are_left_to_the_fresh_evaluation():
     # a W bottom: between its keels' and its middle's heights the water meets one part in
     # two pieces, which share the part's mass by their widths (not constant): declined

@@ -197,22 +197,44 @@ class WaterlineTable:
         an interval marked inexact)."""
         if level > self.top:
             return None
+        out = self._evaluate(np.arange(k0, k1), level)
+        if out is not None:
+            out["area"] = self.outline.area[k0:k1]
+        return out
+
+    def at_each(self, stations: np.ndarray, levels: np.ndarray) -> dict[str, np.ndarray] | None:
+        """The properties of each of ``stations`` with the water at its own entry of
+        ``levels``, entries numbered by their place in ``stations`` (``station``), each
+        the same as :meth:`at` gives it alone (no ``area``); None where the table does not
+        serve one of them."""
+        if len(stations) == 0 or np.max(levels) > self.top:
+            return None
+        return self._evaluate(np.asarray(stations), np.asarray(levels))
+
+    def _evaluate(self, stations: np.ndarray, level) -> dict[str, np.ndarray] | None:
+        """:meth:`at`'s properties of ``stations`` at ``level`` (one, or one each), their
+        entries numbered by place in ``stations``; None where an interval is inexact."""
         # each station's break points under the level, counted by a search in integer keys
         # (station, rank of the height among all the table's heights): exact
-        stations = np.arange(k0, k1)
-        j = _under(self.heights, self.bp_key, stations, level) - self.bp_start[k0:k1]
-        v = self.v_start[k0:k1] + j
+        j = _under(self.heights, self.bp_key, stations, level) - self.bp_start[stations]
+        v = self.v_start[stations] + j
         if not self.exact[v].all():
             return None
         first = self.e_start[v]
-        idx = first if self.one_each else prefix_index(first, self.e_start[v + 1] - first)
-        affine = self.intercept[idx] + self.slope[idx] * level
+        if self.one_each:
+            idx, slot = first, np.arange(len(stations))
+        else:
+            count = self.e_start[v + 1] - first
+            idx = prefix_index(first, count)
+            slot = np.repeat(np.arange(len(stations)), count)
+        at = level if np.ndim(level) == 0 else level[slot]
+        affine = self.intercept[idx] + self.slope[idx] * (at if np.ndim(at) == 0 else at[:, None])
         const = self.const[idx]
         out = {key: affine[:, i] for i, key in enumerate(AFFINE)}
         out.update({key: const[:, i] for i, key in enumerate(CONSTANT[self.deadrise])})
         # as a fresh evaluation computes it: the keel's height measured from the water (the
         # keel of a dry entry is infinitely high: no penetration)
-        p = out["penetration"] = np.maximum(-(self.keel[idx] - level), 0.0)
+        p = out["penetration"] = np.maximum(-(self.keel[idx] - at), 0.0)
         if self.deadrise == "wedge":  # a dry entry's 0 / 0 gives its NaN
             with np.errstate(divide="ignore", invalid="ignore"):
                 t_port = p / out["half_beam_port"]
@@ -221,15 +243,13 @@ class WaterlineTable:
             out["deadrise"] = np.arctan(t_mean)
             out["deadrise_port"] = np.arctan(t_port)
             out["deadrise_stbd"] = np.arctan(t_stbd)
-        station = self.station[idx] - k0
-        chine = self.outline.z_chine[k0:k1] - level <= self.tol
-        out["chine_wetted"] = chine[station] & self.wet[idx]
-        out["station"] = station
+        chine = self.outline.z_chine[stations] - level <= self.tol
+        out["chine_wetted"] = chine[slot] & self.wet[idx]
+        out["station"] = slot
         if not self.one_each:  # pieces in order along the waterline, as a fresh evaluation
             left = out["y_keel"] - out["half_beam_stbd"]
-            order = np.lexsort((np.where(self.wet[idx], left, 0.0), station))
+            order = np.lexsort((np.where(self.wet[idx], left, 0.0), slot))
             out = {key: val[order] for key, val in out.items()}
-        out["area"] = self.outline.area[k0:k1]
         return out
 
 

@@ -244,14 +244,23 @@ def fixed_sections(
     first = np.searchsorted(station, source, side="left")
     count = np.searchsorted(station, source, side="right") - first
     if len(moved):  # a partial slice: its source wetted as deep as the slice's middle is,
-        # its entries appended to the window's
-        more = [
-            extra[int(i)] if int(i) in extra else
-            _station_at(kept, outline, int(source[i] - c0), float(level - lift[i]), tol, deadrise)
-            for i in moved
-        ]  # fmt: skip
-        sizes = [len(m["station"]) for m in more]
-        first[moved] = len(station) + np.cumsum([0, *sizes[:-1]])
+        # its entries appended to the window's, from the table in one call where it serves
+        table = None if kept is None or extra else kept.tables.get(deadrise)
+        each = None
+        if table is not None and table.outline is outline:
+            each = table.at_each(source[moved] - c0, level - lift[moved])
+        if each is not None:
+            sizes = np.bincount(each["station"], minlength=len(moved))
+            more = [each]
+        else:
+            more = [
+                extra[int(i)] if int(i) in extra else _station_at(
+                    kept, outline, int(source[i] - c0), float(level - lift[i]), tol, deadrise
+                )
+                for i in moved
+            ]  # fmt: skip
+            sizes = np.array([len(m["station"]) for m in more])
+        first[moved] = len(station) + np.cumsum(sizes) - sizes
         count[moved] = sizes
         props = {key: val if key == "area" else np.concatenate([val, *(m[key] for m in more)])
                  for key, val in props.items()}  # fmt: skip
