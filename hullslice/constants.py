@@ -93,6 +93,11 @@ class Tolerances:
     merge_edge : float
         A merge moves no vertex by more than this fraction of its shortest edge: farther,
         the two points are not copies that differ by rounding but different points.
+    keel_merge : float
+        Break points of a keel line closer than this are one point: vertices sharing a
+        station at one pitch (a ring of a round body, port and starboard) part by their
+        height difference times a pitch change, and at a pitch that differs from theirs by
+        rounding (1e-12 rad) the facets between them are far thinner than the mesh resolves.
     volume : float
         Relative difference of volumes treated as equal (overlapping-shell detection).
     flat : float
@@ -104,6 +109,7 @@ class Tolerances:
     merge: float = 1e-9
     merge_max: float = 1e-4
     merge_edge: float = 0.05
+    keel_merge: float = 1e-9
     volume: float = 1e-6
     flat: float = 1e-12
 

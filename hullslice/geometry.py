@@ -36,6 +36,7 @@ import numpy as np
 
 from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
+from .constants import TOL
 from .errors import InputError
 from .kernel.keel import KeelLine, lower_envelope, refined
 from .planecut import plane_index
@@ -262,14 +263,15 @@ def _frame(hull, pitch: float) -> Frame:
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
     a, b = silhouette_edges(hull)
+    merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
     side = loops_in_use("side")
     if side is not None:  # the turn and the keel line's search in one compiled call
         za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
-        keel = refined(xs, mid, z, zm)
+        keel = refined(xs, mid, z, zm, merge)
     else:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]
-        keel = lower_envelope(ta, tb)
+        keel = lower_envelope(ta, tb, merge=merge)
     lowest = float(min(za.min(), zb.min()))
     highest = float(max(za.max(), zb.max()))
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed

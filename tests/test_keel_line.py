@@ -280,3 +280,37 @@ def test_the_lowest_segment_taken_in_parts_equals_every_pair_at_once(seed, n, fl
     line, every = lower_envelope(a, b), lower_envelope(a, b, every_pair)
     np.testing.assert_array_equal(_bits(line.x), _bits(every.x))
     np.testing.assert_array_equal(_bits(line.z), _bits(every.z))
+
+
+def _ellipsoid() -> hs.Hull:
+    e = trimesh.creation.icosphere(subdivisions=3)
+    e.apply_scale([2.0, 0.3, 0.3])  # slender along x; rings of vertices share a station
+    return hs.Hull.from_arrays(e.vertices, e.faces, mass=100.0)
+
+
+def test_the_keel_line_does_not_jump_as_the_pitch_leaves_zero():
+    # vertices sharing a station at zero pitch part by height * pitch at another: at a
+    # pitch of rounding's size (1e-12 rad) they are one break point, and the force, the
+    # horizontal force and the moment on an x-symmetric body stay as at zero (symmetry:
+    # zero horizontal force and moment; the change over 1e-9 rad is of that order)
+    hull = _ellipsoid()
+    motion = hs.Motion(-1.5, 0.0, 0.0)
+    zero = hs.compute_force(hull, hs.Pose(0.05, 0.0), motion, slices=32, solver="mlm",
+                            acceleration=0.0)  # fmt: skip
+    assert len(hs.geometry.frame(hull, 1e-12).keel.x) == len(hs.geometry.frame(hull, 0.0).keel.x)
+    for pitch in (1e-12, -1e-12, 1e-9):
+        r = hs.compute_force(hull, hs.Pose(0.05, pitch), motion, slices=32, solver="mlm",
+                             acceleration=0.0)  # fmt: skip
+        assert r.total == pytest.approx(zero.total, rel=1e-7)
+        assert abs(r.total_x) <= 1e-6 * zero.total
+        assert abs(r.moment) <= 1e-6 * zero.total * 2.0  # the body's half-length, m
+
+
+def test_a_symmetric_body_dropped_level_with_free_pitch_stays_level():
+    # rounding pitches the sphere by 1e-16 rad or so: no moment may come of it
+    s = trimesh.creation.icosphere(subdivisions=4, radius=0.5)
+    hull = hs.Hull.from_arrays(s.vertices, s.faces, mass=100.0)
+    h = hs.simulate(hull, -3.0, 0.05, dt=5e-4, slices=32, solver="wagner", stop_on=(),
+                    free_pitch=True)  # fmt: skip
+    assert np.abs(h.pitch).max() < 1e-9
+    assert np.abs(h.moment).max() < 1e-6 * np.abs(h.force).max()

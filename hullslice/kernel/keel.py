@@ -246,7 +246,9 @@ class _Runs:
         return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
 
 
-def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) -> KeelLine:
+def lower_envelope(
+    a: np.ndarray, b: np.ndarray, loops: Callable | None = None, merge: float = 0.0
+) -> KeelLine:
     """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
 
     Evaluated exactly at every end point; where two segments cross between end points the
@@ -255,11 +257,12 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     abscissae and the lowest segment over each instead of numpy
     (``loops(xa, za, xb, zb) -> (xs, mid, z, zm)``, as
     :func:`hullslice.planecut_loops.envelope_loops`, compiled: the same numbers).
+    Break points closer than ``merge`` (m) are one (see :func:`refined`).
     """
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
-        return refined(xs, mid, z, zm)
+        return refined(xs, mid, z, zm, merge)
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
     if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
@@ -274,12 +277,21 @@ def lower_envelope(a: np.ndarray, b: np.ndarray, loops: Callable | None = None) 
     both = np.empty(len(xs) + len(mid))
     both[0::2], both[1::2] = xs, mid
     lowest = segments.lowest(both)
-    return refined(xs, mid, lowest[0::2], lowest[1::2])
+    return refined(xs, mid, lowest[0::2], lowest[1::2], merge)
 
 
-def refined(xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray) -> KeelLine:
+def refined(
+    xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray, merge: float = 0.0
+) -> KeelLine:
     """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
-    at the middles ``mid`` where the heights there, ``zm``, lie below the straight line."""
+    at the middles ``mid`` where the heights there, ``zm``, lie below the straight line.
+
+    Break points closer together than ``merge`` (m, the coordinate tolerance) are one
+    point, at their mean abscissa and their lowest height: vertices that share a station
+    at one pitch (a ring of a round body, port and starboard) part by ``height * pitch``
+    at another, and without the merge the facets between them, narrower than any
+    coordinate the mesh resolves, would stand in the slope's blend like real ones, so the
+    keel's slope would jump as the pitch leaves zero."""
     lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
@@ -289,6 +301,13 @@ def refined(xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray) -> K
         z = np.concatenate([z, zm[lower]])
         order = np.argsort(xs)
         xs, z = xs[order], z[order]
+    if merge > 0.0 and len(xs) > 1:
+        close = np.diff(xs) <= merge
+        if close.any():
+            first = np.flatnonzero(np.concatenate([[True], ~close]))
+            counts = np.diff(np.append(first, len(xs)))
+            xs = np.add.reduceat(xs, first) / counts
+            z = np.minimum.reduceat(z, first)
     return KeelLine(xs, z)
 
 
