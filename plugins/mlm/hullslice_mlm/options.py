@@ -53,7 +53,13 @@ def check_options(solver: Any, options: dict[str, Any]) -> tuple[float | None, b
         s["continuation"] = deg
         cont_tan = math.tan(math.radians(deg))
     s["smooth_edge_deg"] = _number(solver, "smooth_edge_deg", 0.0, 90.0, open_lo=True)
-    s["froude_min"] = _number(solver, "froude_min", 0.0, math.inf)
+    fr = s["froude_min"]
+    if not (isinstance(fr, Real) and not isinstance(fr, bool) and 0.0 < float(fr) < math.inf):
+        raise InputError(  # as the other solvers refuse it: zero would flag nothing
+            f"solver 'mlm': option froude_min={fr!r} is not a positive number: give one above "
+            f"0 (default {solver.options['froude_min']!r})"
+        )
+    s["froude_min"] = float(fr)
     grav = s["gravity"]
     if isinstance(grav, str) and grav.strip().lower() == "hulin":
         s["gravity"] = "hulin"
