@@ -98,6 +98,7 @@ class Tolerances:
         station at one pitch (a ring of a round body, port and starboard) part by their
         height difference times a pitch change, and at a pitch that differs from theirs by
         rounding (1e-12 rad) the facets between them are far thinner than the mesh resolves.
+        Only ties of that size: a real pitch's thin facets are left as they are.
     volume : float
         Relative difference of volumes treated as equal (overlapping-shell detection).
     flat : float
@@ -109,7 +110,7 @@ class Tolerances:
     merge: float = 1e-9
     merge_max: float = 1e-4
     merge_edge: float = 0.05
-    keel_merge: float = 1e-9
+    keel_merge: float = 1e-12
     volume: float = 1e-6
     flat: float = 1e-12
 

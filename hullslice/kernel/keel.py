@@ -286,7 +286,7 @@ def refined(
     """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
     at the middles ``mid`` where the heights there, ``zm``, lie below the straight line.
 
-    Break points closer together than ``merge`` (m, the coordinate tolerance) are one
+    Break points closer together than ``merge`` (m; a rounding-size tie) are one
     point, at their mean abscissa and their lowest height: vertices that share a station
     at one pitch (a ring of a round body, port and starboard) part by ``height * pitch``
     at another, and without the merge the facets between them, narrower than any
