@@ -16,7 +16,8 @@ def _number(solver: Any, key: str, lo: float, hi: float, *, open_lo: bool = Fals
     v = float(value) if ok else math.nan
     inside = math.isfinite(v) and (v > lo if open_lo else v >= lo) and v <= hi
     if not inside:
-        span = f"in ({lo:g}, {hi:g}]" if open_lo else f"in [{lo:g}, {hi:g}]"
+        close = "]" if math.isfinite(hi) else ")"  # finite values only
+        span = f"in ({lo:g}, {hi:g}{close}" if open_lo else f"in [{lo:g}, {hi:g}{close}"
         raise InputError(
             f"solver 'mlm': option {key}={value!r} is not a number {span} "
             f"(default {solver.options[key]!r})"
@@ -53,13 +54,8 @@ def check_options(solver: Any, options: dict[str, Any]) -> tuple[float | None, b
         s["continuation"] = deg
         cont_tan = math.tan(math.radians(deg))
     s["smooth_edge_deg"] = _number(solver, "smooth_edge_deg", 0.0, 90.0, open_lo=True)
-    fr = s["froude_min"]
-    if not (isinstance(fr, Real) and not isinstance(fr, bool) and 0.0 < float(fr) < math.inf):
-        raise InputError(  # as the other solvers refuse it: zero would flag nothing
-            f"solver 'mlm': option froude_min={fr!r} is not a positive number: give one above "
-            f"0 (default {solver.options['froude_min']!r})"
-        )
-    s["froude_min"] = float(fr)
+    # above zero, as the other solvers ask: zero would flag nothing
+    s["froude_min"] = _number(solver, "froude_min", 0.0, math.inf, open_lo=True)
     grav = s["gravity"]
     if isinstance(grav, str) and grav.strip().lower() == "hulin":
         s["gravity"] = "hulin"
