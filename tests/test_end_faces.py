@@ -104,6 +104,28 @@ def test_the_slope_does_not_blend_across_a_step_and_its_jump_is_not_curvature():
     assert bend.mean_curvature(np.array([1.0]), np.array([1.0]))[0] == pytest.approx(0.1, rel=1e-12)
 
 
+def test_an_end_face_turning_is_not_the_keels_curvature():
+    # a bottom on the parabola z = 0.05 x^2 (curvature 0.1 1/m) up to x = 1, then a tail's
+    # cap as a fan of micro-facets whose slopes turn from 20 to 1300 (a mesh's end face):
+    # a slice whose window reaches into the cap gets the bottom's own turn of slope only,
+    # the same as with the cap a single facet, and the cap has no local curvature
+    xb = np.linspace(0.0, 1.0, 21)
+    cap_slopes = np.array([20.0, 80.0, 300.0, 800.0, 1300.0])
+    xc = 1.0 + np.cumsum(np.full(len(cap_slopes), 0.004))
+    zc = 0.05 + np.cumsum(0.004 * cap_slopes)
+    fan = KeelLine(np.concatenate([xb, xc]), np.concatenate([0.05 * xb**2, zc]))
+    one = KeelLine(np.concatenate([xb, xc[-1:]]), np.concatenate([0.05 * xb**2, zc[-1:]]))
+    centres, width = np.array([0.5, 0.8, 0.95, 1.0, 1.01]), 0.5
+    # the continuous slope is 0.1 x up to the last bottom facet's middle, held beyond it
+    last = 0.5 * (xb[-1] + xb[-2])
+    lo, hi = centres - width / 2, np.minimum(centres + width / 2, last)
+    expected = 0.1 * (hi - lo) / width
+    np.testing.assert_allclose(fan.mean_curvature(centres, width), expected, rtol=1e-10)
+    np.testing.assert_allclose(one.mean_curvature(centres, width), expected, rtol=1e-10)
+    np.testing.assert_allclose(fan.curvature(xc[1:] - 0.002), 0.0, atol=1e-9)
+    assert fan.curvature(np.array([0.5]))[0] == pytest.approx(0.1, rel=1e-9)
+
+
 def spindle(offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """A 1 m body of revolution (radius 0.1 m, round ends) lying on z = 0, from x = offset."""
     x = np.linspace(0.0, 1.0, 41)

@@ -176,12 +176,16 @@ class _Runs:
 
     Kept as the slope with the jumps between runs taken out, ``C = s + offset``: ``C`` is
     continuous and piecewise linear between the facet middles (constant from a run's last
-    middle to the next run's first), and ``offset`` is constant over a run.
+    middle to the next run's first), and ``offset`` is constant over a run. The bottom's
+    own turn, ``B``, is ``C`` without the turns within the steep runs as well: an end
+    face's facets are not the keel's curve (a tail's cap, meshed as a fan of micro-facets,
+    turns from a slope of 800 to one of 1300 over a few centimetres, and that is no
+    curvature of the bottom a slice beside it stands on).
 
     Attributes
     ----------
-    mid, cont : (f,) float
-        Middles of the facets with a finite slope, in order, and ``C`` there.
+    mid, cont, bend : (f,) float
+        Middles of the facets with a finite slope, in order, and ``C`` and ``B`` there.
     starts : (r,) float
         Where each run after the first starts (the first break point of its first facet; a
         gap belongs to the run before it).
@@ -196,6 +200,7 @@ class _Runs:
     starts: np.ndarray
     offsets: np.ndarray
     steep: np.ndarray
+    bend: np.ndarray
 
     @classmethod
     def of(cls, x: np.ndarray, z: np.ndarray) -> _Runs:
@@ -206,7 +211,7 @@ class _Runs:
         if not finite.any():  # no facet with a slope: held at zero
             none = np.empty(0)
             return cls(mid[:1] if n else np.zeros(1), np.zeros(1), none, np.zeros(1),
-                       np.zeros(max(n, 1), dtype=bool))  # fmt: skip
+                       np.zeros(max(n, 1), dtype=bool), np.zeros(1))  # fmt: skip
         steep = finite & (np.abs(slopes) > END_FACE_SLOPE)
         fin = np.flatnonzero(finite)
         fmid, fslopes = mid[fin], slopes[fin]
@@ -221,7 +226,11 @@ class _Runs:
         start_facet = np.where(after_gap, fin[np.flatnonzero(new[1:])] + 1, first)
         starts = x[start_facet]
         offsets = np.concatenate([[0.0], offset[new]])
-        return cls(fmid, fslopes + offset, starts, offsets, steep)
+        cont = fslopes + offset
+        # the bottom's turn: ``C`` less the slope's steps from facet to facet within steep runs
+        turn = np.where(new[1:] | ~steep[fin][1:], 0.0, np.diff(fslopes))
+        bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
+        return cls(fmid, cont, starts, offsets, steep, bend)
 
     def _offset(self, x: np.ndarray) -> np.ndarray | float:
         if not len(self.starts):
@@ -233,14 +242,16 @@ class _Runs:
         return np.interp(x, self.mid, self.cont) - self._offset(x)
 
     def change(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
-        """The slope's change from ``a`` to ``b`` without the jumps between runs."""
-        return np.interp(b, self.mid, self.cont) - np.interp(a, self.mid, self.cont)
+        """The bottom's change of slope from ``a`` to ``b``: without the jumps between runs
+        and without the turns within steep runs."""
+        return np.interp(b, self.mid, self.bend) - np.interp(a, self.mid, self.bend)
 
     def curvature(self, x: np.ndarray) -> np.ndarray:
-        """The slope's derivative at ``x`` within its run (zero where held)."""
+        """The slope's derivative at ``x`` within a bottom run (zero where held and on
+        steep runs)."""
         if len(self.mid) < 2:
             return np.zeros(x.shape)
-        k = np.diff(self.cont) / np.diff(self.mid)
+        k = np.diff(self.bend) / np.diff(self.mid)
         j = np.searchsorted(self.mid, x, side="right") - 1
         inside = (j >= 0) & (j < len(k))
         return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
