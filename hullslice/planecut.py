@@ -198,13 +198,21 @@ class PlaneIndex:
         return station, face
 
     def ranges(
-        self, x_rel: np.ndarray, pitch: float, cg: np.ndarray
+        self, x_rel: np.ndarray, pitch: float, cg: np.ndarray, compiled: bool = False
     ) -> tuple[np.ndarray, np.ndarray]:
         """The candidate faces of :meth:`candidates` as ranges: ``(first, last)``, (s, b)
         arrays, the faces ``first[i, j] .. last[i, j] - 1`` of bin ``j`` for station ``i``
-        (none where ``last <= first``)."""
+        (none where ``last <= first``); ``compiled``: searched by numba's loops where numba
+        serves (:func:`~hullslice.planecut_loops.range_loops`: the same indices)."""
         c, s = np.cos(pitch), np.sin(pitch)
         x_rel = np.asarray(x_rel, dtype=np.float64)
+        search = planecut_loops.compiled("ranges") if compiled else None
+        if search is not None:  # the same arithmetic and indices by loops
+            return search(
+                self.key, self.bin_start, self.bin_zlo, self.bin_zhi, self.bin_reach, x_rel,
+                float(cg[0]), float(cg[2]), float(c), float(s), self.margin, self.key_span,
+                self.key_x0,
+            )  # fmt: skip
         # body x of each plane at a bin's lowest and highest z: r_x = (x_rel + r_z s) / c
         za = (self.bin_zlo - cg[2]) * s
         zb = (self.bin_zhi - cg[2]) * s
@@ -249,7 +257,8 @@ class PlaneIndex:
         c, s = np.cos(pitch), np.sin(pitch)
         loops = _loops(path)
         if loops is not None:
-            first, last = self.ranges(x_rel, pitch, cg)
+            compiled = loops is not planecut_loops.cut_loops
+            first, last = self.ranges(x_rel, pitch, cg, compiled=compiled)
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
         station, face = self.candidates(x_rel, pitch, cg)
         corner = self.faces[face]  # (q, 3)

@@ -165,6 +165,48 @@ def cut_loops(
     return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], status
 
 
+def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s, margin, span, x0):
+    """:meth:`hullslice.planecut.PlaneIndex.ranges` by loops, with the same arithmetic:
+    for each station ``i`` and bin ``b``, the body ``x`` of the plane at the bin's lowest
+    and highest ``z`` widened by the bin's reach and ``margin``, as keys (``b * span`` plus
+    the ``x`` from ``x0``, clipped to half the span), and the first of the bin's faces
+    whose key is not below the lower key and the first whose key is above the upper one,
+    searched among the bin's own faces ``bin_start[b] .. bin_start[b + 1] - 1`` (a bin's
+    keys lie in its own band: the same indices as a search of all the keys). Returns
+    ``(first, last)``, (stations, bins)."""
+    nb = len(bin_zlo)
+    n_st = len(x_rel)
+    first = np.empty((n_st, nb), dtype=np.int64)
+    last = np.empty((n_st, nb), dtype=np.int64)
+    half = 0.5 * span
+    for b in range(nb):
+        za = (bin_zlo[b] - gz) * s
+        zb = (bin_zhi[b] - gz) * s
+        base = b * span
+        for i in range(n_st):
+            xa = gx + (x_rel[i] + za) / c
+            xb = gx + (x_rel[i] + zb) / c
+            lo = min(max(min(xa, xb) - bin_reach[b] - margin - x0, 0.0), half) + base
+            hi = min(max(max(xa, xb) + margin - x0, 0.0), half) + base
+            lo_i, hi_i = bin_start[b], bin_start[b + 1]
+            while lo_i < hi_i:
+                m = (lo_i + hi_i) // 2
+                if key[m] < lo:
+                    lo_i = m + 1
+                else:
+                    hi_i = m
+            first[i, b] = lo_i
+            hi_i = bin_start[b + 1]
+            while lo_i < hi_i:
+                m = (lo_i + hi_i) // 2
+                if key[m] <= hi:
+                    lo_i = m + 1
+                else:
+                    hi_i = m
+            last[i, b] = lo_i
+    return first, last
+
+
 def lowest_loops(xs, xa, za, xb, zb):
     """The lowest height of the segments from ``(xa, za)`` to ``(xb, zb)`` over each of the
     sorted abscissae ``xs`` (``inf`` where none): a vertical segment's lower end, else the
@@ -383,6 +425,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
 LOOPS["outline"] = outline_loops
 LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
+LOOPS["ranges"] = range_loops
 #: The loops that others call, by caller: compiled in this module's namespace before it
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
 CALLS = {"envelope": ("lowest",), "side": ("lowest", "envelope")}

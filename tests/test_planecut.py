@@ -234,6 +234,59 @@ def test_the_compiled_path_equals_numpy(name):
     assert diff <= 1e-12 * CUTTER_SIZE
 
 
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_the_candidate_ranges_by_the_loops_equal_numpy(name):
+    """The candidate faces' ranges searched bin by bin by the loops (run as Python, and
+    compiled where numba is installed) are numpy's search of all the keys, index for
+    index, at pitches from -40 to 40 degrees and stations before, along and past the
+    body."""
+    hull = BODIES[name]
+    index = plane_index(hull)
+    g = np.asarray(hull.cg, dtype=np.float64)
+    x0, x1 = (float(v) - g[0] for v in hull.bounds[:, 0])
+    rng = np.random.default_rng(7)
+    for pitch in np.radians([-40.0, -3.0, 0.0, 1e-9, 6.0, 17.0, 40.0]):
+        x = np.sort(rng.uniform(x0 - 0.2 * (x1 - x0), x1 + 0.2 * (x1 - x0), 37))
+        want = index.ranges(x, pitch, g)
+        c, s = np.cos(pitch), np.sin(pitch)
+        args = (index.key, index.bin_start, index.bin_zlo, index.bin_zhi, index.bin_reach, x,
+                float(g[0]), float(g[2]), float(c), float(s), index.margin, index.key_span,
+                index.key_x0)  # fmt: skip
+        got = [planecut_loops.range_loops(*args)]
+        if planecut_loops.available():
+            got.append(index.ranges(x, pitch, g, compiled=True))
+        for first, last in got:
+            np.testing.assert_array_equal(first, want[0])
+            np.testing.assert_array_equal(last, want[1])
+
+
+def test_the_candidate_ranges_by_the_loops_break_ties_as_numpy():
+    """Where a bound equals a face's key exactly (faces sharing keys, the bound one margin
+    from the station), the loops' first face is the first key not below the lower bound
+    and their last the first key above the upper one, as numpy's search gives them."""
+    import dataclasses
+
+    rng = np.random.default_rng(3)
+    nb, span = 3, 64.0
+    t = [np.sort(rng.integers(0, 64, 40)) * 0.25 for _ in range(nb)]  # ties in every bin
+    key = np.concatenate([b * span + tb for b, tb in enumerate(t)])
+    start = np.concatenate([[0], np.cumsum([len(tb) for tb in t])])
+    index = dataclasses.replace(
+        plane_index(BODIES["wedge"]), key=key, bin_start=start, bin_zlo=np.zeros(nb),
+        bin_zhi=np.zeros(nb), bin_reach=np.zeros(nb), margin=0.25, key_span=span, key_x0=0.0,
+    )  # fmt: skip
+    x = np.arange(-4, 72) * 0.25  # every bound on a key's value, some before and past all
+    want = index.ranges(x, 0.0, np.zeros(3))
+    args = (key, start, index.bin_zlo, index.bin_zhi, index.bin_reach, x, 0.0, 0.0, 1.0, 0.0,
+            0.25, span, 0.0)  # fmt: skip
+    got = [planecut_loops.range_loops(*args)]
+    if planecut_loops.available():
+        got.append(index.ranges(x, 0.0, np.zeros(3), compiled=True))
+    for first, last in got:
+        np.testing.assert_array_equal(first, want[0])
+        np.testing.assert_array_equal(last, want[1])
+
+
 OUTLINED = ["fuselage_model.obj", "fuselage_full.obj", "cylinder", "asymmetric wedge",
             "paper prism, flipped diagonals"]  # fmt: skip
 
