@@ -126,6 +126,38 @@ def test_an_end_face_turning_is_not_the_keels_curvature():
     assert fan.curvature(np.array([0.5]))[0] == pytest.approx(0.1, rel=1e-9)
 
 
+def _polyline(slopes_and_widths, x0: float = 0.0) -> KeelLine:
+    """A keel line of facets given as (slope, width) pairs from ``(x0, 0)``."""
+    slopes, widths = np.array(slopes_and_widths, dtype=float).T
+    x = x0 + np.concatenate([[0.0], np.cumsum(widths)])
+    return KeelLine(x, np.concatenate([[0.0], np.cumsum(slopes * widths)]))
+
+
+@pytest.mark.parametrize(
+    "corner",
+    [
+        [(-2.5, 0.0004), (-9.0, 0.009)],  # a step's corner at a pitch: 0.4 mm at -2.5, then -9
+        [(2.0, 0.02)],  # a step's face leaned below END_FACE_SLOPE by the pitch
+        [(1.2, 0.004), (3.0, 0.004), (30.0, 0.01)],  # an end face rounding to vertical
+    ],
+)
+def test_a_corner_steeper_than_45_degrees_is_not_the_keels_curvature(corner):
+    # straight bottoms (slopes 0.1 and -0.23, facets of 5 cm) on either side of a corner
+    # whose facets are steeper than 45 degrees: over any window the bottom does not turn
+    # (the step from one bottom to the other is the corner's, as at a single steep
+    # facet), and the corner has no local curvature
+    before, after = [(0.1, 0.05)] * 20, [(-0.23, 0.05)] * 20
+    line = _polyline(before + corner + after)
+    centres = np.array([0.6, 0.8, 0.95, 1.0, 1.004, 1.01, 1.2])
+    np.testing.assert_allclose(line.mean_curvature(centres, 0.5), 0.0, atol=1e-9)
+    width = sum(w for _, w in corner)
+    inside = 1.0 + np.linspace(0.05, 0.95, 5) * width
+    np.testing.assert_allclose(line.curvature(inside), 0.0, atol=1e-9)
+    # a bottom that does turn keeps its curvature up to the corner
+    bent = _polyline([(0.1 + 0.01 * i, 0.05) for i in range(20)] + corner + after)
+    assert bent.mean_curvature(np.array([0.5]), 0.4)[0] == pytest.approx(0.2, rel=1e-9)
+
+
 def spindle(offset: float = 0.0) -> tuple[np.ndarray, np.ndarray]:
     """A 1 m body of revolution (radius 0.1 m, round ends) lying on z = 0, from x = offset."""
     x = np.linspace(0.0, 1.0, 41)

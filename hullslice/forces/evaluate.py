@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 
 from ..errors import HullsliceError, InputError, SolverError
-from ..kernel.keel import END_FACE_SLOPE
+from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..limits import no_mass
 from ..safety import failure, plugin_code
 from ..sections import Sections
@@ -40,8 +40,6 @@ MASSLESS_REASON = "no mass per metre at this station (the mass distribution puts
 #: Smallest deadrise a solver is given, rad: a flat bottom is computed as this, flagged.
 MIN_DEADRISE = float(np.radians(1.0))
 FLAT_REASON = "deadrise below 1 deg (a flat bottom): computed at 1 deg, outside the wedge theory"
-#: A keel line steeper than this (tan 45 deg) is no slender body's bottom.
-STEEP_SLOPE = 1.0
 STEEP_REASON = (
     "keel steeper than 45 deg (a blunt bow or tail): outside the slender-body theory, "
     "computed and flagged"

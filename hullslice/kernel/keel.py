@@ -13,11 +13,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-__all__ = ["END_FACE_SLOPE", "KeelLine", "lower_envelope"]
+__all__ = ["END_FACE_SLOPE", "STEEP_SLOPE", "KeelLine", "lower_envelope"]
 
 #: Slope of the side view beyond which a facet at an end of the keel line is an end face
 #: (a transom, a blunt bow or tail; tan 75 deg), not the bottom.
 END_FACE_SLOPE = float(np.tan(np.radians(75.0)))
+#: Slope of the side view beyond which the keel line is no slender body's bottom (tan 45
+#: deg): a section there is flagged, and a facet's turning there is no curvature of the
+#: bottom (a corner between the bottom and a step's or an end face's edge seen at the
+#: pitch, or such a face itself once the pitch leans it below END_FACE_SLOPE).
+STEEP_SLOPE = 1.0
 
 
 @dataclass(frozen=True, eq=False)
@@ -177,10 +182,14 @@ class _Runs:
     Kept as the slope with the jumps between runs taken out, ``C = s + offset``: ``C`` is
     continuous and piecewise linear between the facet middles (constant from a run's last
     middle to the next run's first), and ``offset`` is constant over a run. The bottom's
-    own turn, ``B``, is ``C`` without the turns within the steep runs as well: an end
-    face's facets are not the keel's curve (a tail's cap, meshed as a fan of micro-facets,
-    turns from a slope of 800 to one of 1300 over a few centimetres, and that is no
-    curvature of the bottom a slice beside it stands on).
+    own turn, ``B``, is ``C`` without the turns onto, off and between facets steeper than
+    :data:`STEEP_SLOPE` as well: an end face's or a step's facets are not the keel's curve.
+    A tail's cap, meshed as a fan of micro-facets, turns from a slope of 800 to one of 1300
+    over a few centimetres; the corner of a step in an airliner's belly is, at some pitches,
+    a facet of 0.4 mm with a slope of -2.5 between the bottom's 0.1 and the step's -9; a
+    step's face leaned by a pitch of more than 15 degrees has a slope below
+    :data:`END_FACE_SLOPE`. None of these is a curvature of the bottom a slice beside it
+    stands on.
 
     Attributes
     ----------
@@ -227,8 +236,10 @@ class _Runs:
         starts = x[start_facet]
         offsets = np.concatenate([[0.0], offset[new]])
         cont = fslopes + offset
-        # the bottom's turn: ``C`` less the slope's steps from facet to facet within steep runs
-        turn = np.where(new[1:] | ~steep[fin][1:], 0.0, np.diff(fslopes))
+        # the bottom's turn: ``C`` less the slope's steps from facet to facet within a run
+        # onto or off a facet steeper than STEEP_SLOPE (every step within a steep run)
+        leaning = np.abs(fslopes) > STEEP_SLOPE
+        turn = np.where(new[1:] | ~(leaning[1:] | leaning[:-1]), 0.0, np.diff(fslopes))
         bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
         return cls(fmid, cont, starts, offsets, steep, bend)
 
@@ -243,12 +254,13 @@ class _Runs:
 
     def change(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """The bottom's change of slope from ``a`` to ``b``: without the jumps between runs
-        and without the turns within steep runs."""
+        and without the turns onto, off and between facets steeper than
+        :data:`STEEP_SLOPE`."""
         return np.interp(b, self.mid, self.bend) - np.interp(a, self.mid, self.bend)
 
     def curvature(self, x: np.ndarray) -> np.ndarray:
-        """The slope's derivative at ``x`` within a bottom run (zero where held and on
-        steep runs)."""
+        """The slope's derivative at ``x`` within a bottom run (zero where held, and where
+        the slope turns onto, off or between facets steeper than :data:`STEEP_SLOPE`)."""
         if len(self.mid) < 2:
             return np.zeros(x.shape)
         k = np.diff(self.bend) / np.diff(self.mid)
