@@ -185,11 +185,11 @@ class _Runs:
     own turn, ``B``, is ``C`` without the turns onto, off and between facets steeper than
     :data:`STEEP_SLOPE` as well: an end face's or a step's facets are not the keel's curve.
     A tail's cap, meshed as a fan of micro-facets, turns from a slope of 800 to one of 1300
-    over a few centimetres; the corner of a step in an airliner's belly is, at some pitches,
-    a facet of 0.4 mm with a slope of -2.5 between the bottom's 0.1 and the step's -9; a
-    step's face leaned by a pitch of more than 15 degrees has a slope below
-    :data:`END_FACE_SLOPE`. None of these is a curvature of the bottom a slice beside it
-    stands on.
+    over a few centimetres; where an airliner's keel line passes from the fuselage's
+    bottom down to a nacelle's lip, its corner is at some pitches a facet of 0.4 mm with a
+    slope of -2.5 between the bottom's 0.1 and the lip's face's -9; a step's face leaned
+    by a pitch of more than 15 degrees has a slope below :data:`END_FACE_SLOPE`. None of
+    these is a curvature of the bottom a slice beside it stands on.
 
     Attributes
     ----------
