@@ -30,6 +30,7 @@ __all__ = [
     "MAX_STEPS",
     "WARN_ROUNDING",
     "check_cg_in_body",
+    "check_cg_near_body",
     "check_density",
     "check_mass_on_body",
     "check_pitch",
@@ -141,6 +142,26 @@ def check_cg_in_body(cg: np.ndarray, bounds: np.ndarray, name: str) -> None:
         f"({cg[0]:.6g}, {cg[1]:.6g}) m lies outside the body, x = {_span(lo[0], hi[0])}, "
         f"z = {_span(lo[1], hi[1])}: give its masses' x and z in the body frame (m, x "
         "forward, z up, after the mesh's units and axes)"
+    )
+
+
+def check_cg_near_body(cg: np.ndarray, bounds: np.ndarray, name: str) -> None:
+    """Refuse a centre of gravity ``cg = (x, y, z)`` (m) given apart from a mass
+    distribution that lies farther from the body's bounding box ``bounds`` ((2, 3), m)
+    than the box's diagonal: no body's centre of gravity is that far off (a hull meshed
+    without its upper works has its centre above the mesh, but within its size); the
+    numbers are in other units or another frame."""
+    lo, hi = np.asarray(bounds, dtype=np.float64)
+    size = float(np.linalg.norm(hi - lo))
+    off = float(np.linalg.norm(np.maximum(np.maximum(lo - cg, cg - hi), 0.0)))
+    if off <= size:
+        return
+    raise InputError(
+        f"hull {name!r}: the centre of gravity ({cg[0]:.6g}, {cg[1]:.6g}, {cg[2]:.6g}) m "
+        f"lies {off:.6g} m off the body (x = {_span(lo[0], hi[0])}, y = "
+        f"{_span(lo[1], hi[1])}, z = {_span(lo[2], hi[2])}), more than its size "
+        f"({size:.6g} m): give it in the body frame (m, x forward, z up, after the mesh's "
+        "units and axes; --cg X,Z)"
     )
 
 

@@ -20,7 +20,7 @@ import numpy as np
 from .axes import axis_matrix, unit_scale
 from .caching import Cache
 from .errors import MeshError, MeshRepairWarning
-from .limits import check_density, check_precision, no_mass
+from .limits import check_cg_near_body, check_density, check_precision, no_mass
 from .mass import MassDistribution, MassProperties, fit_to_body
 from .paths import printable
 from .prepare import prepare_arrays
@@ -112,6 +112,8 @@ class Hull:
         dist = props.distribution  # checked against the body, and spread along it
         self.mass_distribution = dist and fit_to_body(dist, self.bounds, self.centroid[2],
                                                       self.name)  # fmt: skip
+        if props.cg is not None:
+            check_cg_near_body(props.cg, self.bounds, self.name)
         self._cg_given = props.cg
         self._inertia_given = props.inertia
         if self.mass is not None and props.distribution is None:

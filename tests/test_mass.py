@@ -90,6 +90,21 @@ def test_given_cg_and_inertia_override(fuselage):
     assert hull.pitch_inertia == 3.0e6
 
 
+def test_a_cg_far_off_the_body_is_refused(fuselage, capsys):
+    # a centre of gravity more than the body's size off its box is another unit or frame;
+    # one above the mesh, within its size (a hull meshed without its upper works), is not
+    lo, hi = fuselage.bounds
+    size = float(np.linalg.norm(hi - lo))
+    above = (0.5 * (lo[0] + hi[0]), hi[2] + 0.9 * size)
+    assert fuselage.with_mass(6e4, cg=above).cg[2] == pytest.approx(above[1])
+    with pytest.raises(hs.InputError, match=f"lies {1.1 * size:.6g} m off the body .* more than"):
+        fuselage.with_mass(6e4, cg=(0.5 * (lo[0] + hi[0]), hi[2] + 1.1 * size))
+    rc = main(["simulate", str(MESHES / "paper_prism.stl"), "--mass", "1", "--velocity=-3",
+               "--t-end", "0.01", "--cg", "100,0"])  # fmt: skip
+    err = capsys.readouterr().err.strip().splitlines()
+    assert rc != 0 and len(err) == 1 and "99.65 m off the body" in err[0], err
+
+
 def test_distribution_and_mass_must_agree(fuselage):
     dist = MassDistribution(x=[0.0, 10.0], mass_per_metre=[100.0, 100.0])
     with pytest.raises(hs.InputError, match="adds up to 1000 kg but the mass is given as 2000"):
