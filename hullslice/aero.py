@@ -21,27 +21,33 @@ Three models, by name (:data:`AERO_MODELS`):
     Lift equal to a share of the weight at touchdown (``fraction``, 1 by default), the
     shortcut of ditching studies: ``L = fraction m g (V / V_0)^2 alpha / alpha_0``, the
     lift coefficient linear in the angle of attack through zero lift at ``alpha = 0`` and
-    the dynamic pressure that of the speed. No drag and no moment.
+    the dynamic pressure that of the speed, up to the wing's stall: beyond ``stall_deg``
+    (15 degrees by default; a transport wing with its flaps down stalls at about 12 to 16
+    degrees) the lift coefficient stays at its value there. No drag and no moment.
 ``coefficients``
     The lift, drag and moment of given coefficients on a reference area ``S`` and chord
     ``c``, at the air's dynamic pressure ``q = rho_air V^2 / 2``: ``L = q S (C_L0 +
-    C_La alpha)``, ``D = q S C_D``, ``M = q S c (C_m0 + C_ma alpha + C_mq q_b c / (2 V))``
+    C_La alpha)`` (held within ``+-C_L,max`` where that is given: the stall),
+    ``D = q S C_D``, ``M = q S c (C_m0 + C_ma alpha + C_mq q_b c / (2 V))``
     with the pitch rate ``q_b`` (rad/s), and an optional thrust ``T`` along the body's axis.
 """
 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 from numbers import Real
 
-from .errors import InputError
+from .errors import HullsliceWarning, InputError
 
 __all__ = [
     "AERO_MODELS",
     "AERO_NUMBERS",
     "AIR_DENSITY",
     "COEFFICIENTS",
+    "FLAT_TOUCHDOWN_DEG",
+    "STALL_DEG",
     "AeroForces",
     "Aerodynamics",
     "Coefficients",
@@ -68,10 +74,13 @@ AERO_MODELS: dict[str, str] = {
 #: what it is).
 AERO_NUMBERS: tuple[tuple[str, str, str], ...] = (
     ("lift_fraction", "", "share of the weight the lift carries at touchdown, 0 to 2"),
+    ("stall_deg", "deg", "angle of attack beyond which the lift coefficient stays at its "
+     "value there (the wing's stall), 0 to 90"),
     ("wing_area", "m^2", "reference (wing) area"),
     ("wing_chord", "m", "reference (mean aerodynamic) chord"),
     ("cl0", "", "lift coefficient at zero angle of attack"),
     ("cl_alpha", "1/rad", "lift-curve slope"),
+    ("cl_max", "", "largest lift coefficient, held beyond it (the stall)"),
     ("cd", "", "drag coefficient"),
     ("cm0", "", "pitch-moment coefficient about the centre of gravity at zero angle of "
      "attack, nose up"),
@@ -143,26 +152,49 @@ class NoAerodynamics(Aerodynamics):
         return AeroForces()
 
 
+#: The weight model's default stall: the angle of attack, deg, beyond which its lift
+#: coefficient stays at its value there (a transport wing with its flaps down stalls at
+#: about 12 to 16 degrees).
+STALL_DEG = 15.0
+
+
+#: The weight model's touchdown angle of attack, deg, below which its lift's growth with
+#: the angle (``1 / alpha_0``: 50 % of itself per degree here) is far steeper than a wing's
+#: and is warned of.
+FLAT_TOUCHDOWN_DEG = 2.0
+
+
 class WeightLift(Aerodynamics):
     """Lift equal to ``fraction`` of the weight at touchdown, scaled with the speed squared
-    and the angle of attack (zero lift at zero angle) from then on.
+    and the angle of attack (zero lift at zero angle) from then on, up to the stall.
 
     Parameters
     ----------
     fraction : float
         Share of the weight the lift carries at touchdown, in [0, 2] (default 1).
+    stall_deg : float
+        Angle of attack, deg, in (0, 90], beyond which (either way) the lift coefficient
+        stays at its value there (default :data:`STALL_DEG`).
     """
 
     name = "weight"
 
-    def __init__(self, fraction: float = 1.0) -> None:
+    def __init__(self, fraction: float = 1.0, stall_deg: float = STALL_DEG) -> None:
         f = _number(fraction, "lift fraction", "", fix=" in [0, 2] (1: the weight)")
         if not 0.0 <= f <= 2.0:
             raise InputError(
                 f"lift fraction {fraction!r} is not in [0, 2]: give the share of the weight "
                 "the wing carries at touchdown (1: the weight)"
             )
+        stall = _number(stall_deg, "stall angle", " deg", low=0.0, fix=" up to 90 (15: a "
+                        "transport wing with its flaps down)")  # fmt: skip
+        if stall > 90.0:
+            raise InputError(
+                f"stall angle {stall_deg!r} deg is above 90: give the angle of attack at "
+                "which the wing's lift stops growing (15: a transport wing with its flaps down)"
+            )
         self.fraction = f
+        self.stall_deg = stall
         self._lift0 = math.nan
         self._speed0 = math.nan
         self._alpha0 = math.nan
@@ -175,7 +207,24 @@ class WeightLift(Aerodynamics):
                 f"pitch {math.degrees(theta):.4g} deg is {math.degrees(alpha):.4g} deg above the "
                 "flight path; pitch the body up, or give the lift's coefficients"
             )
-        out = WeightLift(self.fraction)
+        stall = math.radians(self.stall_deg)
+        if self.fraction > 0.0 and alpha > stall:
+            raise InputError(
+                f"lift equal to the weight at touchdown at an angle of attack of "
+                f"{math.degrees(alpha):.4g} deg, above the stall at {self.stall_deg:.4g} deg: "
+                "pitch the body down, or give the stall angle (--stall-deg)"
+            )
+        if self.fraction > 0.0 and alpha < math.radians(FLAT_TOUCHDOWN_DEG):
+            deg = math.degrees(alpha)
+            warnings.warn(
+                f"lift equal to the weight at an angle of attack of {deg:.3g} deg: it then "
+                f"grows by {100 / deg:.3g} % of itself per degree, where a transport wing's "
+                "grows by about 9 % (C_L,alpha about 5 per rad at C_L about 1); for a touchdown "
+                "this flat give the wing's coefficients (--lift coefficients)",
+                HullsliceWarning,
+                stacklevel=2,
+            )
+        out = WeightLift(self.fraction, self.stall_deg)
         out._lift0, out._speed0, out._alpha0 = self.fraction * mass * g, speed, alpha
         return out
 
@@ -183,12 +232,14 @@ class WeightLift(Aerodynamics):
         speed, gamma, alpha = path(u, w, theta)
         if self.fraction == 0.0 or not math.isfinite(self._lift0):
             return AeroForces(alpha=alpha)
-        lift = self._lift0 * (speed / self._speed0) ** 2 * alpha / self._alpha0
+        stall = math.radians(self.stall_deg)
+        held = min(max(alpha, -stall), stall)  # the stalled wing's coefficient stays
+        lift = self._lift0 * (speed / self._speed0) ** 2 * held / self._alpha0
         fx, fz = _earth(lift, 0.0, gamma)
         return AeroForces(fx, fz, 0.0, lift, 0.0, alpha)
 
     def settings(self) -> dict[str, object]:
-        return {"aero": self.name, "lift_fraction": self.fraction}
+        return {"aero": self.name, "lift_fraction": self.fraction, "stall_deg": self.stall_deg}
 
 
 class Coefficients(Aerodynamics):
@@ -202,6 +253,9 @@ class Coefficients(Aerodynamics):
         Reference (mean aerodynamic) chord ``c``, m, positive.
     cl0, cl_alpha : float
         Lift coefficient at zero angle of attack, and its slope per rad.
+    cl_max : float, optional
+        Largest lift coefficient, positive: the lift coefficient is held within
+        ``+-cl_max`` (the stall). Default: none.
     cd : float
         Drag coefficient, >= 0.
     cm0, cm_alpha : float
@@ -230,6 +284,7 @@ class Coefficients(Aerodynamics):
         cm_q: float = 0.0,
         thrust: float = 0.0,
         rho_air: float = AIR_DENSITY,
+        cl_max: float | None = None,
     ) -> None:
         self.area = _number(area, "reference area", " m^2", low=0.0, fix=" (the wing's, e.g. 122)")
         self.chord = _number(chord, "reference chord", " m", low=0.0, fix=" (e.g. 4.2)")
@@ -245,11 +300,21 @@ class Coefficients(Aerodynamics):
         if self.thrust < 0.0:
             raise InputError(f"thrust {thrust!r} N is negative: give zero or a forward thrust")
         self.rho_air = _number(rho_air, "air density", " kg/m^3", low=0.0, fix=" (1.225)")
+        self.cl_max = (
+            None
+            if cl_max is None
+            else _number(
+                cl_max, "C_L,max", "", low=0.0, fix=" (the wing's largest lift coefficient)"
+            )
+        )
 
     def forces(self, theta: float, u: float, w: float, q: float) -> AeroForces:
         speed, gamma, alpha = path(u, w, theta)
         qs = 0.5 * self.rho_air * speed * speed * self.area
-        lift = qs * (self.cl0 + self.cl_alpha * alpha)
+        cl = self.cl0 + self.cl_alpha * alpha
+        if self.cl_max is not None:  # the stalled wing's coefficient stays
+            cl = min(max(cl, -self.cl_max), self.cl_max)
+        lift = qs * cl
         drag = qs * self.cd
         rate = q * self.chord / (2.0 * speed) if speed > 0 else 0.0
         moment = qs * self.chord * (self.cm0 + self.cm_alpha * alpha + self.cm_q * rate)
@@ -261,12 +326,16 @@ class Coefficients(Aerodynamics):
     def settings(self) -> dict[str, object]:
         keys = ("area", "chord", "cl0", "cl_alpha", "cd", "cm0", "cm_alpha", "cm_q", "thrust",
                 "rho_air")  # fmt: skip
-        return {"aero": self.name, **{k: getattr(self, k) for k in keys}}
+        out = {"aero": self.name, **{k: getattr(self, k) for k in keys}}
+        if self.cl_max is not None:
+            out["cl_max"] = self.cl_max
+        return out
 
 
 def aero_model(spec: Aerodynamics | str | None = None, **options) -> Aerodynamics:
     """An aerodynamic model: one given, or one by name of :data:`AERO_MODELS` with its
-    options (``weight``: ``fraction``; ``coefficients``: those of :class:`Coefficients`)."""
+    options (``weight``: ``fraction``, ``stall_deg``; ``coefficients``: those of
+    :class:`Coefficients`)."""
     if isinstance(spec, Aerodynamics):
         return spec
     name = "none" if spec is None else str(spec).strip().lower()
@@ -275,8 +344,10 @@ def aero_model(spec: Aerodynamics | str | None = None, **options) -> Aerodynamic
             raise InputError(f"the aerodynamic model 'none' takes no options ({sorted(options)})")
         return NoAerodynamics()
     if name == "weight":
-        if set(options) - {"fraction"}:
-            raise InputError(f"the aerodynamic model 'weight' takes only a fraction ({options})")
+        if set(options) - {"fraction", "stall_deg"}:
+            raise InputError(
+                f"the aerodynamic model 'weight' takes only a fraction and a stall_deg ({options})"
+            )
         return WeightLift(**options)
     if name == "coefficients":
         if "area" not in options or "chord" not in options:
@@ -295,21 +366,26 @@ def aero_model(spec: Aerodynamics | str | None = None, **options) -> Aerodynamic
 #: :class:`Coefficients`.
 COEFFICIENTS = {
     "wing_area": "area", "wing_chord": "chord", "cl0": "cl0", "cl_alpha": "cl_alpha",
-    "cd": "cd", "cm0": "cm0", "cm_alpha": "cm_alpha", "cm_q": "cm_q", "thrust": "thrust",
+    "cl_max": "cl_max", "cd": "cd", "cm0": "cm0", "cm_alpha": "cm_alpha", "cm_q": "cm_q",
+    "thrust": "thrust",
 }  # fmt: skip
 
 
 def model_of(
-    lift: str | None, fraction: float | None, coefficients: dict[str, float | None]
+    lift: str | None,
+    fraction: float | None,
+    coefficients: dict[str, float | None],
+    stall_deg: float | None = None,
 ) -> Aerodynamics:
-    """The model of a case's or a command line's ``lift``, ``lift_fraction`` and
-    coefficients (by the keys of :data:`COEFFICIENTS`; None where not given).
+    """The model of a case's or a command line's ``lift``, ``lift_fraction``,
+    ``stall_deg`` and coefficients (by the keys of :data:`COEFFICIENTS`; None where not
+    given).
 
     Raises
     ------
     InputError
-        Coefficients without ``lift = coefficients``, a fraction without ``lift = weight``,
-        or a value the model refuses.
+        Coefficients without ``lift = coefficients``, a fraction or a stall angle without
+        ``lift = weight``, or a value the model refuses.
     """
     name = (lift or "none").strip().lower()
     given = {k: v for k, v in coefficients.items() if v is not None}
@@ -320,8 +396,15 @@ def model_of(
         raise InputError(
             "--lift-fraction is the share of the weight of --lift weight; give that too"
         )
+    if stall_deg is not None and name != "weight":
+        raise InputError(
+            "--stall-deg is the stall of --lift weight; give that too (with --lift "
+            "coefficients, --cl-max)"
+        )
     if name == "weight":
-        return aero_model(name, **({} if fraction is None else {"fraction": fraction}))
+        options = {k: v for k, v in (("fraction", fraction), ("stall_deg", stall_deg))
+                   if v is not None}  # fmt: skip
+        return aero_model(name, **options)
     if name == "coefficients":
         return aero_model(name, **{COEFFICIENTS[k]: v for k, v in given.items()})
     return aero_model(name)

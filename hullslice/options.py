@@ -164,12 +164,14 @@ def _choice(name, unit, what, choices, default=None, commands=_ALL, cli=None, **
 
 
 def _aero(name: str, unit: str, what: str) -> Option:
-    model = "weight" if name == "lift_fraction" else "coefficients"
-    given = name in ("wing_area", "wing_chord")
-    default = "" if given else f" (default: {int(model == 'weight')})"
+    model = "weight" if name in ("lift_fraction", "stall_deg") else "coefficients"
+    default = {"wing_area": "", "wing_chord": "", "lift_fraction": " (default: 1)",
+               "stall_deg": " (default: 15)", "cl_max": " (default: none)"}.get(
+        name, " (default: 0)")  # fmt: skip
     in_unit = f", in {unit}" if unit else ""
     check = {"wing_area": _positive, "wing_chord": _positive, "cd": _not_negative,
-             "thrust": _not_negative}.get(name)  # fmt: skip
+             "thrust": _not_negative, "stall_deg": _positive, "cl_max": _positive}.get(
+        name)  # fmt: skip
     help = f"with --lift {model}: {what}{in_unit}{default}"
     return Option(name, "number", unit, what, None, check, _SIM,
                   cli={"metavar": unit.upper() or "C", "help": help})  # fmt: skip

@@ -69,6 +69,36 @@ def test_the_weight_lift_scales_with_the_speed_squared_and_the_angle():
     assert later.force_z == pytest.approx(expected, rel=1e-13)  # a level path: lift is up
 
 
+def test_the_weight_lift_stays_at_its_stall_value_beyond_the_stall():
+    # linear up to the stall angle of attack, held there beyond it (either way)
+    model = WeightLift(1.0, stall_deg=12.0).start(1000.0, 9.81, math.radians(6.0), 50.0, 0.0)
+    w = 1000.0 * 9.81
+    at_stall = model.forces(math.radians(12.0), 50.0, 0.0, 0.0).lift
+    assert at_stall == pytest.approx(2.0 * w, rel=1e-13)
+    for deg in (12.5, 20.0, 45.0):
+        assert model.forces(math.radians(deg), 50.0, 0.0, 0.0).lift == at_stall
+    assert model.forces(math.radians(-30.0), 50.0, 0.0, 0.0).lift == -at_stall
+    # the default stall is 15 deg; a lift coefficient cap holds the coefficients' model
+    default = WeightLift().start(1000.0, 9.81, math.radians(5.0), 50.0, 0.0)
+    assert default.forces(math.radians(25.0), 50.0, 0.0, 0.0).lift == pytest.approx(3.0 * w)
+    wing = Coefficients(10.0, 1.0, cl0=0.2, cl_alpha=5.0, cl_max=1.2)
+    q = 0.5 * AIR_DENSITY * 50.0**2 * 10.0
+    assert wing.forces(math.radians(5.0), 50.0, 0.0, 0.0).lift == pytest.approx(
+        q * (0.2 + 5.0 * math.radians(5.0)), rel=1e-13
+    )
+    assert wing.forces(math.radians(30.0), 50.0, 0.0, 0.0).lift == pytest.approx(q * 1.2)
+    assert wing.forces(math.radians(-30.0), 50.0, 0.0, 0.0).lift == pytest.approx(-q * 1.2)
+    assert WeightLift(stall_deg=12.0).settings()["stall_deg"] == 12.0
+
+
+def test_a_flat_touchdown_of_the_weight_lift_is_warned_of():
+    # at 0.48 deg of angle of attack the model's lift grows by 1 / alpha_0 = 209 % of itself
+    # per degree, some 20 times a wing's; at 5 deg (20 % a degree) nothing is said
+    with pytest.warns(hs.HullsliceWarning, match=r"0\.477 deg: it then grows by 209 %"):
+        WeightLift().start(6e4, 9.81, 0.0, 60.0, -0.5)
+    WeightLift().start(6e4, 9.81, math.radians(5.0), 60.0, -0.0)
+
+
 def test_a_pitch_damping_damps_at_the_rate_of_its_closed_form():
     # water of a negligible density: the air's moment alone turns the body
     hull = prism(mass=20.0)
@@ -132,6 +162,13 @@ def test_a_peak_at_the_last_sample_is_reported_as_such(capsys):
         (lambda: Coefficients(2.0, 1.0, cd=-0.1), "C_D -0.1"),
         (lambda: WeightLift(2.5), "lift fraction 2.5"),
         (lambda: WeightLift(math.nan), "lift fraction nan"),
+        (lambda: WeightLift(stall_deg=0.0), "stall angle 0.0 deg"),
+        (lambda: WeightLift(stall_deg=120.0), "stall angle 120.0 deg is above 90"),
+        (
+            lambda: WeightLift(stall_deg=10.0).start(1e3, 9.81, math.radians(12.0), 50.0, 0.0),
+            "above the stall at 10 deg",
+        ),
+        (lambda: Coefficients(2.0, 1.0, cl_max=-1.0), "C_L,max -1.0"),
         (lambda: aero_model("wings"), "unknown aerodynamic model 'wings'"),
     ],
 )
@@ -149,6 +186,8 @@ def test_the_command_line_refuses_bad_aerodynamics_in_one_line(capsys):
         (["--lift", "coefficients", "--wing-area=-1", "--wing-chord", "1"], "reference area"),
         (["--cl0", "0.5"], "--lift coefficients"),
         (["--lift", "weight", "--pitch", "-45"], "positive angle of attack"),
+        (["--lift", "weight", "--stall-deg", "3"], "above the stall at 3 deg"),
+        (["--stall-deg", "12"], "--stall-deg is the stall of --lift weight"),
     ):
         rc = main(base + extra)
         err = capsys.readouterr().err.strip()

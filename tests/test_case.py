@@ -170,10 +170,12 @@ def test_every_schema_key_has_a_documented_kind_and_unit():
         "acceleration": "m/s^2",
         "max_flagged_share": "",  # a share of the force, 0 to 1
         "lift_fraction": "",  # a share of the weight, 0 to 2
+        "stall_deg": "deg",
         "wing_area": "m^2",
         "wing_chord": "m",
         "cl0": "",
         "cl_alpha": "1/rad",
+        "cl_max": "",
         "cd": "",
         "cm0": "",
         "cm_alpha": "1/rad",

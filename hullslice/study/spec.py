@@ -17,6 +17,7 @@ from dataclasses import dataclass, fields
 from pathlib import Path
 from typing import Any
 
+from ..aero import COEFFICIENTS, model_of
 from ..case import COMMAND_KEYS, SCHEMA, case_command, validate_case
 from ..errors import CaseError, InputError
 from ..limits import check_pitch, check_slice_count
@@ -31,8 +32,7 @@ __all__ = ["COMMANDS", "Study", "StudyError"]
 _CASE_NAMES = FIELD_KEYS
 _FIELD_NAMES = {v: k for k, v in _CASE_NAMES.items()}
 _FLAGS = tuple(o.name for o in OPTIONS if o.kind == "flag")
-#: The study's fields of the aerodynamic coefficients (:data:`hullslice.aero.COEFFICIENTS`).
-COEFS = ("wing_area", "wing_chord", "cl0", "cl_alpha", "cd", "cm0", "cm_alpha", "cm_q", "thrust")
+COEFS = tuple(COEFFICIENTS)  # the study's fields of the aerodynamic coefficients
 _PATHS = tuple(o.name for o in OPTIONS if o.kind == "path")
 #: Keys whose values are sequences (kept as tuples in a study, lists in a case).
 _SEQUENCES = tuple(o.name for o in OPTIONS if o.kind in ("counts", "pair", "box", "times"))
@@ -120,9 +120,9 @@ class Study:
         Integrate the pitch, the forward speed; go on past the stop rules.
     lift : str, optional
         The air's forces (:data:`hullslice.aero.AERO_MODELS`): ``none`` (default),
-        ``weight`` (lift equal to ``lift_fraction`` of the weight at touchdown) or
-        ``coefficients`` (``wing_area`` m^2, ``wing_chord`` m, ``cl0``, ``cl_alpha``, ``cd``,
-        ``cm0``, ``cm_alpha``, ``cm_q`` per rad, ``thrust`` N).
+        ``weight`` (``lift_fraction`` of the weight at touchdown, held past ``stall_deg``) or
+        ``coefficients`` (``wing_area`` m^2, ``wing_chord`` m, ``cl0``, ``cl_alpha``,
+        ``cl_max``, ``cd``, ``cm0``, ``cm_alpha``, ``cm_q`` per rad, ``thrust`` N).
     friction : bool
         The water's friction on the wetted surface by the ITTC-57 line.
     check : bool
@@ -184,10 +184,12 @@ class Study:
     max_flagged_share: float = _default("max_flagged_share")
     lift: str | None = None
     lift_fraction: float | None = None
+    stall_deg: float | None = None
     wing_area: float | None = None
     wing_chord: float | None = None
     cl0: float | None = None
     cl_alpha: float | None = None
+    cl_max: float | None = None
     cd: float | None = None
     cm0: float | None = None
     cm_alpha: float | None = None
@@ -330,9 +332,8 @@ class Study:
 
     def aero(self):
         """The aerodynamic model of this study (:func:`hullslice.aero.model_of`)."""
-        from ..aero import model_of
-
-        return model_of(self.lift, self.lift_fraction, {k: getattr(self, k) for k in COEFS})
+        coefs = {k: getattr(self, k) for k in COEFS}
+        return model_of(self.lift, self.lift_fraction, coefs, self.stall_deg)
 
     @property
     def slice_counts(self) -> tuple[int, ...]:
