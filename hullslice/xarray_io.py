@@ -60,6 +60,7 @@ UNITS: dict[str, tuple[str, str]] = {
     "flagged_share": ("1", "share of the force carried by flagged slices"),
     "added_mass": ("kg", "heave added mass of a momentum-form solver"),
     "slenderness": ("1", "wetted length over wetted beam"),
+    "suction_share": ("1", "share of the wetted length held at the water's suction bound"),
     "air_force": ("N", "vertical force of the air on the body, positive up"),
     "air_force_x": ("N", "horizontal force of the air on the body, positive forward"),
     "air_moment": ("N m", "pitch moment of the air about the centre of gravity, nose up"),

@@ -301,3 +301,45 @@ def test_kinematics_rates_are_derived_or_checked():
     bad = {**kin, "forward_acceleration": np.full_like(t, 100.0)}
     with pytest.raises(hs.CaseError, match="forward_acceleration disagrees with forward_speed"):
         hs.prescribed(hull, bad, solver="wagner", slices=8)
+
+
+def test_a_history_says_how_much_of_the_wetted_length_is_held_at_the_suction_bound(capsys):
+    # zarnick, nose down on the full fuselage: the tail cone's sections reach the water's
+    # vapour bound. The history's share is the wetted length of the sections the solver
+    # held there, recomputed at that instant from its state; the report says it in a line
+    from hullslice.cli import main
+
+    hull = hs.load_hull(MESHES / "fuselage_full.obj", mass=60000.0)
+    kw = dict(solver="zarnick", slices=32, slicing="fixed", fluid=hs.Fluid.sea())
+    h = hs.simulate(hull, -3.0, 0.36, dt=0.004, pitch_deg=-2.0, forward_speed=60.0,
+                    free_pitch=True, stop_on=(), **kw)  # fmt: skip
+    i = int(np.argmax(h.suction_share))
+    assert 0.2 < h.suction_share[i] < 0.5
+    pose = hs.Pose(draft=h.draft[i], pitch_rad=h.pitch[i])
+    motion = hs.Motion(h.velocity[i], h.forward_speed[i], pitch_rate_rad_s=h.pitch_rate[i])
+    r = hs.compute_force(hull, pose, motion, acceleration=h.acceleration[i], **kw)
+    s, limited = r.sections, r.loads.diagnostics["suction_limited"] > 0
+    wet = s.penetration > 0
+    share = s.dx[wet & limited].sum() / s.dx[wet].sum()
+    assert h.suction_share[i] == pytest.approx(share, rel=1e-6)
+    assert np.all(h.suction_share >= 0.0) and h.suction_share[0] == 0.0
+    assert (
+        hs.simulate(
+            hull,
+            -3.0,
+            0.02,
+            dt=0.004,
+            pitch_deg=-2.0,
+            forward_speed=60.0,
+            solver="mlm",
+            slices=32,
+            slicing="fixed",
+        ).suction_share.max()
+        == 0.0
+    )
+    rc = main(["simulate", str(MESHES / "fuselage_full.obj"), "--mass", "60000",
+               "--velocity=-3", "--forward-speed", "60", "--pitch", "-2", "--free-pitch",
+               "--solver", "zarnick", "--t-end", "0.36", "--dt", "0.004", "--slices", "32",
+               "--slicing", "fixed", "--water", "sea", "--continue-invalid"])  # fmt: skip
+    out = capsys.readouterr().out
+    assert rc == 0 and f"on up to {100 * h.suction_share[i]:.3g} % of the wetted length" in out

@@ -241,6 +241,13 @@ def _table(hull, history, summary, solver_text, chosen, study) -> str:
         f"(slices outside the solver's range; a run stops above "
         f"{100 * s.get('max_flagged_share', MAX_FLAGGED_SHARE):g} %)"
     )
+    suction = history.suction_share
+    if len(suction) and suction.max() > 0.0:
+        i = int(np.argmax(suction))
+        lines.append(
+            f"suction held at the water's bound (it cavitates or ventilates) on up to "
+            f"{100 * suction[i]:.3g} % of the wetted length, at t = {history.t[i]:.5f} s"
+        )
     for rule, t in history.first_crossed.items():
         if t is not None:
             lines.append(f"limit '{rule}' first crossed at t = {t:.5f} s: {STOP_RULES[rule]}")

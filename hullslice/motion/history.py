@@ -112,6 +112,10 @@ class History:
         solvers).
     slenderness : (k,) float
         Wetted length over wetted beam (``inf`` when nothing is wetted).
+    suction_share : (k,) float
+        Share of the wetted length whose force is held at the water's suction bound
+        (:attr:`hullslice.Fluid.suction_limit`: the water cavitates or ventilates there);
+        0 for solvers that bound no suction.
     air_force, air_force_x : (k,) float
         The air's vertical and horizontal forces on the body, N (zero without an
         aerodynamic model, :mod:`hullslice.aero`).
@@ -153,6 +157,7 @@ class History:
     footprint: np.ndarray
     added_mass: np.ndarray
     slenderness: np.ndarray
+    suction_share: np.ndarray
     air_force: np.ndarray
     air_force_x: np.ndarray
     air_moment: np.ndarray
@@ -183,6 +188,7 @@ class History:
         "footprint",
         "added_mass",
         "slenderness",
+        "suction_share",
         "air_force",
         "air_force_x",
         "air_moment",
@@ -210,6 +216,7 @@ class History:
         "chine_wetted",
         "added_mass",
         "slenderness",
+        "suction_share",
         "air_force",
         "air_force_x",
         "air_moment",

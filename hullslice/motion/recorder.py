@@ -101,6 +101,7 @@ class Recorder:
                 "footprint": fp,
                 "added_mass": r.added_mass,
                 "slenderness": slender,
+                "suction_share": _suction_share(r),
                 **dict.fromkeys(OUTSIDE, 0.0),
                 **(outside or {}),
             }
@@ -163,6 +164,18 @@ def _valid_share(r: ForceResult) -> float:
     size = np.abs(r.force)
     total = size.sum()
     return float(size[r.loads.valid].sum() / total) if total > 0 else 1.0
+
+
+def _suction_share(r: ForceResult) -> float:
+    """Share of the wetted length whose force per metre is held at the water's suction
+    bound (a momentum-form solver's ``suction_limited``; 0 for the others)."""
+    limited = r.loads.diagnostics.get("suction_limited")
+    s = r.sections
+    wet = s.penetration > 0
+    length = float(s.dx[wet].sum())
+    if limited is None or length <= 0.0:
+        return 0.0
+    return float(s.dx[wet & (np.asarray(limited) > 0)].sum() / length)
 
 
 def check_every(every: int) -> int:
