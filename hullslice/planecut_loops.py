@@ -188,23 +188,21 @@ def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s
             xb = gx + (x_rel[i] + zb) / c
             lo = min(max(min(xa, xb) - bin_reach[b] - margin - x0, 0.0), half) + base
             hi = min(max(max(xa, xb) + margin - x0, 0.0), half) + base
-            lo_i, hi_i = bin_start[b], bin_start[b + 1]
-            while lo_i < hi_i:
-                m = (lo_i + hi_i) // 2
-                if key[m] < lo:
-                    lo_i = m + 1
-                else:
-                    hi_i = m
-            first[i, b] = lo_i
-            hi_i = bin_start[b + 1]
-            while lo_i < hi_i:
-                m = (lo_i + hi_i) // 2
-                if key[m] <= hi:
-                    lo_i = m + 1
-                else:
-                    hi_i = m
-            last[i, b] = lo_i
+            first[i, b] = search_loops(key, bin_start[b], bin_start[b + 1], lo, False)
+            last[i, b] = search_loops(key, first[i, b], bin_start[b + 1], hi, True)
     return first, last
+
+
+def search_loops(a, lo, hi, v, right):
+    """``np.searchsorted`` of ``v`` in the sorted ``a[lo:hi]``, plus ``lo``: the first index
+    whose value is not below ``v`` (``right``: above it), or ``hi``."""
+    while lo < hi:
+        m = (lo + hi) // 2
+        if a[m] < v or (right and a[m] == v):
+            lo = m + 1
+        else:
+            hi = m
+    return lo
 
 
 def lowest_loops(xs, xa, za, xb, zb):
@@ -216,14 +214,7 @@ def lowest_loops(xs, xa, za, xb, zb):
         dx = xb[j] - xa[j]
         dz = zb[j] - za[j]
         lo, hi = min(xa[j], xb[j]), max(xa[j], xb[j])
-        a, b = 0, len(xs)  # the first abscissa at or after lo
-        while a < b:
-            c = (a + b) // 2
-            if xs[c] < lo:
-                a = c + 1
-            else:
-                b = c
-        for i in range(a, len(xs)):
+        for i in range(search_loops(xs, 0, len(xs), lo, False), len(xs)):
             if xs[i] > hi:
                 break
             if dx == 0.0:
@@ -426,7 +417,13 @@ LOOPS["outline"] = outline_loops
 LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
 LOOPS["ranges"] = range_loops
+LOOPS["search"] = search_loops
 #: The loops that others call, by caller: compiled in this module's namespace before it
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
-CALLS = {"envelope": ("lowest",), "side": ("lowest", "envelope")}
+CALLS = {
+    "lowest": ("search",),
+    "envelope": ("search", "lowest"),
+    "side": ("search", "lowest", "envelope"),
+    "ranges": ("search",),
+}
 LOOPS["wetted"] = wetted_loops
