@@ -200,6 +200,7 @@ def sections_at(
     else:
         x0, x1 = extent
     length = x1 - x0
+    width = None  # the slices' own thickness
     if stations is None:
         if length > 0.0:
             d = length / n
@@ -211,6 +212,9 @@ def sections_at(
         rel = np.asarray(stations, dtype=np.float64) - fr.cg[0]
         bounds = np.concatenate([[x0], 0.5 * (rel[1:] + rel[:-1]), [x1]])
         dx = np.diff(np.clip(bounds, x0, x1))
+        if len(rel) > 1:  # the keel's slope over the stations' spacing, not the wet part
+            bounds[0], bounds[-1] = 2.0 * rel[0] - bounds[1], 2.0 * rel[-1] - bounds[-2]
+            width = np.diff(bounds)
     polys = fr.cut(rel, cutter)
     outline = Outline.of(polys, tol, fr.origin, fr.scale, loops=loops_in_use("outline"))
     props = wetted_properties(outline, level, tol, deadrise, loops_in_use("wetted"))
@@ -225,6 +229,7 @@ def sections_at(
         props=props,
         polys=polys,
         deadrise=deadrise,
+        slope_width=width,
     )
 
 

@@ -82,7 +82,7 @@ UNITS: dict[str, tuple[str, str]] = {
     "deadrise_stbd_deg": ("degree", "starboard deadrise angle"),
     "area": ("m2", "area of the station's cross-section"),
     "mass_per_metre": ("kg m-1", "mass per metre of the wetted piece"),
-    "keel_slope": ("1", "slope dZ/dX of the keel line"),
+    "keel_slope": ("1", "slope dZ/dX of the keel line over the slice"),
     "keel_z": ("m", "earth Z of the keel"),
     "y_keel": ("m", "earth Y of the keel"),
     "part_half_beam": ("m", "half-width of the section's part at the waterline"),

@@ -61,7 +61,8 @@ def assemble(
     polys: Sequence[Polygons],
     deadrise: str,
     lift: np.ndarray | None = None,
-    keel: tuple[np.ndarray, np.ndarray] | None = None,
+    keel: np.ndarray | None = None,
+    slope_width: np.ndarray | None = None,
 ) -> Sections:
     """:class:`Sections` from per-station positions and per-entry properties.
 
@@ -87,11 +88,20 @@ def assemble(
         Height by which each station's contours are moved, m: a station whose properties
         were taken with the water at ``level - lift`` (another station's section moved to
         where this one's keel is).
-    keel : ((s,) float, (s,) float), optional
-        The keel line's height and slope at the stations when already known.
+    keel : (s,) float, optional
+        The keel line's height at the stations when already known.
+    slope_width : (s,) float, optional
+        The length over which each station's keel slope is the keel line's chord, m:
+        ``dx`` when not given. Fixed slices give their wetted part or half the slice,
+        whichever is longer, so that a slice beginning to wet does not take the slope of
+        the one facet under it; given stations their spacing.
     """
     st = props["station"]
-    keel_z, slope = fr.keel.at(rel) if keel is None else keel
+    keel_z = fr.keel.height(rel) if keel is None else keel
+    # the keel's slope is its chord over the slice; its curvature is averaged over the
+    # wetted slice or half a beam, whichever is longer
+    slope = fr.keel.mean_slope(rel, dx if slope_width is None else slope_width)
+    window = np.maximum(dx, keel_window(hull))
     # a station in a gap between parts one behind the other has no section: its (dry)
     # entry's keel is put at the water, not infinitely high (no NaN in its kinematics)
     keel_z = np.where(np.isfinite(keel_z), keel_z, level)
@@ -122,5 +132,5 @@ def assemble(
         pitch=pose.pitch,
         wetted_length=length,
         z_cg=z_cg,
-        keel_curvature=fr.keel.mean_curvature(rel, np.maximum(dx, keel_window(hull)))[st],
+        keel_curvature=fr.keel.mean_curvature(rel, window)[st],
     )

@@ -211,7 +211,7 @@ def fixed_sections(
         (outline, polys), c0 = outline_of(fr, mids, tol, cutter), 0
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
-    keel = fr.keel.at(x)
+    keel = fr.keel.height(x)
     # a partial slice takes its own mid-station's section, moved down to its depth (it
     # may be dry at this water), or its neighbour's where its own station has no bottom's
     # section (past the body's end, or through a pitched transom's face); with no wetted
@@ -224,7 +224,7 @@ def fixed_sections(
     source = np.where(own, k, neighbour)
     # a partial slice's source moved by this much (where the slice takes a moved section)
     with np.errstate(invalid="ignore"):
-        depth = np.where(full, 0.0, keel[0] - outline.zmin[source - c0])
+        depth = np.where(full, 0.0, keel - outline.zmin[source - c0])
     extra: dict[int, dict[str, np.ndarray]] = {}
     if props is None:
         props, extra = _window_properties(
@@ -288,6 +288,7 @@ def fixed_sections(
         deadrise=deadrise,
         lift=lift,
         keel=keel,
+        slope_width=np.maximum(hi - lo, 0.5 * d),
     )
 
 

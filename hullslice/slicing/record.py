@@ -90,7 +90,8 @@ class Sections:
     chine_wetted : (n,) bool
         The water has reached the station's widest point (chine or deck) on either side.
     keel_slope : (n,) float
-        Slope ``dZ/dX`` of the body's keel line at the station (earth frame).
+        Slope ``dZ/dX`` of the body's keel line over the station's slice (earth frame):
+        its chord over the slice (:meth:`~hullslice.kernel.keel.KeelLine.mean_slope`).
     keel_z : (n,) float
         Earth height of the station's lowest point, m (at the water where the station has
         no section: a gap between parts one behind the other).
