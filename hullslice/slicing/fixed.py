@@ -16,7 +16,7 @@ import numpy as np
 
 from ..caching import Entry
 from ..geometry import Frame, loops_in_use
-from ..kernel.keel import END_FACE_SLOPE
+from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.outline import Outline, Polygons, prefix_index
 from ..kernel.waterline_table import TABULATED, WaterlineTable
 from ..kernel.wetted import wetted_properties
@@ -236,6 +236,14 @@ def fixed_sections(
     wet_mid = np.zeros(n, dtype=bool)
     wet_mid[props["station"][props["penetration"] > 0]] = True
     fresh = ~full & ~wet_mid[k] & ~wet_mid[neighbour]
+    if not full.all():  # nor a section that the keel line shows to be another part's: the
+        # keel rises more steeply than 45 deg on average from the slice's wet middle to its
+        # source's station (a nacelle's end within the slice, the fuselage's bottom above)
+        part = np.flatnonzero(~full)
+        src = mids[source[part]]
+        with np.errstate(invalid="ignore"):
+            rise = np.abs(keel[part] - fr.keel.height(src))
+        fresh[part[rise > STEEP_SLOPE * np.abs(x[part] - src)]] = True
     moved = np.flatnonzero(~full & ~fresh)
     lift = np.zeros(len(x))
     lift[moved] = depth[moved]
