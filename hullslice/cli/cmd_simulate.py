@@ -290,13 +290,28 @@ def check_text(check: dict) -> str:
         lines.append(
             f"  {what} (dt {c['dt']:g} s, {c['slices']} slices): peak "
             f"{100 * c['peak_change']:+.3f} %, its time {c['peak_t_change']:+.5f} s, largest "
-            f"pitch {c['pitch_max_change_deg']:+.4f} deg"
+            f"pitch {c['pitch_max_change_deg']:+.4f} deg; the force at the instants both "
+            f"hold within {100 * c['history_change']:.3f} % of the peak"
         )
     worst = check["largest_change"]
     verdict = "converged" if worst <= CHECK_TOLERANCE else "NOT converged"
+    shares = [check[k]["history_change"] for k in ("half_step", "double_slices")]
+    history = max((v for v in shares if v == v), default=float("nan"))  # NaN: no instant
+    if worst <= CHECK_TOLERANCE:
+        hint = ""
+    elif (
+        check["half_step"]["history_change"]
+        <= CHECK_TOLERANCE
+        < abs(check["half_step"]["peak_change"])
+    ):
+        hint = (
+            " (at half the step the force agrees at the instants both hold: the peak"
+            " falls between the step's samples; compare peaks at the step you will use)"
+        )
+    else:
+        hint = " (refine the step or the slices)"
     lines.append(
-        f"  the peak moved by {100 * worst:.3f} % at most: {verdict} to "
-        f"{100 * CHECK_TOLERANCE:g} %" + ("" if worst <= CHECK_TOLERANCE else
-                                          " (refine the step or the slices)")
+        f"  the peak moved by {100 * worst:.3f} % at most, the force at shared instants by "
+        f"{100 * history:.3f} % of the peak: {verdict} to {100 * CHECK_TOLERANCE:g} %{hint}"
     )  # fmt: skip
     return "\n".join(lines)

@@ -277,7 +277,10 @@ def convergence_check(study: Study, hull: Hull, solver: SolverBase, history: His
     Returns a dict: for ``half_step`` and ``double_slices``, the run's ``dt`` (s) and
     ``slices``, its ``peak`` (N), ``peak_t`` (s), ``pitch_max_deg``, and the changes from
     the study's run: ``peak_change`` (a share), ``peak_t_change`` (s),
-    ``pitch_max_change_deg``; and ``largest_change``, the larger share of the two.
+    ``pitch_max_change_deg``, and ``history_change``, the largest difference of the
+    vertical force at the instants both runs hold, as a share of the study's peak (the
+    peak of a history sampled at a step moves with where its samples fall; the history
+    itself converges or not); and ``largest_change``, the larger peak change of the two.
     """
     if study.kinematics is not None:
         raise InputError(
@@ -296,9 +299,28 @@ def convergence_check(study: Study, hull: Hull, solver: SolverBase, history: His
             "peak_change": fig["peak"] / base["peak"] - 1.0 if base["peak"] else math.nan,
             "peak_t_change": fig["peak_t"] - base["peak_t"],
             "pitch_max_change_deg": fig["pitch_max_deg"] - base["pitch_max_deg"],
+            "history_change": _history_change(history, other, dt),
         }  # fmt: skip
     out["largest_change"] = max(abs(out[k]["peak_change"]) for k in ("half_step", "double_slices"))
     return out
+
+
+def _history_change(base: History, other: History, dt: float) -> float:
+    """The largest difference of ``other``'s vertical force from ``base``'s at the instants
+    both hold (within a thousandth of ``dt``), as a share of ``base``'s peak."""
+    ta, tb = np.asarray(base.t), np.asarray(other.t)
+    fa, fb = np.asarray(base.force), np.asarray(other.force)
+    if not len(ta) or not len(tb):
+        return math.nan
+    # each of base's instants and other's nearest
+    j = np.clip(np.searchsorted(tb, ta), 0, len(tb) - 1)
+    before = np.maximum(j - 1, 0)
+    near = np.where(np.abs(tb[before] - ta) < np.abs(tb[j] - ta), before, j)
+    shared = np.abs(tb[near] - ta) <= 1e-3 * dt
+    peak = float(np.max(np.abs(fa)))
+    if not peak or not shared.any():
+        return math.nan
+    return float(np.max(np.abs(fb[near[shared]] - fa[shared]))) / peak
 
 
 def _figures(history: History) -> dict[str, float]:
