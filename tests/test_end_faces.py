@@ -16,7 +16,7 @@ import pytest
 
 import hullslice as hs
 from hullslice import shapes
-from hullslice.geometry import KeelLine
+from hullslice.geometry import KeelLine, frame
 
 
 @pytest.mark.parametrize("slicing", ["wetted", "fixed"])
@@ -210,3 +210,49 @@ def test_a_keel_steeper_than_45_degrees_is_flagged():
         "steeper than 45 deg" in s for s in r.loads.reason[steep]
     )
     assert r.valid[r.sections.wetted & ~steep].all()
+
+
+def _v_prism(x, keels, y=0.0, deadrise=25.0, half=0.15, top=0.25):
+    def section(keel):
+        chine = min(keel + half * math.tan(math.radians(deadrise)), top - 0.01)
+        return [(y, keel), (y + half, chine), (y + half, top), (y - half, top), (y - half, chine)]
+
+    return shapes.prism_from_sections(np.array(x), np.array([section(k) for k in keels]))
+
+
+def test_a_vertical_step_face_is_a_jump_of_the_keel_line_not_a_ramp():
+    # the stepped float with its 3 cm step's face vertical (two sections at x = 0.5 m)
+    # against the same face 0.1 mm long: level, the keel line is flat to the step and
+    # jumps there; it was a ramp from x = 0 to the step, for 2.3 % more force and a
+    # horizontal force on a level flat bottom
+    with pytest.warns(hs.MeshRepairWarning, match="degenerate"):  # the face's lofted strip
+        v, f = _v_prism([0, 0.5, 0.5, 1.0], [0.03, 0.03, 0, 0])
+        vertical = hs.Hull.from_arrays(v, f, mass=5.0)
+    leaned = hs.Hull.from_arrays(*_v_prism([0, 0.4999, 0.5, 1.0], [0.03, 0.03, 0, 0]), mass=5.0)
+    fr = frame(vertical, 0.0)
+    z = fr.keel.height(np.array([0.25, 0.4999, 0.5001, 0.75]) - fr.cg[0]) + fr.cg[2]
+    np.testing.assert_allclose(z, [0.03, 0.03, 0.0, 0.0], atol=1e-12)
+    pose, motion = hs.Pose(draft=0.02), hs.Motion(-1.0, 5.0)
+    a, b = (hs.compute_force(h, pose, motion, slices=16) for h in (vertical, leaned))
+    assert a.total == pytest.approx(b.total, rel=1e-4)  # the faces differ by 0.1 mm
+    assert a.total_x == pytest.approx(0.0, abs=1e-9 * a.total)
+
+
+def test_a_parts_vertical_end_over_another_parts_bottom_ends_the_wetted_part_there():
+    # a lower float (keel at 0) ending at x = 2.1 m in a vertical face, beside a longer one
+    # whose keel is 0.3 m up: at a 5 cm draft the keel line is wet to 2.1 m, not along a
+    # ramp from 2.1 to 4.0 m, and the slice from 2.0 m is the lower float's 0.1 m
+    low = _v_prism([0.0, 2.1], [0.0, 0.0], y=1.5, deadrise=30.0, half=0.4, top=0.8)
+    high = _v_prism([0.0, 4.0], [0.3, 0.3], deadrise=10.0, half=0.4, top=1.3)
+    v = np.concatenate([high[0], low[0]])
+    f = np.concatenate([high[1], low[1] + len(high[0])])
+    hull = hs.Hull.from_arrays(v, f, mass=100.0)
+    r = hs.compute_force(
+        hull, hs.Pose(draft=0.05), hs.Motion(-1.0), slices=8, slicing="fixed",
+        solver="von-karman", acceleration=0.0,
+    )  # fmt: skip
+    s = r.sections
+    assert s.wetted.all() and len(s.dx) == 5
+    assert s.dx[-1] == pytest.approx(0.1, rel=1e-6)
+    per_metre = r.force / s.dx
+    np.testing.assert_allclose(per_metre, per_metre[0], rtol=1e-9)

@@ -345,7 +345,7 @@ def lower_envelope(
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
-        return refined(xs, mid, z, zm, merge)
+        return refined(xs, mid, z, zm, merge, lambda p: lowest_height(a, b, p))
     xs = np.concatenate([a[:, 0], b[:, 0]])
     xs.sort()
     if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
@@ -360,14 +360,27 @@ def lower_envelope(
     both = np.empty(len(xs) + len(mid))
     both[0::2], both[1::2] = xs, mid
     lowest = segments.lowest(both)
-    return refined(xs, mid, lowest[0::2], lowest[1::2], merge)
+    return refined(xs, mid, lowest[0::2], lowest[1::2], merge, segments.lowest)
 
 
 def refined(
-    xs: np.ndarray, mid: np.ndarray, z: np.ndarray, zm: np.ndarray, merge: float = 0.0
+    xs: np.ndarray,
+    mid: np.ndarray,
+    z: np.ndarray,
+    zm: np.ndarray,
+    merge: float = 0.0,
+    lowest: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> KeelLine:
     """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
     at the middles ``mid`` where the heights there, ``zm``, lie below the straight line.
+
+    Where ``zm`` lies above the straight line, the line may jump at an end of the
+    interval: an end's height may be the foot of a segment vertical in the side view (a
+    step's face or a part's end meshed in one plane, over another part's bottom). There
+    the heights a millionth of the interval inside its ends are taken from ``lowest``
+    (the lowest height of the segments at given abscissae), and where one differs from
+    its end's by more than a thousandth of the interval (a slope of 1000), it is added:
+    the jump becomes a facet steep enough to be a face, not a ramp across the interval.
 
     Break points closer together than ``merge`` (m; a rounding-size tie) are one
     point, at their mean abscissa and their lowest height: vertices that share a station
@@ -375,14 +388,27 @@ def refined(
     at another, and without the merge the facets between them, narrower than any
     coordinate the mesh resolves, would stand in the slope's blend like real ones, so the
     keel's slope would jump as the pitch leaves zero."""
-    lower = zm < 0.5 * (z[1:] + z[:-1]) - 1e-12 * (1.0 + np.abs(zm))
+    chord = 0.5 * (z[1:] + z[:-1])
+    lower = zm < chord - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
     lower |= np.isinf(zm)
-    if lower.any():
-        xs = np.concatenate([xs, mid[lower]])
-        z = np.concatenate([z, zm[lower]])
-        order = np.argsort(xs)
+    add_x, add_z = [mid[lower]], [zm[lower]]
+    if lowest is not None:
+        jump = np.isfinite(zm) & np.isfinite(chord) & (zm > chord + 1e-12 * (1.0 + np.abs(zm)))
+        if jump.any():
+            i = np.flatnonzero(jump)
+            width = xs[i + 1] - xs[i]
+            inside = np.concatenate([xs[i] + 1e-6 * width, xs[i + 1] - 1e-6 * width])
+            z_in = lowest(np.sort(inside))[np.argsort(np.argsort(inside))]
+            ends = np.concatenate([z[i], z[i + 1]])
+            steps = np.abs(z_in - ends) > 1e-3 * np.concatenate([width, width])
+            add_x.append(inside[steps])
+            add_z.append(z_in[steps])
+    if len(add_x) > 1 or lower.any():
+        xs = np.concatenate([xs, *add_x])
+        z = np.concatenate([z, *add_z])
+        order = np.argsort(xs, kind="stable")
         xs, z = xs[order], z[order]
     if merge > 0.0 and len(xs) > 1:
         close = np.diff(xs) <= merge
@@ -392,6 +418,12 @@ def refined(
             xs = np.add.reduceat(xs, first) / counts
             z = np.minimum.reduceat(z, first)
     return KeelLine(xs, z)
+
+
+def lowest_height(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
+    """The lowest height of the segments from ``a`` to ``b`` ((e, 2) arrays of x, z) over
+    each of the sorted abscissae ``xs`` (``inf`` where none spans one)."""
+    return _Segments(a, b).lowest(xs)
 
 
 #: Pairs of a segment and an abscissa that :meth:`_Segments.lowest` takes at a time (their
