@@ -38,7 +38,8 @@ from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
 from .constants import TOL
 from .errors import InputError
-from .kernel.keel import KeelLine, lower_envelope, lowest_height, refined
+from .kernel.envelope import lower_envelope, lowest_segments, refined
+from .kernel.keel import KeelLine
 from .planecut import plane_index
 
 __all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
@@ -267,7 +268,8 @@ def _frame(hull, pitch: float) -> Frame:
     side = loops_in_use("side")
     if side is not None:  # the turn and the keel line's search in one compiled call
         za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
-        keel = refined(xs, mid, z, zm, merge, lambda p: _lowest(a, b, g, c, s, p))
+        turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
+        keel = refined(xs, mid, z, zm, merge, lowest_segments(make=turned))
     else:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]
@@ -318,12 +320,6 @@ def keel_loops() -> bool:
     for the cut: a run at a held pitch does not import it for its few frames), see
     :mod:`hullslice.planecut_loops`. The same keel line as numpy's."""
     return planecut_loops.available() and planecut_loops.in_use()
-
-
-def _lowest(a, b, g, c: float, s: float, p: np.ndarray) -> np.ndarray:
-    """The lowest height of the silhouette edges ``a``-``b`` turned by the pitch at the
-    sorted relative abscissae ``p`` (numpy's, where a keel line jumps: a vertical face)."""
-    return lowest_height(_turn(a - g, c, s), _turn(b - g, c, s), p)
 
 
 def _turn(r: np.ndarray, c: float, s: float) -> np.ndarray:

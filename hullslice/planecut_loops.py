@@ -10,7 +10,7 @@ numba (the ``fast`` extra, ``pip install hullslice[fast]``) it is the kernel's f
 numba is imported only when :func:`compiled` is first called, never by ``import
 hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
 
-:func:`lowest_loops` is :meth:`hullslice.kernel.keel.lower_envelope`'s inner search (the
+:func:`lowest_loops` is :meth:`hullslice.kernel.envelope.lower_envelope`'s inner search (the
 lowest of the side view's segments over each abscissa) in the same way: the same
 arithmetic per pair, and a minimum, which does not depend on the order. :func:`outline_loops`
 is :meth:`hullslice.kernel.outline.Outline.of` on :func:`cut_loops`'s contours as they
@@ -227,7 +227,7 @@ def lowest_loops(xs, xa, za, xb, zb):
 
 
 def envelope_loops(xa, za, xb, zb):
-    """:func:`hullslice.kernel.keel.lower_envelope`'s search by loops, on the segments
+    """:func:`hullslice.kernel.envelope.lower_envelope`'s search by loops, on the segments
     from ``(xa, za)`` to ``(xb, zb)``: the end abscissae sorted, each once (NaNs, sorted
     last, as one), their interval middles, and the lowest height over each of both as
     :func:`lowest_loops` finds it. Returns ``(xs, mid, z, zm)``: numpy's very arrays."""

@@ -80,12 +80,13 @@ def test_the_chord_stays_within_its_run_and_centred():
 
 
 @pytest.mark.slow
-def test_the_whole_airliners_junction_gives_no_jump():
+def test_the_whole_airliners_junctions_give_no_spike():
     # the whole public airliner ditching free in pitch, 10 deg, 60 m/s, -3 m/s (mlm, 32
-    # fixed slices, 4 ms steps): with the slope at a slice's middle the forward slice
-    # took the junction's 0.67 at 0.584 s, 22 MN/m, a jump of 3.58 MN in one step;
-    # with the chord, and the slice past the nacelle's end cut where it is, the largest
-    # jump measured 0.94 MN and the peak 3.18 MN (docs/meshes.md)
+    # fixed slices, 4 ms steps). With the slope at a slice's middle the forward slice took
+    # the 13 mm junction's 0.67 at 0.584 s: 22 MN/m. With the chord, the slice past a
+    # nacelle's end took the fuselage's section moved down 0.7 m: 12 MN/m. Cut where it
+    # is, the largest force per metre measured 6.8 MN/m, on the nacelle's own lip at
+    # 0.564 s (docs/meshes.md)
     pytest.importorskip("hullslice_mlm")
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -93,41 +94,10 @@ def test_the_whole_airliners_junction_gives_no_jump():
         h = hs.simulate(
             whole, -3.0, 0.62, dt=0.004, pitch_rad=math.radians(10.0), forward_speed=60.0,
             free_pitch=True, slices=32, slicing="fixed", solver="mlm", stop_on=(),
-            fluid=hs.Fluid.sea(), aero="weight",
+            fluid=hs.Fluid.sea(), aero="weight", sections_every=1,
         )  # fmt: skip
-    force = np.asarray(h.force)
-    assert np.abs(np.diff(force)).max() < 1.0e6
-
-
-def test_a_fixed_slice_beginning_to_wet_takes_the_chord_over_half_the_slice():
-    # a V prism 2 m long, level, whose keel is flat to x = 1.5 m, rises over 4 mm at a
-    # slope of 0.67 (a junction of parts) and then at 0.13: at a draft of 1.5 mm the
-    # water meets the junction, and the slice from 1.5 m on (8 fixed slices, 0.25 m) has
-    # only its first 2.24 mm wet, all on the junction
-    def vsec(keel):
-        chine = keel + 0.25 * math.tan(math.radians(20.0))
-        return np.array([[-0.25, 0.4], [-0.25, chine], [0.0, keel], [0.25, chine], [0.25, 0.4]])
-
-    x = np.array([0.0, 1.5, 1.504, 2.0])
-    keel = np.array([0.0, 0.0, 0.67 * 0.004, 0.67 * 0.004 + 0.13 * 0.496])
-    hull = hs.Hull.from_arrays(
-        *shapes.prism_from_sections(x, np.stack([vsec(k) for k in keel])), mass=10.0
-    )
-    r = hs.compute_force(
-        hull, hs.Pose(draft=0.0015), hs.Motion(-1.0, 10.0), slices=8, slicing="fixed",
-        solver="zarnick", acceleration=0.0,
-    )  # fmt: skip
-    s = r.sections
-    front = int(np.flatnonzero(s.wetted)[-1])
-    x_body = s.x[front]  # the wetted part's middle (the body is level, its tail at x = 0)
-    assert s.dx[front] == pytest.approx(0.0015 / 0.67, rel=1e-6)
-    # the chord over 0.125 m centred there, from the facets' rises
-    a, b = x_body - 0.0625, x_body + 0.0625
-    rise = 0.67 * 0.004 + 0.13 * (b - 1.504)
-    assert a < 1.5
-    assert s.keel_slope[front] == pytest.approx(rise / 0.125, rel=1e-6)
-    # a full slice on the flat keel keeps its slope of zero
-    assert s.keel_slope[front - 1] == pytest.approx(0.0, abs=1e-12)
+    per_metre = max(float(np.max(r.force / r.dx)) for r in h.sections if len(r.force))
+    assert per_metre < 10.0e6
 
 
 def two_parts():

@@ -89,7 +89,7 @@ coordinate = st.integers(-20, 20).map(lambda k: k / 8)  # ties between ends, ver
 def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
     # the envelope holds, at each of its points, the lowest of the segments over it (and
     # is infinitely high where none is: a gap between parts)
-    from hullslice.kernel.keel import lower_envelope
+    from hullslice.kernel.envelope import lower_envelope
 
     e = np.array(ends, dtype=np.float64)
     a, b = e[:, :2], e[:, 2:]
@@ -257,7 +257,7 @@ def test_the_lowest_segment_taken_in_parts_equals_every_pair_at_once(seed, n, fl
     # to the last bit, the sign of a zero included; the larger sets hold more pairs (and
     # segments spanning more abscissae) than are taken at once
     from hullslice import planecut_loops
-    from hullslice.kernel.keel import _PAIRS, _Segments, lower_envelope
+    from hullslice.kernel.envelope import _PAIRS, _Segments, lower_envelope
 
     a, b = _random_segments(np.random.default_rng(seed), n, floor)
     segments = _Segments(a, b)
@@ -314,3 +314,26 @@ def test_a_symmetric_body_dropped_level_with_free_pitch_stays_level():
                     free_pitch=True)  # fmt: skip
     assert np.abs(h.pitch).max() < 1e-9
     assert np.abs(h.moment).max() < 1e-6 * np.abs(h.force).max()
+
+
+def test_two_crossing_edges_peak_between_their_ends_and_the_line_follows():
+    # the lowest of z = -2x and z = x - 1 over 0..1 peaks at their crossing (1/3, -2/3),
+    # above the straight line between its ends' heights (-2 and -1): the line is refined
+    # at the middles of the halves that peak, to the interval over 2**CROSSING_PASSES
+    from hullslice.kernel.envelope import CROSSING_PASSES, lower_envelope
+
+    a = np.array([[0.0, 0.0], [0.0, -1.0]])
+    b = np.array([[1.0, -2.0], [1.0, 0.0]])
+    line = lower_envelope(a, b)
+    x = np.linspace(0.0, 1.0, 10001)
+    true = np.minimum(-2.0 * x, x - 1.0)
+    assert np.abs(line.height(x) - true).max() <= 3.0 / 2**CROSSING_PASSES
+    # the middle lies on the first edge, exactly, and the crossing is found to the bound
+    assert line.height(np.array([0.5]))[0] == pytest.approx(-1.0, abs=1e-15)
+    assert line.z.max() == pytest.approx(-2.0 / 3.0, abs=3.0 / 2**CROSSING_PASSES)
+    # a vertical edge's foot below the others is a jump, not a ramp: a bottom at 0 ending
+    # at x = 1, a vertical face up to 1, a higher bottom at 0.5 on to x = 2
+    a = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.5]])
+    b = np.array([[1.0, 0.0], [1.0, 1.0], [2.0, 0.5]])
+    line = lower_envelope(a, b)
+    np.testing.assert_allclose(line.height(np.array([0.5, 1.01, 1.5])), [0.0, 0.5, 0.5])

@@ -410,7 +410,7 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
     numpy's keel line to the last bit at pitches from -20 to 40 degrees, the side view's
     turn included."""
     from hullslice.geometry import _turn, silhouette_edges
-    from hullslice.kernel.keel import lower_envelope, lowest_height, refined
+    from hullslice.kernel.envelope import lower_envelope, lowest_height, refined
 
     hull = BODIES[name]
     a, b = silhouette_edges(hull)
@@ -446,7 +446,8 @@ def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
     time, equals all pairs at once to the last bit at pitches from -20 to 40 degrees, and
     so does the keel line."""
     from hullslice.geometry import _turn, silhouette_edges
-    from hullslice.kernel.keel import KeelLine, _Segments, lower_envelope
+    from hullslice.kernel.envelope import _Segments, lower_envelope
+    from hullslice.kernel.keel import KeelLine
 
     from .test_keel_line import _abscissae, _bits, every_pair, lowest_every_pair
 

@@ -7,6 +7,9 @@
     half-beams, deadrise and mass shares of all stations at once.
 :mod:`~hullslice.kernel.waterline_table`
     :class:`WaterlineTable`: those properties tabulated once against the water's height.
+:mod:`~hullslice.kernel.keel` and :mod:`~hullslice.kernel.envelope`
+    :class:`KeelLine`, the lower edge of the side view, and :func:`lower_envelope`, which
+    draws it from the side views of the outline's edges.
 
 Nothing here knows of meshes, poses or hulls: the layers above cut a body into contours and
 hand them over.
