@@ -410,7 +410,7 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
     numpy's keel line to the last bit at pitches from -20 to 40 degrees, the side view's
     turn included."""
     from hullslice.geometry import _turn, silhouette_edges
-    from hullslice.kernel.envelope import lower_envelope, lowest_height, refined
+    from hullslice.kernel.envelope import lower_envelope, lowest_segments, refined
 
     hull = BODIES[name]
     a, b = silhouette_edges(hull)
@@ -436,7 +436,7 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
             assert _same(za, ta[:, 1]) and _same(zb, tb[:, 1])
             # a jump of the line (a vertical edge's foot) is read off the turned edges
-            got = refined(xs, mid, z, zm, lowest=lambda p, ta=ta, tb=tb: lowest_height(ta, tb, p))
+            got = refined(xs, mid, z, zm, lowest=lowest_segments(ta, tb))
             assert _same(got.x, want.x) and _same(got.z, want.z)
 
 

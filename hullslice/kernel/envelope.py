@@ -13,7 +13,7 @@ import numpy as np
 
 from .keel import KeelLine
 
-__all__ = ["CROSSING_PASSES", "lower_envelope", "lowest_height", "lowest_segments", "refined"]
+__all__ = ["CROSSING_PASSES", "lower_envelope", "lowest_segments", "refined"]
 
 
 def lower_envelope(
@@ -21,9 +21,8 @@ def lower_envelope(
 ) -> KeelLine:
     """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
 
-    Evaluated exactly at every end point; where two segments cross between end points the
-    envelope is refined at the middle of that interval (the crossing point itself is not
-    found, so there the line may lie a little high). ``loops``, when given, finds the
+    Evaluated exactly at every end point, with the jumps and crossings between them
+    that :func:`refined` finds. ``loops``, when given, finds the
     abscissae and the lowest segment over each instead of numpy
     (``loops(xa, za, xb, zb) -> (xs, mid, z, zm)``, as
     :func:`hullslice.planecut_loops.envelope_loops`, compiled: the same numbers).
@@ -82,10 +81,9 @@ def refined(
     coordinate the mesh resolves, would stand in the slope's blend like real ones, so the
     keel's slope would jump as the pitch leaves zero."""
     chord = 0.5 * (z[1:] + z[:-1])
-    lower = zm < chord - 1e-12 * (1.0 + np.abs(zm))
     # no segment over an interval: a gap between parts one behind the other, where the
     # line is infinitely high (not a straight line from one part's keel to the next's)
-    lower |= np.isinf(zm)
+    lower = np.isinf(zm)
     add_x, add_z = [mid[lower]], [zm[lower]]
     if lowest is not None:
         jump = np.isfinite(zm) & np.isfinite(chord) & (zm > chord + 1e-12 * (1.0 + np.abs(zm)))
@@ -158,17 +156,12 @@ def _crossings(
     return np.concatenate(out_x), np.concatenate(out_z)
 
 
-def lowest_height(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:
-    """The lowest height of the segments from ``a`` to ``b`` ((e, 2) arrays of x, z) over
-    each of the sorted abscissae ``xs`` (``inf`` where none spans one)."""
-    return _Segments(a, b).lowest(xs)
-
-
 def lowest_segments(
     a: np.ndarray | None = None, b: np.ndarray | None = None, make: Callable | None = None
 ) -> Callable[[np.ndarray], np.ndarray]:
-    """:func:`lowest_height` of the segments ``a``-``b`` (or of ``make() -> (a, b)``, made
-    on the first call only, and kept for the calls after)."""
+    """The lowest height of the segments from ``a`` to ``b`` ((e, 2) arrays of x, z), or
+    of ``make() -> (a, b)`` (made on the first call only), over each of the sorted
+    abscissae given to the function returned (``inf`` where none spans one)."""
     kept: list[_Segments] = []
 
     def lowest(xs: np.ndarray) -> np.ndarray:

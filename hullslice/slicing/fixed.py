@@ -236,14 +236,13 @@ def fixed_sections(
     wet_mid = np.zeros(n, dtype=bool)
     wet_mid[props["station"][props["penetration"] > 0]] = True
     fresh = ~full & ~wet_mid[k] & ~wet_mid[neighbour]
-    if not full.all():  # nor a section that the keel line shows to be another part's: the
-        # keel rises more steeply than 45 deg on average from the slice's wet middle to its
-        # source's station (a nacelle's end within the slice, the fuselage's bottom above)
+    if not full.all():  # nor a section that its move shows to be another part's: moved
+        # more steeply than 45 deg from its station to the slice's wet middle (a nacelle's
+        # end within the slice, the fuselage's bottom above it at the station)
         part = np.flatnonzero(~full)
-        src = mids[source[part]]
         with np.errstate(invalid="ignore"):
-            rise = np.abs(keel[part] - fr.keel.height(src))
-        fresh[part[rise > STEEP_SLOPE * np.abs(x[part] - src)]] = True
+            far = np.abs(depth[part]) > STEEP_SLOPE * np.abs(x[part] - mids[source[part]])
+        fresh[part[far]] = True
     moved = np.flatnonzero(~full & ~fresh)
     lift = np.zeros(len(x))
     lift[moved] = depth[moved]
