@@ -28,6 +28,7 @@ turning the whole once.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -203,6 +204,9 @@ REGIONS: Entry[LRU[tuple[float, float], Any]] = Entry("regions", lambda: LRU(REG
 FACE_REACH: Entry[Once[float]] = Entry("face reach", Once, geometry=True)
 #: The silhouette edges' end points (see :func:`silhouette_edges`).
 SILHOUETTE: Entry[Once[tuple[np.ndarray, np.ndarray]]] = Entry("silhouette", Once, geometry=True)
+#: Per thread, the silhouette edges' ends in their order along the side view at the last
+#: pitch (see :func:`_side_order`).
+SIDE_ORDER: Entry[threading.local] = Entry("side order", threading.local, geometry=True)
 
 
 def frame(hull, pitch: float) -> Frame:
@@ -267,9 +271,17 @@ def _frame(hull, pitch: float) -> Frame:
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
     side = loops_in_use("side")
     if side is not None:  # the turn and the keel line's search in one compiled call
-        za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
-        turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
-        keel = refined(xs, mid, z, zm, merge, lowest_segments(make=turned))
+        order = _side_order(hull, 2 * len(a))
+        xa, za, xb, zb, seg, xs, mid, z, zm = side(
+            a, b, float(g[0]), float(g[2]), float(c), float(s), order
+        )
+        if np.isfinite(xs[-1:]).all():  # the refinement's heights by the same loops
+            walk, none = loops_in_use("walk"), np.empty(0)
+            lowest = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
+        else:
+            turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
+            lowest = lowest_segments(make=turned)
+        keel = refined(xs, mid, z, zm, merge, lowest)
     else:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]
@@ -306,6 +318,17 @@ def _frame(hull, pitch: float) -> Frame:
     )
 
 
+def _side_order(hull, n: int) -> np.ndarray:
+    """This thread's order of the silhouette edges' ends along the side view at the last
+    pitch it turned them to (``n`` integers, updated by the loops: a new pitch's ends are
+    then nearly in order, and sorted in a few moves each); kept on the hull."""
+    local = hull.cache[SIDE_ORDER]
+    order = getattr(local, "order", None)
+    if order is None or len(order) != n:
+        order = local.order = np.arange(n, dtype=np.int64)
+    return order
+
+
 def loops_in_use(name: str) -> Callable | None:
     """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"side"``,
     ``"outline"``, ``"wetted"``) where :func:`keel_loops` holds, else None (numpy's path):
@@ -334,7 +357,11 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     other starboard (or either is edge-on). Turning the body about ``y`` (its pitch) does not
     change which faces face which way, so these edges serve every pitch: the keel line at
     any pitch is the lower envelope of their side views, and the body's lowest and highest
-    points are among their ends. Kept on the hull.
+    points are among their ends. An edge between two edge-on faces is left out: both lie
+    in one plane through ``y`` (a flat end cap's fan, a flat side), or the edge runs along
+    ``y`` and is a point in the side view; either way the edges around that face's region
+    cover its side view at every pitch (a fan of the end cap's edges, edge-on at no pitch,
+    would spread over its whole height, each pair of the fan an overlap). Kept on the hull.
     """
     return hull.cache[SILHOUETTE].get(lambda: _silhouette_edges(hull))
 
@@ -356,6 +383,7 @@ def _silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     order = np.argsort(lo.astype(np.int64) * len(v) + hi)
     face = (use // 3)[order]
     # a closed manifold uses each edge twice: the two uses are neighbours once sorted
-    side = (np.sign(ny[face[0::2]]) * np.sign(ny[face[1::2]])) <= 0
+    n0, n1 = ny[face[0::2]], ny[face[1::2]]
+    side = ((np.sign(n0) * np.sign(n1)) <= 0) & ((n0 != 0.0) | (n1 != 0.0))
     ends = directed[order[0::2][side]]
     return v[ends[:, 0]], v[ends[:, 1]]

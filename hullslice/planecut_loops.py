@@ -10,9 +10,8 @@ numba (the ``fast`` extra, ``pip install hullslice[fast]``) it is the kernel's f
 numba is imported only when :func:`compiled` is first called, never by ``import
 hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
 
-:func:`lowest_loops` is :meth:`hullslice.kernel.envelope.lower_envelope`'s inner search (the
-lowest of the side view's segments over each abscissa) in the same way: the same
-arithmetic per pair, and a minimum, which does not depend on the order. :func:`outline_loops`
+The keel line's loops (the lowest of the side view's segments over each abscissa) are in
+:mod:`hullslice.keel_loops`, compiled here by name with the others. :func:`outline_loops`
 is :meth:`hullslice.kernel.outline.Outline.of` on :func:`cut_loops`'s contours as they
 come (one array of points, the rings' starts and stations), with the same sums in the same
 order and a stable sort: the same outline.
@@ -27,6 +26,16 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .keel_loops import (
+    abscissae_loops,
+    envelope_loops,
+    lower_loops,
+    lowest_loops,
+    lowest_walk_loops,
+    search_loops,
+    side_view_loops,
+    sorted_loops,
+)
 from .wetted_loops import wetted_loops
 
 __all__ = [
@@ -193,82 +202,10 @@ def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s
     return first, last
 
 
-def search_loops(a, lo, hi, v, right):
-    """``np.searchsorted`` of ``v`` in the sorted ``a[lo:hi]``, plus ``lo``: the first index
-    whose value is not below ``v`` (``right``: above it), or ``hi``."""
-    while lo < hi:
-        m = (lo + hi) // 2
-        if a[m] < v or (right and a[m] == v):
-            lo = m + 1
-        else:
-            hi = m
-    return lo
-
-
-def lowest_loops(xs, xa, za, xb, zb):
-    """The lowest height of the segments from ``(xa, za)`` to ``(xb, zb)`` over each of the
-    sorted abscissae ``xs`` (``inf`` where none): a vertical segment's lower end, else the
-    segment's height there, ``za + (x - xa) / (xb - xa) * (zb - za)``."""
-    z = np.full(len(xs), np.inf)
-    for j in range(len(xa)):
-        dx = xb[j] - xa[j]
-        dz = zb[j] - za[j]
-        lo, hi = min(xa[j], xb[j]), max(xa[j], xb[j])
-        for i in range(search_loops(xs, 0, len(xs), lo, False), len(xs)):
-            if xs[i] > hi:
-                break
-            if dx == 0.0:
-                zi = min(za[j], zb[j])
-            else:
-                zi = za[j] + (xs[i] - xa[j]) / dx * dz
-            if zi < z[i] or zi != zi:  # np.minimum's: a NaN wins
-                z[i] = zi
-    return z
-
-
-def envelope_loops(xa, za, xb, zb):
-    """:func:`hullslice.kernel.envelope.lower_envelope`'s search by loops, on the segments
-    from ``(xa, za)`` to ``(xb, zb)``: the end abscissae sorted, each once (NaNs, sorted
-    last, as one), their interval middles, and the lowest height over each of both as
-    :func:`lowest_loops` finds it. Returns ``(xs, mid, z, zm)``: numpy's very arrays."""
-    e = len(xa)
-    xs = np.empty(2 * e)
-    xs[:e] = xa
-    xs[e:] = xb
-    xs.sort()
-    n = 0
-    for i in range(len(xs)):
-        if i == 0 or (xs[i] != xs[i - 1] and not (xs[i] != xs[i] and xs[i - 1] != xs[i - 1])):
-            xs[n] = xs[i]
-            n += 1
-    xs = xs[:n].copy()
-    mid = np.empty(max(n - 1, 0))
-    for i in range(n - 1):
-        mid[i] = 0.5 * (xs[i + 1] + xs[i])
-    return xs, mid, lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
-
-
-def side_view_loops(a, b, gx, gz, c, s):
-    """The silhouette edges from ``a`` to ``b`` ((e, 3) body points) turned nose up by a
-    pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, as
-    :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them.
-    Returns ``(za, zb, xs, mid, z, zm)``: the turned ends' heights and the envelope's
-    arrays."""
-    e = len(a)
-    xa, za, xb, zb = np.empty(e), np.empty(e), np.empty(e), np.empty(e)
-    for i in range(e):
-        rx, rz = a[i, 0] - gx, a[i, 2] - gz
-        xa[i] = rx * c - rz * s
-        za[i] = rx * s + rz * c
-        rx, rz = b[i, 0] - gx, b[i, 2] - gz
-        xb[i] = rx * c - rz * s
-        zb[i] = rx * s + rz * c
-    xs, mid, z, zm = envelope_loops(xa, za, xb, zb)
-    return za, zb, xs, mid, z, zm
-
-
 _LOCK = threading.Lock()
 _COMPILED: dict[str, Callable | None] = {}
+#: The loops compiled as others' helpers, by name (see :data:`CALLS`).
+_HELPERS: dict[str, Callable] = {}
 
 
 _FOUND: list[bool] = []
@@ -305,11 +242,12 @@ def compiled(name: str = "cut") -> Callable | None:
 
                 # IEEE division (an infinity or NaN by zero, as numpy's), no exception
                 jit = numba.njit(cache=True, nogil=True, error_model="numpy")
-                space = globals()
                 for callee in CALLS.get(name, ()):  # what the loops call: compiled first,
-                    helper = LOOPS[callee].__name__  # in this module's namespace
-                    if not isinstance(space[helper], numba.core.dispatcher.Dispatcher):
-                        space[helper] = jit(LOOPS[callee])
+                    helper = LOOPS[callee].__name__  # in their module's namespace and the
+                    if callee not in _HELPERS:  # caller's (numba reads the globals there)
+                        _HELPERS[callee] = jit(LOOPS[callee])
+                    for space in (LOOPS[callee].__globals__, LOOPS[name].__globals__):
+                        space[helper] = _HELPERS[callee]
                 fn = jit(LOOPS[name])
             _COMPILED[name] = fn
         return _COMPILED[name]
@@ -418,12 +356,17 @@ LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
 LOOPS["ranges"] = range_loops
 LOOPS["search"] = search_loops
-#: The loops that others call, by caller: compiled in this module's namespace before it
+LOOPS["sorted"] = sorted_loops
+LOOPS["walk"] = lowest_walk_loops
+LOOPS["lower"] = lower_loops
+LOOPS["abscissae"] = abscissae_loops
+#: The loops that others call, by caller: compiled before it, in its module's namespace
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
 CALLS = {
     "lowest": ("search",),
-    "envelope": ("search", "lowest"),
-    "side": ("search", "lowest", "envelope"),
+    "envelope": ("search", "lowest", "abscissae"),
+    "walk": ("lower",),
+    "side": ("search", "lowest", "sorted", "abscissae", "lower", "walk"),
     "ranges": ("search",),
 }
 LOOPS["wetted"] = wetted_loops

@@ -55,6 +55,7 @@ LAYERS: dict[str, int] = {
     "hullslice.planecut": 3,
     "hullslice.planecut_loops": 3,
     "hullslice.wetted_loops": 3,
+    "hullslice.keel_loops": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

@@ -102,9 +102,10 @@ def test_lower_envelope_at_its_points_is_the_lowest_segment(ends):
     assert set(ends_x.tolist()) <= set(line.x.tolist())
 
 
-def outline_edges_brute_force(hull) -> set:
+def outline_edges_brute_force(hull, edge_on: bool = False) -> set:
     """Every edge whose two faces do not both face port or both starboard (a normal's y
-    component of one sign, or zero), as a set of sorted vertex pairs."""
+    component of one sign, or zero), but for those between two edge-on faces (unless
+    ``edge_on``), as a set of sorted vertex pairs."""
     v, f = hull.vertices, hull.faces
     ny = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])[:, 1]
     faces_of: dict[tuple[int, int], list[int]] = {}
@@ -113,7 +114,7 @@ def outline_edges_brute_force(hull) -> set:
             faces_of.setdefault((min(a, b), max(a, b)), []).append(i)
     out = set()
     for (a, b), (f1, f2) in faces_of.items():
-        if np.sign(ny[f1]) * np.sign(ny[f2]) <= 0:
+        if np.sign(ny[f1]) * np.sign(ny[f2]) <= 0 and (edge_on or ny[f1] != 0 or ny[f2] != 0):
             out.add(
                 (tuple(v[a]), tuple(v[b]))
                 if tuple(v[a]) < tuple(v[b])
@@ -152,6 +153,40 @@ def test_the_outline_edges_are_every_edge_between_port_and_starboard_faces(body)
     }
     assert len(got) == len(a) > 0
     assert got == outline_edges_brute_force(hull)
+
+
+@pytest.mark.parametrize("body", ["fuselage_model.obj", "box", "capped cylinder"])
+def test_the_edges_between_edge_on_faces_change_no_keel_line(body):
+    """Leaving out the edges between two edge-on faces (a flat end cap's fan, a box's flat
+    sides) leaves the keel line as it is at every pitch: the edges around each such face's
+    region cover its side view. Against the lower envelope of every edge between port and
+    starboard faces, edge-on ones included, at pitches from -30 to 60 degrees: the same
+    height at every break point of either, to rounding (1e-13 of the body's size)."""
+    from hullslice.geometry import _turn, silhouette_edges
+    from hullslice.kernel.envelope import lower_envelope
+
+    from .conftest import ROOT
+
+    if body == "box":
+        mesh = trimesh.creation.box((1.0, 0.4, 0.3))
+    elif body == "capped cylinder":  # flat ends of fans of faces, along x
+        mesh = trimesh.creation.cylinder(0.2, 2.0, sections=48)
+        mesh.apply_transform(trimesh.transformations.rotation_matrix(np.pi / 2, (0, 1, 0)))
+    if body in ("box", "capped cylinder"):
+        hull = hs.Hull.from_arrays(mesh.vertices, mesh.faces)
+    else:
+        hull = hs.load_hull(ROOT / "meshes" / body)
+    a, b = silhouette_edges(hull)
+    every = np.array(sorted(outline_edges_brute_force(hull, edge_on=True)))
+    assert len(every) > len(a)  # some left out
+    g = np.asarray(hull.cg)
+    for pitch in np.radians([-30.0, -3.0, 0.0, 5.0, 12.0, 60.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        kept = lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
+        full = lower_envelope(_turn(every[:, 0] - g, c, s), _turn(every[:, 1] - g, c, s))
+        x = np.union1d(kept.x, full.x)
+        gap = np.abs(np.interp(x, kept.x, kept.z) - np.interp(x, full.x, full.z)).max()
+        assert gap <= 1e-13 * hull.size, (np.degrees(pitch), gap)
 
 
 def lowest_every_pair(a: np.ndarray, b: np.ndarray, xs: np.ndarray) -> np.ndarray:

@@ -424,6 +424,9 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
     sides = [planecut_loops.side_view_loops]
     if planecut_loops.available():
         sides.append(planecut_loops.compiled("side"))
+    # the ends' order: kept from pitch to pitch (each side's own), or none (in index order,
+    # the insertion sort over its budget: a full sort), or reversed
+    kept = [np.arange(2 * len(a)) for _ in sides]
     for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
         c, s = np.cos(pitch), np.sin(pitch)
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
@@ -432,12 +435,27 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             got = lower_envelope(ta, tb, loops)
             np.testing.assert_array_equal(got.x, want.x)
             np.testing.assert_array_equal(got.z, want.z)
-        for side in sides:  # the turn too, in the loops
-            za, zb, xs, mid, z, zm = side(a, b, float(g[0]), float(g[2]), float(c), float(s))
+        orders = [(k, o) for k in range(len(sides)) for o in (kept[k], None, "reversed")]
+        for k, order in orders:  # the turn too, in the loops
+            side = sides[k]
+            if order is None or isinstance(order, str):
+                order = np.arange(2 * len(a))[:: -1 if order else 1].copy()
+            args = (float(g[0]), float(g[2]), float(c), float(s))
+            xa, za, xb, zb, seg, xs, mid, z, zm = side(a, b, *args, order)
+            assert sorted(order.tolist()) == list(range(2 * len(a)))  # still a permutation
+            assert _same(xa, ta[:, 0]) and _same(xb, tb[:, 0])
             assert _same(za, ta[:, 1]) and _same(zb, tb[:, 1])
-            # a jump of the line (a vertical edge's foot) is read off the turned edges
-            got = refined(xs, mid, z, zm, lowest=lowest_segments(ta, tb))
-            assert _same(got.x, want.x) and _same(got.z, want.z)
+            assert (np.diff(np.minimum(xa, xb)[seg]) >= 0.0).all()  # by lower end
+            # a jump of the line (a vertical edge's foot) is read off the turned edges, by
+            # numpy or by the loops' walk along the segments in that order
+            walk = planecut_loops.compiled("walk") or planecut_loops.LOOPS["walk"]
+            none = np.empty(0)
+            for lowest in (
+                lowest_segments(ta, tb),
+                lambda q: walk(q, none, xa, za, xb, zb, seg)[0],  # noqa: B023
+            ):
+                got = refined(xs, mid, z, zm, lowest=lowest)
+                assert _same(got.x, want.x) and _same(got.z, want.z)
 
 
 @pytest.mark.parametrize("name", sorted(BODIES))

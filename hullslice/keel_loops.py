@@ -1,0 +1,204 @@
+"""The keel line's loops, written for a compiler: numba's, when installed (compiled by
+:func:`hullslice.planecut_loops.compiled`, which holds them by name).
+
+:func:`side_view_loops` turns the silhouette edges to a pitch and finds the lowest of them
+over every end abscissa and every interval's middle, as
+:meth:`hullslice.kernel.envelope.lower_envelope` does with numpy: the same arithmetic per
+pair, and a minimum, which does not depend on the order. :func:`envelope_loops` does the
+same on edges already turned, :func:`lowest_loops` over given abscissae.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = [
+    "abscissae_loops",
+    "envelope_loops",
+    "lower_loops",
+    "lowest_loops",
+    "lowest_walk_loops",
+    "search_loops",
+    "side_view_loops",
+    "sorted_loops",
+]
+
+
+def search_loops(a, lo, hi, v, right):
+    """``np.searchsorted`` of ``v`` in the sorted ``a[lo:hi]``, plus ``lo``: the first index
+    whose value is not below ``v`` (``right``: above it), or ``hi``."""
+    while lo < hi:
+        m = (lo + hi) // 2
+        if a[m] < v or (right and a[m] == v):
+            lo = m + 1
+        else:
+            hi = m
+    return lo
+
+
+def lowest_loops(xs, xa, za, xb, zb):
+    """The lowest height of the segments from ``(xa, za)`` to ``(xb, zb)`` over each of the
+    sorted abscissae ``xs`` (``inf`` where none): a vertical segment's lower end, else the
+    segment's height there, ``za + (x - xa) / (xb - xa) * (zb - za)``."""
+    z = np.full(len(xs), np.inf)
+    for j in range(len(xa)):
+        dx = xb[j] - xa[j]
+        dz = zb[j] - za[j]
+        lo, hi = min(xa[j], xb[j]), max(xa[j], xb[j])
+        for i in range(search_loops(xs, 0, len(xs), lo, False), len(xs)):
+            if xs[i] > hi:
+                break
+            if dx == 0.0:
+                zi = min(za[j], zb[j])
+            else:
+                zi = za[j] + (xs[i] - xa[j]) / dx * dz
+            if zi < z[i] or zi != zi:  # np.minimum's: a NaN wins
+                z[i] = zi
+    return z
+
+
+def envelope_loops(xa, za, xb, zb):
+    """:func:`hullslice.kernel.envelope.lower_envelope`'s search by loops, on the segments
+    from ``(xa, za)`` to ``(xb, zb)``: the end abscissae sorted, each once (NaNs, sorted
+    last, as one), their interval middles, and the lowest height over each of both as
+    :func:`lowest_loops` finds it. Returns ``(xs, mid, z, zm)``: numpy's very arrays."""
+    e = len(xa)
+    xs = np.empty(2 * e)
+    xs[:e] = xa
+    xs[e:] = xb
+    xs.sort()
+    xs, mid = abscissae_loops(xs)
+    return xs, mid, lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
+
+
+def side_view_loops(a, b, gx, gz, c, s, order):
+    """The silhouette edges from ``a`` to ``b`` ((e, 3) body points) turned nose up by a
+    pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, as
+    :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them, the
+    end abscissae sorted by :func:`sorted_loops` from ``order`` (the ends' order at an
+    earlier pitch, ``2 e`` integers, updated). Returns ``(xa, za, xb, zb, seg, xs, mid, z,
+    zm)``: the turned ends, the segments in the order of their lower end abscissae (for
+    :func:`lowest_walk_loops`) and the envelope's arrays."""
+    e = len(a)
+    xa, za, xb, zb = np.empty(e), np.empty(e), np.empty(e), np.empty(e)
+    ends = np.empty(2 * e)
+    for i in range(e):
+        rx, rz = a[i, 0] - gx, a[i, 2] - gz
+        xa[i] = rx * c - rz * s
+        za[i] = rx * s + rz * c
+        rx, rz = b[i, 0] - gx, b[i, 2] - gz
+        xb[i] = rx * c - rz * s
+        zb[i] = rx * s + rz * c
+        ends[i] = xa[i]
+        ends[e + i] = xb[i]
+    xs = sorted_loops(ends, order)
+    # the segments by their lower end abscissa: each at its first end in the sorted order
+    seg = np.empty(e, dtype=np.int64)
+    seen = np.zeros(e, dtype=np.bool_)
+    k = 0
+    for i in range(2 * e):
+        j = order[i] % e if e else 0
+        if not seen[j]:
+            seen[j] = True
+            seg[k] = j
+            k += 1
+    xs, mid = abscissae_loops(xs)
+    finite = len(xs) == 0 or xs[len(xs) - 1] == xs[len(xs) - 1]
+    if finite:
+        z, zm = lowest_walk_loops(xs, mid, xa, za, xb, zb, seg)
+    else:  # a NaN: the searches of lowest_loops
+        z, zm = lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
+    return xa, za, xb, zb, seg, xs, mid, z, zm
+
+
+def lowest_walk_loops(xs, mid, xa, za, xb, zb, seg):
+    """:func:`lowest_loops` over the sorted abscissae ``xs`` and over ``mid`` at once, the
+    segments taken in the order ``seg`` (ascending lower end abscissa; no NaN): each
+    segment's first abscissa follows the one before it, found by walking on from it
+    instead of searching (a search's every step is a guess the processor gets wrong half
+    the time). The same heights as :func:`lowest_loops` (a minimum does not depend on the
+    order). Returns ``(z, zm)``."""
+    n, nm = len(xs), len(mid)
+    z = np.full(n, np.inf)
+    zm = np.full(nm, np.inf)
+    i0 = 0
+    k0 = 0
+    for jj in range(len(seg)):
+        j = seg[jj]
+        x0, z0 = xa[j], za[j]
+        dx = xb[j] - x0
+        dz = zb[j] - z0
+        lo, hi = min(x0, xb[j]), max(x0, xb[j])
+        while i0 < n and xs[i0] < lo:
+            i0 += 1
+        while k0 < nm and mid[k0] < lo:
+            k0 += 1
+        flat = min(z0, zb[j])  # a vertical segment's lower end
+        lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat)
+        lower_loops(zm, mid, k0, hi, x0, z0, dx, dz, flat)
+    return z, zm
+
+
+def lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat):
+    """``z`` lowered to the segment from ``x0`` (height ``z0``) by ``dx``, ``dz`` over the
+    sorted abscissae ``xs`` from ``i0`` to its end ``hi`` (``flat`` where it is vertical)."""
+    for i in range(i0, len(xs)):
+        if xs[i] > hi:
+            break
+        zi = flat if dx == 0.0 else z0 + (xs[i] - x0) / dx * dz
+        if zi < z[i]:
+            z[i] = zi
+
+
+def sorted_loops(v, order):
+    """``v`` sorted ascending (NaNs last), from ``order``: the order of ``v``'s values at an
+    earlier call (any permutation of ``0 .. len(v) - 1``), updated to their order now. Near
+    the earlier order (the silhouette at a pitch close to the last one) an insertion sort
+    takes a few moves per value; past :data:`SORT_MOVES` moves per value, and with a NaN,
+    a full sort. The same values as ``np.sort(v)``."""
+    n = len(v)
+    out = np.empty(n)
+    finite = True
+    for i in range(n):
+        out[i] = v[order[i]]
+        if out[i] != out[i]:
+            finite = False
+    budget = SORT_MOVES * n
+    moves = 0
+    i = 1
+    while finite and i < n and moves <= budget:
+        x, k = out[i], order[i]
+        j = i - 1
+        while j >= 0 and out[j] > x:
+            out[j + 1] = out[j]
+            order[j + 1] = order[j]
+            j -= 1
+        moves += i - 1 - j
+        out[j + 1] = x
+        order[j + 1] = k
+        i += 1
+    if not finite or moves > budget:
+        full = np.argsort(v, kind="mergesort")
+        for i in range(n):
+            order[i] = full[i]
+            out[i] = v[full[i]]
+    return out
+
+
+#: Most moves per value of :func:`sorted_loops`'s insertion sort before a full sort.
+SORT_MOVES = 8
+
+
+def abscissae_loops(xs):
+    """The sorted abscissae ``xs`` each once (NaNs, sorted last, as one) and their
+    interval middles: ``(xs, mid)``."""
+    n = 0
+    for i in range(len(xs)):
+        if i == 0 or (xs[i] != xs[i - 1] and not (xs[i] != xs[i] and xs[i - 1] != xs[i - 1])):
+            xs[n] = xs[i]
+            n += 1
+    xs = xs[:n].copy()
+    mid = np.empty(max(n - 1, 0))
+    for i in range(n - 1):
+        mid[i] = 0.5 * (xs[i + 1] + xs[i])
+    return xs, mid
