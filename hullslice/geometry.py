@@ -275,13 +275,13 @@ def _frame(hull, pitch: float) -> Frame:
         xa, za, xb, zb, seg, xs, mid, z, zm = side(
             a, b, float(g[0]), float(g[2]), float(c), float(s), order
         )
-        if np.isfinite(xs[-1:]).all():  # the refinement's heights by the same loops
-            walk, none = loops_in_use("walk"), np.empty(0)
-            lowest = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
+        walk, none = loops_in_use("walk"), np.empty(0)
+        if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
+            heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
         else:
             turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
-            lowest = lowest_segments(make=turned)
-        keel = refined(xs, mid, z, zm, merge, lowest)
+            heights = lowest_segments(make=turned)
+        keel = refined(xs, mid, z, zm, merge, heights, loops_in_use("runs"))
     else:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]

@@ -10,6 +10,8 @@ same on edges already turned, :func:`lowest_loops` over given abscissae.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 __all__ = [
@@ -18,6 +20,7 @@ __all__ = [
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
+    "runs_loops",
     "search_loops",
     "side_view_loops",
     "sorted_loops",
@@ -202,3 +205,91 @@ def abscissae_loops(xs):
     for i in range(n - 1):
         mid[i] = 0.5 * (xs[i + 1] + xs[i])
     return xs, mid
+
+
+def runs_loops(x, z, end_face, steep_slope):
+    """:meth:`hullslice.kernel.keel._Runs.of` of the break points ``x``, ``z`` by loops,
+    with the same arithmetic in the same order (each sum a running one, as numpy's
+    ``cumsum``): the same arrays. ``end_face`` and ``steep_slope`` are
+    :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
+    :data:`~hullslice.kernel.keel.STEEP_SLOPE`.
+
+    Returns ``(ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi)``:
+    ``ok`` False where no facet has a finite slope (numpy's path holds the slope at zero
+    there; nothing else is meaningful), ``bottom`` whether a bottom facet exists (then
+    ``(x, height, lo, hi)`` are the chords)."""
+    n = len(x) - 1
+    slopes = np.empty(max(n, 0))
+    steep = np.zeros(max(n, 0), dtype=np.bool_)
+    fin = np.empty(max(n, 0), dtype=np.int64)
+    nf = 0
+    for i in range(n):
+        slopes[i] = (z[i + 1] - z[i]) / (x[i + 1] - x[i])
+        if math.isfinite(slopes[i]):
+            fin[nf] = i
+            nf += 1
+            steep[i] = abs(slopes[i]) > end_face
+    empty = np.empty(0)
+    if nf == 0:
+        return False, empty, empty, empty, empty, steep, empty, False, empty, empty, empty
+    fmid, fslopes, cont = np.empty(nf), np.empty(nf), np.empty(nf)
+    new = np.zeros(nf, dtype=np.bool_)
+    n_new = 0
+    for k in range(nf):
+        fmid[k] = 0.5 * (x[fin[k] + 1] + x[fin[k]])
+        fslopes[k] = slopes[fin[k]]
+        if k > 0 and (steep[fin[k]] != steep[fin[k - 1]] or fin[k] - fin[k - 1] > 1):
+            new[k] = True
+            n_new += 1
+    # the slope's jumps between runs taken out, and where each run after the first starts
+    starts, offsets = np.empty(n_new), np.empty(n_new + 1)
+    offsets[0] = 0.0
+    offset = 0.0
+    r = 0
+    turned = False
+    turn = np.zeros(nf)
+    for k in range(nf):  # a running sum from the first term, as cumsum's
+        jump = fslopes[k - 1] - fslopes[k] if new[k] else 0.0
+        offset = jump if k == 0 else offset + jump
+        if new[k]:
+            offsets[r + 1] = offset
+            starts[r] = x[fin[k - 1] + 1] if fin[k] - fin[k - 1] > 1 else x[fin[k]]
+            r += 1
+        cont[k] = fslopes[k] + offset
+        if k > 0 and not new[k]:
+            if abs(fslopes[k]) > steep_slope or abs(fslopes[k - 1]) > steep_slope:
+                turn[k] = fslopes[k] - fslopes[k - 1]
+                turned = turned or turn[k] != 0.0
+    bend = cont.copy()
+    if turned:
+        bend[0] = cont[0] - 0.0
+        total = 0.0
+        for k in range(1, nf):
+            total = turn[k] if k == 1 else total + turn[k]
+            bend[k] = cont[k] - total
+    # the chords of the bottom's runs: its rise from the first break point, and each
+    # bottom facet's run's first and last break points (a facet's own first point else)
+    height, lo, hi = np.empty(n + 1), np.empty(n), np.empty(n)
+    height[0] = 0.0
+    rise = 0.0
+    bottom = False
+    for i in range(n):
+        is_bottom = math.isfinite(slopes[i]) and not steep[i]
+        bottom = bottom or is_bottom
+        step = (z[i + 1] - z[i]) if is_bottom else 0.0
+        rise = step if i == 0 else rise + step
+        height[i + 1] = rise
+    i = 0
+    while i < n:
+        if not (math.isfinite(slopes[i]) and not steep[i]):
+            lo[i] = hi[i] = x[i]
+            i += 1
+            continue
+        j = i
+        while j < n and math.isfinite(slopes[j]) and not steep[j]:
+            j += 1
+        for k in range(i, j):  # a run of bottom facets i .. j - 1, from x[i] to x[j]
+            lo[k] = x[i]
+            hi[k] = x[j]
+        i = j
+    return True, fmid, cont, starts, offsets, steep, bend, bottom, height, lo, hi

@@ -32,6 +32,7 @@ from .keel_loops import (
     lower_loops,
     lowest_loops,
     lowest_walk_loops,
+    runs_loops,
     search_loops,
     side_view_loops,
     sorted_loops,
@@ -359,6 +360,7 @@ LOOPS["search"] = search_loops
 LOOPS["sorted"] = sorted_loops
 LOOPS["walk"] = lowest_walk_loops
 LOOPS["lower"] = lower_loops
+LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
 #: The loops that others call, by caller: compiled before it, in its module's namespace
 #: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).

@@ -56,6 +56,7 @@ def refined(
     zm: np.ndarray,
     merge: float = 0.0,
     lowest: Callable[[np.ndarray], np.ndarray] | None = None,
+    runs: Callable | None = None,
 ) -> KeelLine:
     """The keel line through the lowest heights ``z`` over the abscissae ``xs``, refined
     where the heights at the middles ``mid``, ``zm``, lie off the straight line.
@@ -73,6 +74,8 @@ def refined(
     the middle is added, and the middles of the halves that still peak above their
     chords, :data:`CROSSING_PASSES` times (the crossing itself is not found: the line
     lies low near it by at most its height over 2**CROSSING_PASSES of the interval).
+
+    ``runs``, when given, finds the line's runs by loops (see :class:`KeelLine`).
 
     Break points closer together than ``merge`` (m; a rounding-size tie) are one
     point, at their mean abscissa and their lowest height: vertices that share a station
@@ -116,7 +119,7 @@ def refined(
             counts = np.diff(np.append(first, len(xs)))
             xs = np.add.reduceat(xs, first) / counts
             z = np.minimum.reduceat(z, first)
-    return KeelLine(xs, z)
+    return KeelLine(xs, z, runs)
 
 
 #: How many times :func:`refined` halves an interval where two segments cross.

@@ -7,7 +7,8 @@ slice. Pure numpy.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
@@ -43,9 +44,13 @@ class KeelLine:
     z: np.ndarray
     #: The facets' slopes by run (see :meth:`at`): see :class:`_Runs`.
     _runs: _Runs = field(init=False, repr=False)
+    #: Finds the runs' arrays instead of numpy, when given: ``loops(x, z, END_FACE_SLOPE,
+    #: STEEP_SLOPE)`` as :func:`hullslice.keel_loops.runs_loops` (compiled: the same arrays).
+    loops: InitVar[Callable | None] = None
 
-    def __post_init__(self) -> None:
-        object.__setattr__(self, "_runs", _Runs.of(self.x, self.z))  # frozen: set once here
+    def __post_init__(self, loops: Callable | None) -> None:
+        runs = _Runs.of(self.x, self.z, loops)
+        object.__setattr__(self, "_runs", runs)  # frozen: set once here
 
     def at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Keel height and slope ``dZ_k/dX`` at relative stations ``x``.
@@ -252,7 +257,14 @@ class _Runs:
     chords: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
 
     @classmethod
-    def of(cls, x: np.ndarray, z: np.ndarray) -> _Runs:
+    def of(cls, x: np.ndarray, z: np.ndarray, loops: Callable | None = None) -> _Runs:
+        if loops is not None:
+            ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = loops(
+                x, z, END_FACE_SLOPE, STEEP_SLOPE
+            )
+            if ok:
+                chords = (x, height, lo, hi) if bottom else None
+                return cls(mid, cont, starts, offsets, steep, bend, chords)
         n = len(x) - 1
         with np.errstate(invalid="ignore", divide="ignore"):
             mid, slopes = 0.5 * (x[1:] + x[:-1]), np.diff(z) / np.diff(x)

@@ -1,0 +1,81 @@
+"""The keel line's runs by loops (:func:`hullslice.keel_loops.runs_loops`, as Python and
+compiled where numba is installed) against numpy's :meth:`_Runs.of`: the same arrays to the
+last bit, on every catalogued body's keel line at pitches from -20 to 40 degrees and on
+lines made to hold what a keel line can: gaps between parts, steps, end faces, a fan of
+micro-facets, no bottom at all."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hullslice import planecut_loops
+from hullslice.geometry import _turn, silhouette_edges
+from hullslice.kernel.envelope import lower_envelope
+from hullslice.kernel.keel import _Runs
+
+from .test_planecut import BODIES, _same
+
+FIELDS = ("mid", "cont", "starts", "offsets", "steep", "bend")
+
+
+def _loops():
+    paths = [planecut_loops.LOOPS["runs"]]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("runs"))
+    return paths
+
+
+def _assert_same_runs(x: np.ndarray, z: np.ndarray) -> None:
+    want = _Runs.of(x, z)
+    for loops in _loops():
+        got = _Runs.of(x, z, loops)
+        for name in FIELDS:
+            assert _same(getattr(got, name), getattr(want, name)), name
+        if want.chords is None:
+            assert got.chords is None
+        else:
+            assert got.chords is not None
+            for a, b in zip(got.chords, want.chords, strict=True):
+                assert _same(a, b)
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_the_runs_by_loops_equal_numpy_on_every_body(name):
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        line = lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
+        _assert_same_runs(line.x, line.z)
+
+
+def _fan() -> tuple[np.ndarray, np.ndarray]:
+    xb = np.linspace(0.0, 1.0, 21)
+    slopes = np.array([20.0, 80.0, 300.0, 800.0, 1300.0])
+    xc = 1.0 + np.cumsum(np.full(len(slopes), 0.004))
+    zc = 0.05 + np.cumsum(0.004 * slopes)
+    return np.concatenate([xb, xc]), np.concatenate([0.05 * xb**2, zc])
+
+
+LINES = {
+    "straight": ([0.0, 1.0, 2.0], [0.0, 0.1, 0.2]),
+    "one facet": ([0.0, 1.0], [0.3, -0.2]),
+    "kink": ([0.0, 1.0, 2.0], [0.0, 0.1, 0.3]),
+    "step": ([0.0, 0.5, 1.0, 1.01, 1.51, 2.01], [0.0, 0.05, 0.1, -0.1, -0.05, 0.0]),
+    "gap between parts": ([0.0, 1.0, 1.5, 2.0, 3.0], [0.0, 0.1, np.inf, 0.2, 0.1]),
+    "gap at the start": ([0.0, 0.5, 1.0, 2.0], [np.inf, 0.0, 0.1, 0.0]),
+    "leaning steeply": ([0.0, 0.1, 0.2, 1.0, 1.1], [0.0, 0.3, 0.7, 0.8, 2.0]),
+    "all steep": ([0.0, 0.001, 0.002], [0.0, 1.0, 3.0]),
+    "no finite slope": ([0.0, 1.0, 2.0], [np.inf, np.inf, np.inf]),
+    "signed zeros": ([0.0, 1.0, 2.0, 3.0], [-0.0, 0.0, -0.0, -0.0]),
+    "fan of micro-facets": _fan(),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LINES))
+def test_the_runs_by_loops_equal_numpy_on_made_lines(name):
+    x, z = (np.asarray(v, dtype=np.float64) for v in LINES[name])
+    with np.errstate(invalid="ignore"):
+        _assert_same_runs(x, z)
