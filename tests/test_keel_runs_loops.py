@@ -1,8 +1,9 @@
-"""The keel line's runs by loops (:func:`hullslice.keel_loops.runs_loops`, as Python and
-compiled where numba is installed) against numpy's :meth:`_Runs.of`: the same arrays to the
-last bit, on every catalogued body's keel line at pitches from -20 to 40 degrees and on
-lines made to hold what a keel line can: gaps between parts, steps, end faces, a fan of
-micro-facets, no bottom at all."""
+"""The keel line's loops of :mod:`hullslice.keel_loops` (as Python, and compiled where numba
+is installed) against numpy: its runs (:func:`runs_loops` against :meth:`_Runs.of`, the
+same arrays to the last bit, on every catalogued body's keel line at pitches from -20 to
+40 degrees and on lines made to hold what a keel line can: gaps between parts, steps, end
+faces, a fan of micro-facets, no bottom at all), the ends' sort from an earlier order, and
+the walk along the segments."""
 
 from __future__ import annotations
 
@@ -79,3 +80,55 @@ def test_the_runs_by_loops_equal_numpy_on_made_lines(name):
     x, z = (np.asarray(v, dtype=np.float64) for v in LINES[name])
     with np.errstate(invalid="ignore"):
         _assert_same_runs(x, z)
+
+
+def _keel_loops(name: str):
+    paths = [planecut_loops.LOOPS[name]]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled(name))
+    return paths
+
+
+def test_the_ends_sorted_from_an_earlier_order_are_numpys_sort():
+    """:func:`sorted_loops` from any earlier order (the right one, one a few swaps off, a
+    reversed one past its budget, a random one) gives ``np.sort``'s values, NaNs last, and
+    leaves the order of the values it sorted."""
+    rng = np.random.default_rng(7)
+    v = np.round(rng.normal(size=300), 2)  # ties
+    v[:3] = [0.0, -0.0, 0.0]
+    near = np.argsort(v, kind="stable")
+    near[10:12] = near[11:9:-1]  # two neighbours swapped
+    hints = [np.argsort(v, kind="stable"), near, np.arange(300)[::-1], rng.permutation(300)]
+    for fn in _keel_loops("sorted"):
+        for hint in hints:
+            order = hint.copy()
+            got = fn(v, order)
+            np.testing.assert_array_equal(got, np.sort(v))
+            assert sorted(order.tolist()) == list(range(300))
+            np.testing.assert_array_equal(v[order], got)
+        with_nan = v.copy()
+        with_nan[[5, 50]] = np.nan
+        order = np.arange(300)
+        got = fn(with_nan, order)
+        np.testing.assert_array_equal(got, np.sort(with_nan))  # NaNs last, as numpy's
+        np.testing.assert_array_equal(with_nan[order], got)
+
+
+def test_the_walk_along_the_segments_equals_the_searches():
+    """:func:`lowest_walk_loops`, the segments in the order of their lower ends, gives
+    :func:`lowest_loops`'s heights to the last bit over the ends and over the intervals'
+    middles: random segments, vertical ones, segments sharing ends, abscissae outside
+    every segment."""
+    rng = np.random.default_rng(11)
+    e = 200
+    xa, xb = np.round(rng.uniform(0, 10, e), 1), np.round(rng.uniform(0, 10, e), 1)
+    xb[:20] = xa[:20]  # vertical in the side view
+    za, zb = rng.normal(size=e), rng.normal(size=e)
+    xs = np.unique(np.concatenate([xa, xb, [-1.0, 11.0]]))
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    seg = np.argsort(np.minimum(xa, xb), kind="stable")
+    lowest = planecut_loops.LOOPS["lowest"]
+    want = lowest(xs, xa, za, xb, zb), lowest(mid, xa, za, xb, zb)
+    for walk in _keel_loops("walk"):
+        z, zm = walk(xs, mid, xa, za, xb, zb, seg)
+        assert _same(z, want[0]) and _same(zm, want[1])
