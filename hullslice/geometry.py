@@ -330,10 +330,10 @@ def _side_order(hull, n: int) -> np.ndarray:
 
 
 def loops_in_use(name: str) -> Callable | None:
-    """The compiled loops ``name`` of :mod:`hullslice.planecut_loops` (``"side"``,
-    ``"outline"``, ``"wetted"``) where :func:`keel_loops` holds, else None (numpy's path):
-    a new pitch's keel line, outline and wetted properties by the compiler once its cut
-    is."""
+    """The compiled loops ``name`` of :data:`hullslice.planecut_loops.LOOPS` (``"side"``,
+    ``"walk"`` and ``"runs"`` for the keel line, ``"outline"``, ``"wetted"``) where
+    :func:`keel_loops` holds, else None (numpy's path): a new pitch's keel line, outline
+    and wetted properties by the compiler once its cut is."""
     return planecut_loops.compiled(name) if keel_loops() else None
 
 
@@ -359,9 +359,12 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     any pitch is the lower envelope of their side views, and the body's lowest and highest
     points are among their ends. An edge between two edge-on faces is left out: both lie
     in one plane through ``y`` (a flat end cap's fan, a flat side), or the edge runs along
-    ``y`` and is a point in the side view; either way the edges around that face's region
-    cover its side view at every pitch (a fan of the end cap's edges, edge-on at no pitch,
-    would spread over its whole height, each pair of the fan an overlap). Kept on the hull.
+    ``y`` and is a point in the side view; either way the edges around that faces' region
+    cover its side view at every pitch (a flat cap's fan is a vertical line in the side
+    view at pitch 0 only, and at any other pitch spreads over the cap's height, each pair
+    of its edges an overlap). A vertex that only such edges reach stays, as an edge from
+    the vertex to itself: the keel line keeps its break points, and so its refinement
+    between them. Kept on the hull.
     """
     return hull.cache[SILHOUETTE].get(lambda: _silhouette_edges(hull))
 
@@ -384,6 +387,12 @@ def _silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     face = (use // 3)[order]
     # a closed manifold uses each edge twice: the two uses are neighbours once sorted
     n0, n1 = ny[face[0::2]], ny[face[1::2]]
-    side = ((np.sign(n0) * np.sign(n1)) <= 0) & ((n0 != 0.0) | (n1 != 0.0))
+    outline = (np.sign(n0) * np.sign(n1)) <= 0
+    side = outline & ((n0 != 0.0) | (n1 != 0.0))
     ends = directed[order[0::2][side]]
+    # a vertex that only edges between edge-on faces reach (a fan's centre inside a flat
+    # cap or bottom) stays a break point of the keel line: a point of its own
+    dropped = directed[order[0::2][outline & ~side]].ravel()
+    alone = np.setdiff1d(dropped, ends.ravel())
+    ends = np.concatenate([ends, np.stack([alone, alone], axis=1)])
     return v[ends[:, 0]], v[ends[:, 1]]

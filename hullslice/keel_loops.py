@@ -4,8 +4,9 @@
 :func:`side_view_loops` turns the silhouette edges to a pitch and finds the lowest of them
 over every end abscissa and every interval's middle, as
 :meth:`hullslice.kernel.envelope.lower_envelope` does with numpy: the same arithmetic per
-pair, and a minimum, which does not depend on the order. :func:`envelope_loops` does the
-same on edges already turned, :func:`lowest_loops` over given abscissae.
+pair, and a minimum, which does not depend on the order (but for the sign of a zero where
+two segments tie at one: numpy keeps the last, the loops the first). :func:`envelope_loops`
+does the same on edges already turned, :func:`lowest_loops` over given abscissae.
 """
 
 from __future__ import annotations
@@ -158,7 +159,8 @@ def sorted_loops(v, order):
     earlier call (any permutation of ``0 .. len(v) - 1``), updated to their order now. Near
     the earlier order (the silhouette at a pitch close to the last one) an insertion sort
     takes a few moves per value; past :data:`SORT_MOVES` moves per value, and with a NaN,
-    a full sort. The same values as ``np.sort(v)``."""
+    a full sort. The same values as ``np.sort(v)`` (equal as numbers: a zero's sign may
+    follow the earlier order)."""
     n = len(v)
     out = np.empty(n)
     finite = True

@@ -225,7 +225,7 @@ def available() -> bool:
 def in_use() -> bool:
     """Whether this process has compiled loops already (numba imported for them): then the
     keel line's are worth using too."""
-    return any(fn is not None for fn in _COMPILED.values())
+    return any(fn is not None for fn in list(_COMPILED.values()))  # another thread may add
 
 
 #: The loops :func:`compiled` compiles, by name.
@@ -362,8 +362,10 @@ LOOPS["walk"] = lowest_walk_loops
 LOOPS["lower"] = lower_loops
 LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
-#: The loops that others call, by caller: compiled before it, in its module's namespace
-#: (numba calls compiled functions only; :data:`LOOPS` keeps the Python ones).
+#: The loops that others call, by caller, their own helpers before them: compiled before
+#: it, into their module's namespace and the caller's (numba calls compiled functions
+#: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
+#: namespaces are numba's).
 CALLS = {
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),

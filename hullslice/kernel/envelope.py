@@ -25,7 +25,7 @@ def lower_envelope(
     that :func:`refined` finds. ``loops``, when given, finds the
     abscissae and the lowest segment over each instead of numpy
     (``loops(xa, za, xb, zb) -> (xs, mid, z, zm)``, as
-    :func:`hullslice.planecut_loops.envelope_loops`, compiled: the same numbers).
+    :func:`hullslice.keel_loops.envelope_loops`, compiled: the same numbers).
     Break points closer than ``merge`` (m) are one (see :func:`refined`).
     """
     if loops is not None:
