@@ -223,6 +223,7 @@ def runs_loops(x, z, end_face, steep_slope):
     n = len(x) - 1
     slopes = np.empty(max(n, 0))
     steep = np.zeros(max(n, 0), dtype=np.bool_)
+    bottom_facet = np.zeros(max(n, 0), dtype=np.bool_)  # a finite slope, not steep
     fin = np.empty(max(n, 0), dtype=np.int64)
     nf = 0
     for i in range(n):
@@ -231,6 +232,7 @@ def runs_loops(x, z, end_face, steep_slope):
             fin[nf] = i
             nf += 1
             steep[i] = abs(slopes[i]) > end_face
+            bottom_facet[i] = not steep[i]
     empty = np.empty(0)
     if nf == 0:
         return False, empty, empty, empty, empty, steep, empty, False, empty, empty, empty
@@ -246,7 +248,7 @@ def runs_loops(x, z, end_face, steep_slope):
     # the slope's jumps between runs taken out, and where each run after the first starts
     starts, offsets = np.empty(n_new), np.empty(n_new + 1)
     offsets[0] = 0.0
-    offset = 0.0
+    offset = 0.0  # set at k = 0
     r = 0
     turned = False
     turn = np.zeros(nf)
@@ -276,19 +278,18 @@ def runs_loops(x, z, end_face, steep_slope):
     rise = 0.0
     bottom = False
     for i in range(n):
-        is_bottom = math.isfinite(slopes[i]) and not steep[i]
-        bottom = bottom or is_bottom
-        step = (z[i + 1] - z[i]) if is_bottom else 0.0
+        bottom = bottom or bottom_facet[i]
+        step = (z[i + 1] - z[i]) if bottom_facet[i] else 0.0
         rise = step if i == 0 else rise + step
         height[i + 1] = rise
     i = 0
     while i < n:
-        if not (math.isfinite(slopes[i]) and not steep[i]):
+        if not bottom_facet[i]:
             lo[i] = hi[i] = x[i]
             i += 1
             continue
         j = i
-        while j < n and math.isfinite(slopes[j]) and not steep[j]:
+        while j < n and bottom_facet[j]:
             j += 1
         for k in range(i, j):  # a run of bottom facets i .. j - 1, from x[i] to x[j]
             lo[k] = x[i]
