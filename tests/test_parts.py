@@ -151,3 +151,21 @@ def test_a_section_under_water_beyond_its_widest_point_keeps_its_keel():
     assert s.penetration == pytest.approx(np.full(4, draft), rel=1e-6)
     assert s.mass_per_metre == pytest.approx(np.full(4, 500.0), rel=1e-6)
     assert s.chine_wetted.all()  # beyond the widest point: flagged, not passed as valid
+
+
+@pytest.mark.parametrize("solver", ["mlm", "zarnick", "wagner", "von-karman"])
+def test_a_catamaran_is_the_sum_of_its_floats_for_each_momentum_solver(floats, solver):
+    # the same reference as above, for the solvers that read each entry's own contour
+    # (mlm samples each side of a float out to its own edge, not across to the other
+    # float: before, its side reached over the gap, 7.8 N/m of 3.7 kN/m apart); the
+    # acceleration prescribed, so that each float alone moves as the pair does
+    (vs, fs), (vp, fp) = floats
+    cat = hs.Hull.from_arrays(*join((vs, fs), (vp, fp)), mass=20.0)
+    kw = dict(slices=SLICES, solver=solver, slicing="fixed", acceleration=0.0)
+    r = hs.compute_force(cat, DRAFT, VELOCITY, **kw)
+    alone = [
+        hs.compute_force(h.with_mass(20.0 * h.volume / cat.volume), DRAFT, VELOCITY, **kw)
+        for h in (hs.Hull.from_arrays(vs, fs), hs.Hull.from_arrays(vp, fp))
+    ]
+    assert r.force[0::2] == pytest.approx(alone[0].force, rel=1e-7)
+    assert r.force[1::2] == pytest.approx(alone[1].force, rel=1e-7)

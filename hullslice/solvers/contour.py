@@ -45,6 +45,7 @@ __all__ = [
     "WEDGE_TOLERANCE",
     "contour_half_widths",
     "contour_heights",
+    "entry_parts",
     "submerged_parts",
     "wagner_root",
 ]
@@ -220,24 +221,23 @@ def wagner_root(g: np.ndarray, ds: np.ndarray, target: np.ndarray) -> np.ndarray
     return np.where(past, np.nan, c)
 
 
-def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
-    """Each wetted entry's area below the water and its part's whole area, m^2.
+def entry_parts(sections):
+    """Each entry's part, station by station.
 
-    A part is an outer contour of the station (a float of a catamaran); an entry belongs to
-    the part whose width holds its keel and whose bottom is at its keel's depth. The pieces
-    of one part (twin keels joined above the water) share its areas by their widths at the
-    waterline. Holes are not subtracted.
+    A part is an outer contour of the station (a float of a catamaran, a nacelle beside
+    a fuselage); an entry belongs to the part whose width holds its keel and whose bottom
+    is nearest its keel's depth.
 
-    Returns
-    -------
-    below : (n,) float
-        The entry's share of its part's area below ``z = 0``.
-    whole : (n,) float
-        The entry's share of its part's whole area.
+    Yields
+    ------
+    idx : (k,) int
+        The entries of one station.
+    parts : list of (y_min, y_max, z_min, contour, area)
+        The station's outer contours (m, m, m, (q, 2) points, m^2), in the sections'
+        coordinates.
+    owner : (k,) int
+        Each entry's part, an index into ``parts``; -1 where no part holds its keel.
     """
-    n = len(sections)
-    below, whole = np.zeros(n), np.zeros(n)
-    width = np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64)
     station = np.asarray(sections.station)
     for st in np.unique(station):
         idx = np.flatnonzero(station == st)
@@ -258,6 +258,27 @@ def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
                 if y0 <= yk <= y1 and (best is None or abs(z0 - zk) < best[0]):
                     best = (abs(z0 - zk), k)
             owner[j] = -1 if best is None else best[1]
+        yield idx, parts, owner
+
+
+def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
+    """Each wetted entry's area below the water and its part's whole area, m^2.
+
+    An entry's part is as :func:`entry_parts` finds it. The pieces of one part (twin keels
+    joined above the water) share its areas by their widths at the waterline. Holes are
+    not subtracted.
+
+    Returns
+    -------
+    below : (n,) float
+        The entry's share of its part's area below ``z = 0``.
+    whole : (n,) float
+        The entry's share of its part's whole area.
+    """
+    n = len(sections)
+    below, whole = np.zeros(n), np.zeros(n)
+    width = np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64)
+    for idx, parts, owner in entry_parts(sections):
         for k, (_, _, _, c, full) in enumerate(parts):
             mine = idx[owner == k]
             if not len(mine):

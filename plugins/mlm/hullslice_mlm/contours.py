@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from hullslice import InputError
-from hullslice.solvers.contour import contour_heights, wagner_root
+from hullslice.solvers.contour import contour_heights, entry_parts, wagner_root
 
 #: Gauss-Legendre nodes over ``t`` in ``(0, t*)`` per side (the pressure's points).
 NODES = 32
@@ -202,21 +202,24 @@ def real_bottom(raw, ds, y_last, s_last, y):
 
 
 def _extents(sections) -> np.ndarray:
-    """(2, n): how far each side of each entry reaches from its keel (port: +y), m, from
-    its station's polygons."""
+    """(2, n): how far each side of each entry reaches from its keel (port: +y), m: to the
+    edge of its own part (:func:`~hullslice.solvers.contour.entry_parts`; a float of a
+    catamaran reaches no further than its own side), or of its station's polygons where
+    no part holds its keel."""
     n = len(sections)
-    station = np.asarray(sections.station, dtype=np.int64)
-    stations, index = np.unique(station, return_inverse=True)
-    lo = np.full(len(stations), np.inf)
-    hi = np.full(len(stations), -np.inf)
-    for j, st in enumerate(stations):
-        for poly in sections.polygons[int(st)]:
-            a = np.asarray(poly, dtype=np.float64)
-            if len(a):
-                lo[j] = min(lo[j], float(a[:, 0].min()))
-                hi[j] = max(hi[j], float(a[:, 0].max()))
+    lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
+    for idx, parts, owner in entry_parts(sections):
+        for j, i in enumerate(idx):
+            if owner[j] >= 0:
+                lo[i], hi[i] = parts[owner[j]][0], parts[owner[j]][1]
+                continue
+            for poly in sections.polygons[int(sections.station[i])]:
+                a = np.asarray(poly, dtype=np.float64)
+                if len(a):
+                    lo[i] = min(lo[i], float(a[:, 0].min()))
+                    hi[i] = max(hi[i], float(a[:, 0].max()))
     yk = np.asarray(sections.y_keel, dtype=np.float64)
-    out = np.stack([hi[index] - yk, yk - lo[index]]) if n else np.zeros((2, 0))
+    out = np.stack([hi - yk, yk - lo]) if n else np.zeros((2, 0))
     chine = 2.0 * np.asarray(sections.part_half_beam, dtype=np.float64)
     out = np.where(np.isfinite(out), out, chine)
     return np.minimum(np.maximum(out, 0.0), np.maximum(chine, 1e-300))
