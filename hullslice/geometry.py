@@ -204,6 +204,8 @@ REGIONS: Entry[LRU[tuple[float, float], Any]] = Entry("regions", lambda: LRU(REG
 FACE_REACH: Entry[Once[float]] = Entry("face reach", Once, geometry=True)
 #: The silhouette edges' end points (see :func:`silhouette_edges`).
 SILHOUETTE: Entry[Once[tuple[np.ndarray, np.ndarray]]] = Entry("silhouette", Once, geometry=True)
+#: The silhouette edges' end vertices (see :func:`silhouette_ends`).
+SILHOUETTE_ENDS: Entry[Once[np.ndarray]] = Entry("silhouette ends", Once, geometry=True)
 #: Per thread, the silhouette edges' ends in their order along the side view at the last
 #: pitch (see :func:`_side_order`).
 SIDE_ORDER: Entry[threading.local] = Entry("side order", threading.local, geometry=True)
@@ -366,10 +368,32 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     the vertex to itself: the keel line keeps its break points, and so its refinement
     between them. Kept on the hull.
     """
+
     return hull.cache[SILHOUETTE].get(lambda: _silhouette_edges(hull))
 
 
 def _silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
+    ends = silhouette_ends(hull)
+    return hull.vertices[ends[:, 0]], hull.vertices[ends[:, 1]]
+
+
+def silhouette_ends(hull) -> np.ndarray:
+    """(e, 2) int: the vertices at the ends of :func:`silhouette_edges`. Kept on the hull."""
+    return hull.cache[SILHOUETTE_ENDS].get(lambda: _silhouette_ends(hull))
+
+
+def keel_line_of(hull, pitch: float, edges: np.ndarray) -> KeelLine:
+    """The keel line at ``pitch`` (relative to the centre of gravity, as
+    :attr:`Frame.keel`) of the silhouette edges ``edges`` only (indices into
+    :func:`silhouette_edges`: one piece's of a body of several), by numpy's lower envelope."""
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg, dtype=np.float64)
+    c, s = np.cos(pitch), np.sin(pitch)
+    ta, tb = _turn(a[edges] - g, c, s), _turn(b[edges] - g, c, s)
+    return lower_envelope(ta, tb, merge=TOL.keel_merge * hull.size)
+
+
+def _silhouette_ends(hull) -> np.ndarray:
     v, f = hull.vertices, hull.faces
     e1, e2 = v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]
     ny = e1[:, 2] * e2[:, 0] - e1[:, 0] * e2[:, 2]  # the normals' y components
@@ -394,5 +418,4 @@ def _silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     # cap or bottom) stays a break point of the keel line: a point of its own
     dropped = directed[order[0::2][outline & ~side]].ravel()
     alone = np.setdiff1d(dropped, ends.ravel())
-    ends = np.concatenate([ends, np.stack([alone, alone], axis=1)])
-    return v[ends[:, 0]], v[ends[:, 1]]
+    return np.concatenate([ends, np.stack([alone, alone], axis=1)])

@@ -169,3 +169,128 @@ def test_a_catamaran_is_the_sum_of_its_floats_for_each_momentum_solver(floats, s
     ]
     assert r.force[0::2] == pytest.approx(alone[0].force, rel=1e-7)
     assert r.force[1::2] == pytest.approx(alone[1].force, rel=1e-7)
+
+
+def _alone(cat, parts, draft_of, motion, **kw):
+    """Each part alone with its share of the pair's mass, at the pose that puts it where
+    it is in the pair (pitch 0: its own draft from its own lowest point)."""
+    return [
+        hs.compute_force(
+            hs.Hull.from_arrays(v, f).with_mass(20.0 * hs.Hull.from_arrays(v, f).volume
+                                                / cat.volume),
+            hs.Pose(draft_of(v), 0.0), motion, **kw,
+        )
+        for v, f in parts
+    ]  # fmt: skip
+
+
+def _sloping_pair(rise):
+    """Floats 0.4 m wide (both stay wet, neither goes under) 0.6 m apart: 30 deg
+    starboard with a level keel at 0, 20 deg port with its keel at ``rise (x - 1) - 0.01``
+    (rising forward by ``rise`` over its 1 m)."""
+    vs, fs = shapes.wedge_prism(length=1.0, beam=0.4, deadrise_deg=30.0)
+    vp, fp = shapes.wedge_prism(length=1.0, beam=0.4, deadrise_deg=20.0)
+    vs = vs - np.array([0.0, 0.3, vs[:, 2].min()])
+    vp = vp + np.array([0.0, 0.3, -vp[:, 2].min()])
+    vp[:, 2] += rise * (vp[:, 0] - vp[:, 0].max()) - 0.01
+    return (vs, fs), (vp, fp)
+
+
+def _pair_and_alone(rise, solver, slicing, draft=0.07):
+    """The pair at 10 m/s forward and each float alone where it is in the pair (its
+    share of the mass, the acceleration prescribed)."""
+    (vs, fs), (vp, fp) = _sloping_pair(rise)
+    cat = hs.Hull.from_arrays(*join((vs, fs), (vp, fp)), mass=20.0)
+    low = min(vs[:, 2].min(), vp[:, 2].min())
+    motion = hs.Motion(-3.0, 10.0, 0.0)
+    kw = dict(slices=SLICES, solver=solver, slicing=slicing, acceleration=0.0)
+    r = hs.compute_force(cat, hs.Pose(draft, 0.0), motion, **kw)
+    alone = _alone(cat, [(vs, fs), (vp, fp)], lambda v: draft - (v[:, 2].min() - low),
+                   motion, **kw)  # fmt: skip
+    return r, alone
+
+
+@pytest.mark.parametrize("slicing", ["fixed", "wetted"])
+@pytest.mark.parametrize("solver", ["mlm", "zarnick"])
+def test_a_piece_above_a_lower_one_keeps_its_own_keel(slicing, solver):
+    # the port float deeper everywhere, its keel sloping 0.03; the starboard float's
+    # level. With forward speed a section's penetration rate is w - U * slope: on the
+    # body's one keel line the level float took the other's slope (zarnick 9 % high on
+    # the pair at 10 m/s). Each float alone is the reference, as above
+    r, (stbd, port) = _pair_and_alone(0.03, solver, slicing)
+    s = r.sections
+    assert len(s) == 2 * SLICES and np.all(s.penetration > 0)
+    assert s.keel_slope[0::2] == pytest.approx(np.zeros(SLICES), abs=1e-12)
+    assert s.keel_slope[1::2] == pytest.approx(np.full(SLICES, 0.03), abs=1e-9)
+    assert s.keel_curvature == pytest.approx(np.zeros(2 * SLICES), abs=1e-9)
+    assert s.keel_z[0::2] == pytest.approx(-s.penetration[0::2], abs=1e-12)
+    assert r.force[0::2] == pytest.approx(stbd.force, rel=1e-8)
+    assert r.force[1::2] == pytest.approx(port.force, rel=1e-8)
+
+
+@pytest.mark.parametrize("solver", ["mlm", "zarnick"])
+def test_where_two_pieces_keels_cross_each_keeps_its_own(solver):
+    # the port float's keel falls forward and crosses the level one's at x = 2/3: aft of
+    # it the port float is above the body's keel line, forward of it the starboard one.
+    # On that one line the float on it took the line's kink near the crossing as
+    # curvature, over the curvature's window (0.5 % of the pair's force, 62 % on one
+    # slice); each on its own line, the pair is the sum of the floats alone
+    r, (stbd, port) = _pair_and_alone(-0.03, solver, "fixed")
+    s = r.sections
+    assert len(s) == 2 * SLICES and np.all(s.penetration > 0)
+    assert s.keel_curvature == pytest.approx(np.zeros(2 * SLICES), abs=1e-9)
+    assert r.force[0::2] == pytest.approx(stbd.force, rel=1e-8)
+    assert r.force[1::2] == pytest.approx(port.force, rel=1e-8)
+
+
+def test_a_piece_above_another_takes_its_own_keel_curvature():
+    # a float with a parabolic rocker z = a (x - 0.5)^2 beside a lower level float: the
+    # body's keel line there is the level float's (slope and curvature 0); the rocker's
+    # entries take its own line's, the same as the rocker alone gives at the same place,
+    # about its closed form 2 a (x - 0.5) and 2 a
+    a, n = 0.04, 16
+    x = np.linspace(0.0, 1.0, 81)
+    v0, _ = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    corners = v0[:3, 1:]  # the section's corners, counter-clockwise seen from the bow
+    sections = corners[None, :, :] + np.stack(
+        [np.zeros_like(x), a * (x - 0.5) ** 2], axis=1
+    )[:, None, :]  # fmt: skip
+    vr, fr = shapes.prism_from_sections(x, sections)
+    vr = vr + np.array([0.0, 0.3, -vr[:, 2].min()])  # its keel at 0 amidships
+    vl, fl = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=20.0)
+    vl = vl + np.array([0.0, -0.3, -vl[:, 2].min() - 0.005])
+    body = hs.Hull.from_arrays(*join((vl, fl), (vr, fr)), mass=20.0)
+    alone = hs.Hull.from_arrays(vr, fr, mass=20.0 * hs.Hull.from_arrays(vr, fr).volume
+                                / body.volume)  # fmt: skip
+    for slicing in ("fixed", "wetted"):
+        s = hs.cut(body, hs.Pose(0.03, 0.0), n, slicing=slicing)
+        r = hs.cut(alone, hs.Pose(0.025, 0.0), n, slicing=slicing)
+        rocker = s.y_keel > 0
+        assert rocker.sum() == n and len(r) == n
+        np.testing.assert_allclose(s.x[rocker], r.x, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(s.keel_slope[rocker], r.keel_slope, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(s.keel_curvature[rocker], r.keel_curvature, rtol=0,
+                                   atol=1e-12)  # fmt: skip
+        assert s.keel_slope[~rocker] == pytest.approx(np.zeros(n), abs=1e-12)
+        assert s.keel_curvature[~rocker] == pytest.approx(np.zeros(n), abs=1e-12)
+        assert s.keel_z[rocker] == pytest.approx(-s.penetration[rocker], abs=1e-12)
+        # the closed form, on 80 facets: the chord to a's facets' rounding, the curvature
+        # averaged over the window (half the float's beam) where it lies on the body
+        inside = np.abs(r.x - 0.5) < 0.45
+        assert r.keel_slope == pytest.approx(2 * a * (r.x - 0.5), abs=2e-4)
+        assert r.keel_curvature[inside] == pytest.approx(np.full(inside.sum(), 2 * a),
+                                                         rel=0.02)  # fmt: skip
+
+
+def test_the_curvature_window_is_half_the_widest_pieces_beam(floats):
+    # 2D+t resolves a section's flow no finer along the body than its own width: for
+    # separate floats that is a float's, not the span across both (0.2 m floats 0.6 m
+    # apart: 0.8 m across)
+    from hullslice.slicing.assemble import keel_window
+
+    (vs, fs), (vp, fp) = floats
+    cat = hs.Hull.from_arrays(*join((vs, fs), (vp, fp)), mass=20.0)
+    assert cat.extents[1] == pytest.approx(0.8, rel=1e-12)
+    assert keel_window(cat) == pytest.approx(0.1, rel=1e-12)
+    one = hs.Hull.from_arrays(vs, fs)
+    assert keel_window(one) == pytest.approx(0.5 * one.extents[1], rel=1e-12)

@@ -15,21 +15,24 @@ from ..geometry import Frame
 from ..kernel.outline import Polygons
 from ..mesh import Hull
 from ..state import Pose
+from .own_keel import own_keels, widest_beam
 from .record import Sections, ShiftedPolygons
 
 __all__ = ["assemble", "station_mass"]
 
 
-#: The keel line's curvature is averaged over at least this share of the body's beam:
-#: 2D+t describes the flow around sections no finer along the body than their own width,
-#: and a mesh's keel line zigzags about the true one at its facets' scale.
+#: The keel line's curvature is averaged over at least this share of the beam of the
+#: body's widest connected piece: 2D+t describes the flow around sections no finer along
+#: the body than their own width, and a mesh's keel line zigzags about the true one at its
+#: facets' scale.
 KEEL_WINDOW_BEAMS = 0.5
 
 
 def keel_window(hull) -> float:
     """The shortest length (m) over which a section's keel curvature is averaged: half the
-    body's beam (:data:`KEEL_WINDOW_BEAMS`)."""
-    return KEEL_WINDOW_BEAMS * float(hull.extents[1])
+    beam (:data:`KEEL_WINDOW_BEAMS`) of the body's widest connected piece (the body's own
+    beam for a body of one piece; a float's, not the span across a catamaran's two)."""
+    return KEEL_WINDOW_BEAMS * widest_beam(hull)
 
 
 def station_mass(
@@ -108,6 +111,19 @@ def assemble(
     z_cg = -level
     shift = (fr.origin[0], fr.origin[1] + z_cg)
     m_station = station_mass(hull, fr, props["area"], rel, dx)
+    keel_slope = slope[st]
+    keel_at = (keel_z + z_cg)[st]
+    curvature = fr.keel.mean_curvature(rel, window)[st]
+    # on a body of separate pieces each entry takes its own piece's keel line
+    own = own_keels(
+        hull, fr, props, x=rel, chord=dx if slope_width is None else slope_width,
+        window=window, level=level,
+    )  # fmt: skip
+    if own is not None:
+        entry, own_slope, own_curvature, height = own
+        keel_slope[entry] = own_slope
+        curvature[entry] = own_curvature
+        keel_at[entry] = height + z_cg
     return Sections(
         station=st,
         x=(rel + fr.cg[0])[st],
@@ -122,8 +138,8 @@ def assemble(
         area=props["area"][st],
         mass_per_metre=m_station[st] * props["mass_share"],
         chine_wetted=props["chine_wetted"],
-        keel_slope=slope[st],
-        keel_z=(keel_z + z_cg)[st],
+        keel_slope=keel_slope,
+        keel_z=keel_at,
         y_keel=props["y_keel"],
         part_half_beam=props["part_half_beam"],
         polygons=ShiftedPolygons(polys, shift, fr.scale, lift),
@@ -132,5 +148,5 @@ def assemble(
         pitch=pose.pitch,
         wetted_length=length,
         z_cg=z_cg,
-        keel_curvature=fr.keel.mean_curvature(rel, window)[st],
+        keel_curvature=curvature,
     )
