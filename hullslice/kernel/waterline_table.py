@@ -132,6 +132,12 @@ class WaterlineTable:
         empty = ~has_lo & ~has_hi
         h_a[empty], h_b[empty] = -2.0, -1.0
         sampled = (h_a < h_b) & ~(has_lo & (h_a <= lo)) & ~(has_hi & (h_b >= hi))
+        # an interval too thin to sample inside (break points a rounding apart) is not
+        # tabulated, and its edges are left out of the samples: a sample on a break point
+        # would meet its chosen edges' ends at the water (some above by a rounding, some
+        # below) and could open a piece that none of them closes
+        inside = sampled[entry_v]
+        entry_v, entry_edge = entry_v[inside], entry_edge[inside]
 
         def sample(h):
             virtual = _virtual(outline, v_station, h, entry_v, entry_edge)
