@@ -270,24 +270,7 @@ def _frame(hull, pitch: float) -> Frame:
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
     a, b = silhouette_edges(hull)
-    merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
-    side = loops_in_use("side")
-    if side is not None:  # the turn and the keel line's search in one compiled call
-        order = _side_order(hull, 2 * len(a))
-        xa, za, xb, zb, seg, xs, mid, z, zm = side(
-            a, b, float(g[0]), float(g[2]), float(c), float(s), order
-        )
-        walk, none = loops_in_use("walk"), np.empty(0)
-        if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
-            heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
-        else:
-            turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
-            heights = lowest_segments(make=turned)
-        keel = refined(xs, mid, z, zm, merge, heights, loops_in_use("runs"))
-    else:
-        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
-        za, zb = ta[:, 1], tb[:, 1]
-        keel = lower_envelope(ta, tb, merge=merge)
+    keel, za, zb = _side_keel(hull, a, b, pitch, _side_order)
     lowest = float(min(za.min(), zb.min()))
     highest = float(max(za.max(), zb.max()))
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
@@ -320,14 +303,48 @@ def _frame(hull, pitch: float) -> Frame:
     )
 
 
-def _side_order(hull, n: int) -> np.ndarray:
-    """This thread's order of the silhouette edges' ends along the side view at the last
-    pitch it turned them to (``n`` integers, updated by the loops: a new pitch's ends are
-    then nearly in order, and sorted in a few moves each); kept on the hull."""
+def _side_keel(
+    hull, a: np.ndarray, b: np.ndarray, pitch: float, order_of: Callable
+) -> tuple[KeelLine, np.ndarray, np.ndarray]:
+    """The keel line at ``pitch`` of the silhouette edges ``a`` to ``b`` (end points, m),
+    and their ends' heights: by the compiled loops where they are in use (from the order
+    ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower envelope."""
+    g = np.asarray(hull.cg, dtype=np.float64)
+    c, s = np.cos(pitch), np.sin(pitch)
+    merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
+    side = loops_in_use("side")
+    if side is None:
+        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+        return lower_envelope(ta, tb, merge=merge), ta[:, 1], tb[:, 1]
+    # the turn and the keel line's search in one compiled call
+    order = order_of(hull, 2 * len(a))
+    xa, za, xb, zb, seg, xs, mid, z, zm = side(
+        a, b, float(g[0]), float(g[2]), float(c), float(s), order
+    )
+    walk, none = loops_in_use("walk"), np.empty(0)
+    if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
+        heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
+    else:
+        turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
+        heights = lowest_segments(make=turned)
+    return refined(xs, mid, z, zm, merge, heights, loops_in_use("runs")), za, zb
+
+
+def _side_order(hull, n: int, piece: int | None = None) -> np.ndarray:
+    """This thread's order of the silhouette edges' ends (of the whole body, or of one
+    ``piece``'s) along the side view at the last pitch it turned them to (``n`` integers,
+    updated by the loops: a new pitch's ends are then nearly in order, and sorted in a few
+    moves each); kept on the hull."""
     local = hull.cache[SIDE_ORDER]
-    order = getattr(local, "order", None)
+    if piece is None:
+        order = getattr(local, "order", None)
+        if order is None or len(order) != n:
+            order = local.order = np.arange(n, dtype=np.int64)
+        return order
+    pieces = local.__dict__.setdefault("pieces", {})
+    order = pieces.get(piece)
     if order is None or len(order) != n:
-        order = local.order = np.arange(n, dtype=np.int64)
+        order = pieces[piece] = np.arange(n, dtype=np.int64)
     return order
 
 
@@ -382,15 +399,13 @@ def silhouette_ends(hull) -> np.ndarray:
     return hull.cache[SILHOUETTE_ENDS].get(lambda: _silhouette_ends(hull))
 
 
-def keel_line_of(hull, pitch: float, edges: np.ndarray) -> KeelLine:
+def keel_line_of(hull, pitch: float, edges: np.ndarray, piece: int) -> KeelLine:
     """The keel line at ``pitch`` (relative to the centre of gravity, as
     :attr:`Frame.keel`) of the silhouette edges ``edges`` only (indices into
-    :func:`silhouette_edges`: one piece's of a body of several), by numpy's lower envelope."""
+    :func:`silhouette_edges`): that of a body's ``piece``, made as the body's is."""
     a, b = silhouette_edges(hull)
-    g = np.asarray(hull.cg, dtype=np.float64)
-    c, s = np.cos(pitch), np.sin(pitch)
-    ta, tb = _turn(a[edges] - g, c, s), _turn(b[edges] - g, c, s)
-    return lower_envelope(ta, tb, merge=TOL.keel_merge * hull.size)
+    order_of = lambda h, n: _side_order(h, n, piece)  # noqa: E731
+    return _side_keel(hull, a[edges], b[edges], pitch, order_of)[0]
 
 
 def _silhouette_ends(hull) -> np.ndarray:

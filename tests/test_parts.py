@@ -294,3 +294,30 @@ def test_the_curvature_window_is_half_the_widest_pieces_beam(floats):
     assert keel_window(cat) == pytest.approx(0.1, rel=1e-12)
     one = hs.Hull.from_arrays(vs, fs)
     assert keel_window(one) == pytest.approx(0.5 * one.extents[1], rel=1e-12)
+
+
+@pytest.mark.parametrize("pitch_deg", [-3.0, 0.0, 4.0, 12.0])
+def test_a_pieces_keel_line_by_the_loops_is_numpys(pitch_deg, monkeypatch):
+    # a piece's line is made as the body's: by the keel line's loops (here as Python, and
+    # compiled where numba is installed) from this thread's last order of the piece's
+    # ends, or by numpy's lower envelope; the same line either way
+    from hullslice import geometry, planecut_loops
+    from hullslice.slicing.own_keel import pieces
+
+    (vs, fs), (vp, fp) = _sloping_pair(-0.03)
+    pair = hs.Hull.from_arrays(*join((vs, fs), (vp, fp)), mass=20.0)
+    parts = pieces(pair)
+    assert parts.n == 2
+    pitch = np.radians(pitch_deg)
+    monkeypatch.setattr(geometry, "loops_in_use", lambda name: None)
+    want = [geometry.keel_line_of(pair, pitch, e, k) for k, e in enumerate(parts.edges)]
+    paths = [lambda name: planecut_loops.LOOPS[name]]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled)
+    for path in paths:
+        monkeypatch.setattr(geometry, "loops_in_use", path)
+        for _ in range(2):  # a fresh order, then the one the first call left
+            for k, e in enumerate(parts.edges):
+                got = geometry.keel_line_of(pair, pitch, e, k)
+                np.testing.assert_allclose(got.x, want[k].x, rtol=0, atol=1e-13 * pair.size)
+                np.testing.assert_allclose(got.z, want[k].z, rtol=0, atol=1e-13 * pair.size)

@@ -133,7 +133,7 @@ def own_keels(
     lines = fr.cache[PIECE_LINES]
     for k in candidates.tolist():
         if k not in lines:
-            lines.setdefault(k, keel_line_of(hull, fr.pitch, parts.edges[k]))
+            lines.setdefault(k, keel_line_of(hull, fr.pitch, parts.edges[k], k))
     miss = np.full((len(candidates), len(entry)), np.inf)
     for j, k in enumerate(candidates.tolist()):
         if len(parts.edges[k]):
