@@ -42,12 +42,15 @@ class Pieces:
         :func:`~hullslice.geometry.silhouette_edges`); none for a body of one piece.
     y_min, y_max : (n,) float
         Each piece's lateral extent, m (body frame, as the sections' ``y``).
+    outlined : (n,) bool
+        The pieces with silhouette edges (a piece's keel line is made of them).
     """
 
     n: int
     edges: list[np.ndarray]
     y_min: np.ndarray
     y_max: np.ndarray
+    outlined: np.ndarray
 
 
 #: A body's pieces (kept on the hull).
@@ -65,7 +68,7 @@ def pieces(hull) -> Pieces:
         n, labels = face_labels(v, f)
         if n < 2:  # a body of one piece keeps the body's line
             y = v[:, 1][f]
-            return Pieces(n, [], np.array([y.min()]), np.array([y.max()]))
+            return Pieces(n, [], np.array([y.min()]), np.array([y.max()]), np.zeros(n, bool))
         vertex = np.full(len(v), -1)
         vertex[f.ravel()] = np.repeat(labels, 3)
         y = v[:, 1][f]
@@ -74,7 +77,8 @@ def pieces(hull) -> Pieces:
         np.maximum.at(y_max, labels, y.max(axis=1))
         label = vertex[silhouette_ends(hull)[:, 0]]
         edges = [np.flatnonzero(label == k) for k in range(n)]
-        return Pieces(n, edges, y_min, y_max)
+        outlined = np.array([len(e) > 0 for e in edges])
+        return Pieces(n, edges, y_min, y_max, outlined)
 
     return hull.cache[PIECES].get(make)
 
@@ -127,7 +131,7 @@ def own_keels(
     xs, y, z = x[s], props["y_keel"][entry], level - p[entry]
     # each entry's piece: its y extent holds the keel, its line is nearest the keel there
     holds = (parts.y_min[:, None] <= y) & (y <= parts.y_max[:, None])
-    candidates = np.flatnonzero(holds.any(axis=1))
+    candidates = np.flatnonzero(holds.any(axis=1) & parts.outlined)
     if not len(candidates):
         return None
     lines = fr.cache[PIECE_LINES]
@@ -136,10 +140,9 @@ def own_keels(
             lines.setdefault(k, keel_line_of(hull, fr.pitch, parts.edges[k], k))
     miss = np.full((len(candidates), len(entry)), np.inf)
     for j, k in enumerate(candidates.tolist()):
-        if len(parts.edges[k]):
-            with np.errstate(invalid="ignore"):
-                gap = np.abs(lines[k].height(xs) - z)
-            miss[j] = np.where(holds[k] & np.isfinite(gap), gap, np.inf)
+        with np.errstate(invalid="ignore"):
+            gap = np.abs(lines[k].height(xs) - z)
+        miss[j] = np.where(holds[k] & np.isfinite(gap), gap, np.inf)
     pick = np.argmin(miss, axis=0)
     found = np.isfinite(miss[pick, np.arange(len(entry))])
     entry, owner, s = entry[found], candidates[pick[found]], s[found]
