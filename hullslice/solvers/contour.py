@@ -375,6 +375,17 @@ def contour_half_widths(
         f = heights[:, used, :]
         c, dc = _solve(f, ds[:, used], calm[:, used], p[used], law)
         c_out[:, used], dc_out[:, used] = c, dc
+        # a side whose bottom does not rise where the water meets it, short of its part's
+        # widest point (a sliver of a section a few micrometres deep, sampled below its
+        # own keel) has a width but no rate: such an entry is its equivalent wedge, as a
+        # flat bottom is (past the widest point the width is held and needs no rate)
+        chine = np.asarray(sections.part_half_beam, dtype=np.float64)
+        with np.errstate(invalid="ignore"):
+            short = np.isfinite(c_out) & (c_out <= chine) & ~np.isfinite(dc_out)
+        no_rate = np.any(short, axis=0)
+        if no_rate.any():
+            used &= ~no_rate
+            c_out[:, no_rate] = dc_out[:, no_rate] = np.nan
     return [c_out[0], c_out[1]], [dc_out[0], dc_out[1]], used
 
 
