@@ -385,7 +385,6 @@ def silhouette_edges(hull) -> tuple[np.ndarray, np.ndarray]:
     the vertex to itself: the keel line keeps its break points, and so its refinement
     between them. Kept on the hull.
     """
-
     return hull.cache[SILHOUETTE].get(lambda: _silhouette_edges(hull))
 
 
