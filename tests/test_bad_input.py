@@ -1260,8 +1260,8 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "disjoint-bodies",
         "several disjoint bodies (a catamaran's two floats)",
-        "result: one entry per float at each station, each with its own mass; the force is "
-        "the sum of the floats'",
+        "result: one entry per float at each station, each with its own mass and keel line; "
+        "the force is the sum of the floats'",
         lambda t: [
             "force",
             stl(t, "cat.stl", *catamaran()),
