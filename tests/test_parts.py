@@ -215,8 +215,8 @@ def _pair_and_alone(rise, solver, slicing, draft=0.07):
 def test_a_piece_above_a_lower_one_keeps_its_own_keel(slicing, solver):
     # the port float deeper everywhere, its keel sloping 0.03; the starboard float's
     # level. With forward speed a section's penetration rate is w - U * slope: on the
-    # body's one keel line the level float took the other's slope (zarnick 9 % high on
-    # the pair at 10 m/s). Each float alone is the reference, as above
+    # body's one keel line the level float took the other's slope (zarnick 10 % high on
+    # the pair at 10 m/s, examples/pieces.py). Each float alone is the reference, as above
     r, (stbd, port) = _pair_and_alone(0.03, solver, slicing)
     s = r.sections
     assert len(s) == 2 * SLICES and np.all(s.penetration > 0)
@@ -232,9 +232,10 @@ def test_a_piece_above_a_lower_one_keeps_its_own_keel(slicing, solver):
 def test_where_two_pieces_keels_cross_each_keeps_its_own(solver):
     # the port float's keel falls forward and crosses the level one's at x = 2/3: aft of
     # it the port float is above the body's keel line, forward of it the starboard one.
-    # On that one line the float on it took the line's kink near the crossing as
-    # curvature, over the curvature's window (0.5 % of the pair's force, 62 % on one
-    # slice); each on its own line, the pair is the sum of the floats alone
+    # On that one line the float above it took the other's slope, and the float on it the
+    # line's kink near the crossing as curvature (the pair 2.8 % high by zarnick, 7.0 %
+    # by mlm, examples/pieces.py); each on its own line, the pair is the sum of the
+    # floats alone
     r, (stbd, port) = _pair_and_alone(-0.03, solver, "fixed")
     s = r.sections
     assert len(s) == 2 * SLICES and np.all(s.penetration > 0)
