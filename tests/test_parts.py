@@ -174,14 +174,12 @@ def test_a_catamaran_is_the_sum_of_its_floats_for_each_momentum_solver(floats, s
 def _alone(cat, parts, draft_of, motion, **kw):
     """Each part alone with its share of the pair's mass, at the pose that puts it where
     it is in the pair (pitch 0: its own draft from its own lowest point)."""
-    return [
-        hs.compute_force(
-            hs.Hull.from_arrays(v, f).with_mass(20.0 * hs.Hull.from_arrays(v, f).volume
-                                                / cat.volume),
-            hs.Pose(draft_of(v), 0.0), motion, **kw,
-        )
-        for v, f in parts
-    ]  # fmt: skip
+    out = []
+    for v, f in parts:
+        one = hs.Hull.from_arrays(v, f)
+        one = one.with_mass(20.0 * one.volume / cat.volume)
+        out.append(hs.compute_force(one, hs.Pose(draft_of(v), 0.0), motion, **kw))
+    return out
 
 
 def _sloping_pair(rise):

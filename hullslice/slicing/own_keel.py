@@ -138,19 +138,18 @@ def own_keels(
     for k in candidates.tolist():
         if k not in lines:
             lines.setdefault(k, keel_line_of(hull, fr.pitch, parts.edges[k], k))
-    miss = np.full((len(candidates), len(entry)), np.inf)
-    for j, k in enumerate(candidates.tolist()):
-        with np.errstate(invalid="ignore"):
-            gap = np.abs(lines[k].height(xs) - z)
-        miss[j] = np.where(holds[k] & np.isfinite(gap), gap, np.inf)
+    heights = np.stack([lines[k].height(xs) for k in candidates.tolist()])
+    with np.errstate(invalid="ignore"):
+        gap = np.abs(heights - z)
+    miss = np.where(holds[candidates] & np.isfinite(gap), gap, np.inf)
     pick = np.argmin(miss, axis=0)
     found = np.isfinite(miss[pick, np.arange(len(entry))])
-    entry, owner, s = entry[found], candidates[pick[found]], s[found]
-    slope, curvature, height = np.empty(len(entry)), np.empty(len(entry)), np.empty(len(entry))
-    for k in np.unique(owner):
-        mine = owner == k
-        xs = x[s[mine]]
-        slope[mine] = lines[k].mean_slope(xs, chord[s[mine]])
-        curvature[mine] = lines[k].mean_curvature(xs, window[s[mine]])
-        height[mine] = lines[k].height(xs)
+    height = heights[pick, np.arange(len(entry))][found]
+    entry, pick, s = entry[found], pick[found], s[found]
+    slope, curvature = np.empty(len(entry)), np.empty(len(entry))
+    for j in np.unique(pick):
+        mine = pick == j
+        line = lines[int(candidates[j])]
+        slope[mine] = line.mean_slope(x[s[mine]], chord[s[mine]])
+        curvature[mine] = line.mean_curvature(x[s[mine]], window[s[mine]])
     return entry, slope, curvature, height

@@ -12,7 +12,7 @@ import math
 import numpy as np
 
 from hullslice import InputError
-from hullslice.solvers.contour import contour_heights, entry_parts, wagner_root
+from hullslice.solvers.contour import contour_heights, part_owners, wagner_root
 
 #: Gauss-Legendre nodes over ``t`` in ``(0, t*)`` per side (the pressure's points).
 NODES = 32
@@ -203,21 +203,26 @@ def real_bottom(raw, ds, y_last, s_last, y):
 
 def _extents(sections) -> np.ndarray:
     """(2, n): how far each side of each entry reaches from its keel (port: +y), m: to the
-    edge of its own part (:func:`~hullslice.solvers.contour.entry_parts`; a float of a
-    catamaran reaches no further than its own side), or of its station's polygons where
-    no part holds its keel."""
+    edge of its station's polygons, or where the station has several, of its own part
+    (:func:`~hullslice.solvers.section_parts.part_owners`; a float of a catamaran reaches no
+    further than its own side)."""
     n = len(sections)
+    station = np.asarray(sections.station, dtype=np.int64)
     lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
-    for idx, parts, owner in entry_parts(sections):
-        for j, i in enumerate(idx):
-            if owner[j] >= 0:
-                lo[i], hi[i] = parts[owner[j]][0], parts[owner[j]][1]
-                continue
-            for poly in sections.polygons[int(sections.station[i])]:
-                a = np.asarray(poly, dtype=np.float64)
-                if len(a):
-                    lo[i] = min(lo[i], float(a[:, 0].min()))
-                    hi[i] = max(hi[i], float(a[:, 0].max()))
+    for st in np.unique(station):
+        idx = np.flatnonzero(station == st)
+        contours = sections.polygons[int(st)]
+        y0, y1 = np.inf, -np.inf
+        for poly in contours:
+            a = np.asarray(poly, dtype=np.float64)
+            if len(a):
+                y0, y1 = min(y0, float(a[:, 0].min())), max(y1, float(a[:, 0].max()))
+        lo[idx], hi[idx] = y0, y1
+        if len(contours) > 1:
+            parts, owner = part_owners(sections, idx, contours)
+            mine = owner >= 0
+            lo[idx[mine]] = [parts[k][0] for k in owner[mine]]
+            hi[idx[mine]] = [parts[k][1] for k in owner[mine]]
     yk = np.asarray(sections.y_keel, dtype=np.float64)
     out = np.stack([hi - yk, yk - lo]) if n else np.zeros((2, 0))
     chine = 2.0 * np.asarray(sections.part_half_beam, dtype=np.float64)
