@@ -15,7 +15,8 @@ References:
   contact is the reference of a meshed cylinder's force until its contact leaves the
   circle, where the circle is as steep as the continuation.
 - Water cannot pull harder than ``p_atm - p_vapour``: no section's force per metre is
-  below that times its wetted girth.
+  below that times the horizontal breadth of its wetted bottom (the vertical force of
+  that pressure on it).
 """
 
 from __future__ import annotations
@@ -30,8 +31,6 @@ import hullslice as hs
 from hullslice import shapes
 
 mlm = pytest.importorskip("hullslice_mlm")
-
-from hullslice.forces.momentum import calm_girth  # noqa: E402
 
 from .conftest import MESHES  # noqa: E402
 
@@ -64,6 +63,48 @@ def test_a_wedge_at_constant_speed_has_the_closed_form(deadrise_deg, method):
     )  # fmt: skip
     assert r.total == pytest.approx(mlm.wedge_force(beta, p, 5.0, RHO), rel=1e-6)
     assert r.all_valid
+
+
+def _positive_part_by_quadrature(beta: float, p: float, speed: float) -> float:
+    """The velocity term's pressure on a wedge, its positive part integrated by adaptive
+    quadrature over y (Korobkin 2004, eq. of the MLM pressure; c = pi p / (2 tan(beta)))."""
+    from scipy.integrate import quad
+
+    k = math.tan(beta)
+    cp = math.pi / (2.0 * k)
+    c = cp * p
+
+    def pressure(y: float) -> float:  # p / (rho V^2) at y on one side
+        r = c * c - y * y
+        return max(c * cp / math.sqrt(r) - 0.5 - y * y / (2.0 * r * (1.0 + k * k)), 0.0)
+
+    return 2.0 * RHO * speed**2 * quad(pressure, 0.0, c, limit=400, epsabs=0.0)[0]
+
+
+@pytest.mark.parametrize("deadrise_deg", [60.0, 72.0, 72.5, 76.0, 80.0, 85.0])
+def test_a_steep_wedge_loads_the_positive_part_of_its_pressure(deadrise_deg):
+    # steeper than atan(pi) = 72.3 deg the pressure is negative at the keel and positive
+    # further out: the load is that part's, not nothing
+    beta = math.radians(deadrise_deg)
+    reference = _positive_part_by_quadrature(beta, 0.1, 5.0)
+    assert mlm.wedge_force(beta, 0.1, 5.0, RHO) == pytest.approx(reference, rel=1e-7)
+    # a meshed wedge at a quarter and at 95 % of its chine's reach, every slice alike
+    for share in (0.25, 0.95):
+        p = share * 0.2 * math.tan(beta) * 2.0 / math.pi
+        r = hs.compute_force(
+            wedge(deadrise_deg), p, -5.0, slices=4, solver="mlm", acceleration=0.0,
+            fluid=hs.Fluid(RHO, 0.0),
+        )  # fmt: skip
+        np.testing.assert_allclose(
+            per_metre(r), mlm.wedge_force(beta, p, 5.0, RHO), rtol=1e-6, err_msg=f"{share}"
+        )
+
+
+def test_the_wedge_force_is_continuous_where_the_keel_pressure_changes_sign():
+    edge = math.atan(math.pi)  # where c' = 1/2: the keel's pressure is zero
+    below, above = (mlm.wedge_force(edge + d, 0.1, 5.0, RHO) for d in (-1e-7, 1e-7))
+    assert above > 0.0
+    assert above == pytest.approx(below, rel=1e-5)
 
 
 def test_the_closed_form_tends_to_wagner_as_the_deadrise_goes_to_zero():
@@ -144,7 +185,7 @@ def test_a_meshed_cylinder_has_the_mlm_force_of_the_exact_circle():
     fluid = hs.Fluid(RHO, 0.0)
     # up to s/D = 0.107 the contact stays on the circle (its side is less steep than the
     # default continuation's 57.5 deg)
-    for s_d in (0.005, 0.02, 0.05, 0.1):
+    for s_d in (0.0025, 0.005, 0.02, 0.05, 0.1):
         r = hs.compute_force(hull, 2 * R * s_d, -V, slices=2, solver="mlm", fluid=fluid,
                              acceleration=0.0)  # fmt: skip
         cs = r.total / (RHO * R * V**2)
@@ -223,9 +264,28 @@ def test_no_section_pulls_harder_than_the_water_can(solver):
     else:
         assert limited.any()  # the case does reach the bound
     np.testing.assert_allclose(per_metre(r)[limited], lower[limited], rtol=1e-12)
-    # the bound is the suction limit times a girth at least the calm water's chords
-    chords = calm_girth(r.sections)
-    assert np.all(-lower[wet] >= fluid.suction_limit * chords[wet] * (1 - 1e-12))
+    # the bound is the suction limit times a breadth at least the waterline's
+    width = r.sections.half_beam_port + r.sections.half_beam_stbd
+    assert np.all(-lower[wet] >= fluid.suction_limit * width[wet] * (1 - 1e-12))
+
+
+@pytest.mark.parametrize("solver", ["zarnick", "wagner", "von-karman"])
+def test_the_suction_bound_is_the_limit_times_the_wetted_breadth(solver):
+    # a pressure no lower than -p_lim pulls a section down by at most p_lim times the
+    # horizontal breadth of its wetted bottom: on a circle of radius R at draft d,
+    # 2 sqrt(R^2 - (R - d)^2) below its widest point and 2 R above it (not the girth,
+    # sqrt(2) times as much when half immersed); on a wedge 2 d / tan(beta)
+    R = 0.5
+    circle = hs.Hull.from_arrays(*shapes.circular_cylinder(length=1.0, radius=R, points=1440))
+    limit = hs.Fluid().suction_limit
+    for d in (0.1, 0.5, 0.9):
+        r = hs.compute_force(circle, d, -1.0, slices=2, solver=solver, acceleration=0.0)
+        breadth = 2.0 * math.sqrt(R * R - (R - d) ** 2) if d < R else 2.0 * R
+        bound = r.loads.diagnostics["suction_bound"]
+        np.testing.assert_allclose(bound, -limit * breadth, rtol=1e-4, err_msg=f"d = {d}")
+    r = hs.compute_force(wedge(30.0), 0.02, -1.0, slices=2, solver=solver, acceleration=0.0)
+    breadth = 2.0 * 0.02 / math.tan(math.radians(30.0))
+    np.testing.assert_allclose(r.loads.diagnostics["suction_bound"], -limit * breadth, rtol=1e-9)
 
 
 def test_the_suction_bound_leaves_a_body_that_does_not_pull_alone():
@@ -293,3 +353,32 @@ def test_the_mlm_carries_no_suction_where_the_keel_curves_up_aft():
     assert per_metre(z)[leaving].min() < -1e5  # the strip theory's suction there
     # the load that remains is where the pressure is positive, and integrates to the force
     np.testing.assert_allclose(m.pressures.force_per_metre(), per_metre(m), rtol=1e-9)
+
+
+@pytest.mark.parametrize("velocity", [0.0, 0.5])
+def test_a_section_leaving_the_water_keeps_its_added_mass(velocity):
+    # METHOD (the momentum form): on a section leaving the water the v^2 term is dropped
+    # and the inertia -m_a a stays; a level body free in heave at rest in the water then
+    # falls at -g m / (m + A), A the added mass, and the water's force is -A a
+    mass, g = 241.0, 9.81
+    hull = hs.Hull.from_arrays(*shapes.wedge_prism(1.0, 0.5, 30.0, sides=0.3), mass=mass)
+    r = hs.compute_force(hull, 0.05, velocity, slices=2, solver="mlm", fluid=hs.Fluid(RHO, g))
+    added = float(np.sum(r.loads.diagnostics["added_mass"] * r.sections.dx))
+    assert added > 0.0
+    a = r.acceleration.vertical
+    assert a == pytest.approx(-g * mass / (mass + added), rel=1e-12)
+    assert r.total == pytest.approx(-added * a, rel=1e-12)
+    # and entering at a vanishing speed the body accelerates alike
+    entering = hs.compute_force(hull, 0.05, -1e-9, slices=2, solver="mlm", fluid=hs.Fluid(RHO, g))
+    assert entering.acceleration.vertical == pytest.approx(a, rel=1e-6)
+
+
+@pytest.mark.parametrize("solver", ["mlm", "zarnick"])
+def test_a_flat_bottom_is_flagged_as_outside_the_wedge_theory(solver):
+    # a box (zero deadrise, chines at 0.3 m): the 2D theory has no flat plate to give,
+    # so every solver computes the 1-degree wedge and says so
+    box = np.array([[0.0, 0.0], [0.3, 0.0], [0.3, 0.3], [-0.3, 0.3], [-0.3, 0.0]])
+    hull = hs.Hull.from_arrays(*shapes.prism_from_sections(np.array([0.0, 1.0]), [box, box]))
+    r = hs.compute_force(hull, 0.001, -5.0, slices=2, solver=solver, acceleration=0.0)
+    assert not r.loads.valid.any()
+    assert all("deadrise below 1 deg" in why for why in r.loads.reason)

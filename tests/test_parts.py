@@ -320,3 +320,31 @@ def test_a_pieces_keel_line_by_the_loops_is_numpys(pitch_deg, monkeypatch):
                 got = geometry.keel_line_of(pair, pitch, e, k)
                 np.testing.assert_allclose(got.x, want[k].x, rtol=0, atol=1e-13 * pair.size)
                 np.testing.assert_allclose(got.z, want[k].z, rtol=0, atol=1e-13 * pair.size)
+
+
+def _extruded(section) -> hs.Hull:
+    mesh = manifold3d.CrossSection([section]).extrude(1.0).to_mesh()
+    v = np.asarray(mesh.vert_properties, dtype=float)[:, :3]
+    # extruded along the mesh z; its y is up, so its x is the body's port
+    return hs.Hull.from_arrays(v, np.asarray(mesh.tri_verts), forward="+z", up="+y")
+
+
+@pytest.mark.parametrize("solver", ["mlm", "zarnick", "wagner", "von-karman"])
+def test_floats_joined_by_a_tunnel_roof_are_each_a_float_of_their_own(solver):
+    # one closed surface: two 20-degree floats 0.5 m wide, keels 1 m apart, their knuckles
+    # 0.091 m up, a tunnel roof between them 0.3 m up. Below the roof each float's bottom
+    # ends at its own knuckles (the tunnel's walls above them), not at the pair's outer
+    # sides: the pair carries twice one float alone, before and after the knuckles
+    b, zk = 0.25, 0.25 * np.tan(np.radians(20.0))
+    pair = _extruded([
+        [0.5, 0.0], [0.75, zk], [0.75, 0.5], [-0.75, 0.5], [-0.75, zk], [-0.5, 0.0],
+        [-0.25, zk], [-0.25, 0.3], [0.25, 0.3], [0.25, zk],
+    ])  # fmt: skip
+    one = _extruded([[0.0, 0.0], [b, zk], [b, 0.5], [-b, 0.5], [-b, zk]])
+    kw = {"slices": 2, "solver": solver, "acceleration": 0.0, "fluid": hs.Fluid(1000.0, 0.0)}
+    for draft in (0.03, 0.06, 0.15, 0.25):
+        both = hs.compute_force(pair, draft, VELOCITY, **kw)
+        alone = hs.compute_force(one, draft, VELOCITY, **kw)
+        assert len(both.sections) == 2 * len(alone.sections)
+        assert both.total == pytest.approx(2.0 * alone.total, rel=1e-6), draft
+        assert both.loads.valid.all() == alone.loads.valid.all()

@@ -16,6 +16,7 @@ import numpy as np
 from ..errors import InputError
 from ..sections import Sections
 from ..solvers.base import MOMENTUM, AddedMass, MomentumFormSolver, SectionLoads, SolverBase
+from ..solvers.section_parts import submerged_widths
 from ..state import Acceleration, Fluid, Motion, Pose
 from .evaluate import evaluate_added_mass
 from .kinematics import section_kinematics, section_velocity
@@ -57,10 +58,19 @@ class MomentumTerms:
         The points of the solver's pressures that carry load (None: all of them).
     lower : (n,) float
         The least force per metre the water can give each section, N/m: the suction
-        limit of the fluid (``p_atm - p_vapour``) over the section's wetted girth, negated.
+        limit of the fluid (``p_atm - p_vapour``) times the section's wetted width (the
+        vertical force of that suction on the whole wetted bottom), negated.
     limited : (n,) bool
         Sections whose force is held at ``lower``: the water cannot follow them (it
         cavitates), so their added mass leaves the equations of motion.
+    exit_mass : (n,) float or None
+        For a solver whose load is the positive part of its pressure: the whole added mass
+        of each section leaving the water (zero on the others), kg/m; its pressure is the
+        inertia's alone, the same sign at every point.
+    exit_carry : (n,) bool or None
+        The sections leaving the water that carry ``exit_mass`` (their acceleration is
+        down or nil: the pressure is positive); the others carry nothing (the water
+        ventilates rather than pull).
     """
 
     sections: Sections
@@ -73,6 +83,8 @@ class MomentumTerms:
     limited: np.ndarray
     carried: np.ndarray
     loaded: np.ndarray | None = None
+    exit_mass: np.ndarray | None = None
+    exit_carry: np.ndarray | None = None
 
     @property
     def inertia(self) -> np.ndarray:
@@ -97,7 +109,31 @@ class MomentumTerms:
         f0 = np.where(limited, self.lower, self.f0)
         return MomentumTerms(
             self.sections, self.velocity, self.added, self.jac, self.bias, f0, self.lower,
-            limited, self.carried, self.loaded,
+            limited, self.carried, self.loaded, self.exit_mass, self.exit_carry,
+        )  # fmt: skip
+
+    def with_exits(self, acceleration: Acceleration) -> MomentumTerms:
+        """The same terms with each section leaving the water carrying its added mass
+        where its acceleration at the body's ``acceleration`` is down or nil (its
+        pressure positive), and nothing where it is up (the terms themselves where none
+        changes)."""
+        if self.exit_mass is None or self.exit_carry is None:
+            return self
+        a_n = self.jac @ np.asarray(acceleration.as_array()) + self.bias
+        leaving = self.exit_mass > 0.0
+        carry = leaving & (a_n <= 0.0)
+        if np.array_equal(carry, self.exit_carry & leaving):
+            return self
+        added = self.added
+        free = np.where(carry, -self.exit_mass * self.bias, 0.0) + added.extra + added.vertical
+        f0 = np.where(leaving & ~self.limited, free, self.f0)
+        carried = np.where(leaving, np.where(carry, self.exit_mass, 0.0), self.carried)
+        loaded = self.loaded
+        if loaded is not None:
+            loaded = np.where(leaving[:, None, None], carry[:, None, None], loaded)
+        return MomentumTerms(
+            self.sections, self.velocity, added, self.jac, self.bias, f0, self.lower,
+            self.limited, carried, loaded, self.exit_mass, carry,
         )  # fmt: skip
 
     @property
@@ -160,11 +196,21 @@ def momentum_terms(
     jac, bias = section_kinematics(sections, motion, x_cg, velocity)
     flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
     carried, loaded = added.added_mass, None
+    exit_mass = exit_carry = None
     if getattr(solver, "positive_pressure", False) and added.pressure is not None:
-        # the load of the points whose pressure is positive at the body's rest
+        # the load of the points whose pressure is positive at the body's rest; a section
+        # leaving the water (no v^2 term) has the inertia's pressure alone, positive at
+        # every point where its acceleration is down (or nil) and negative where it is up:
+        # it carries its whole added mass or none, by the acceleration solved
+        # (:meth:`MomentumTerms.with_exits`), and starts from its rest
         pts = added.pressure
         p0 = pts.pressure(velocity, bias)
-        loaded = p0 > 0.0
+        leaving = velocity >= 0.0
+        exit_mass = np.where(
+            leaving, (pts.acceleration_coefficient * pts.weight).sum(axis=(1, 2)), 0.0
+        )
+        exit_carry = leaving & (bias <= 0.0)
+        loaded = np.where(leaving[:, None, None], exit_carry[:, None, None], p0 > 0.0)
         flux = (np.where(loaded, p0, 0.0) * pts.weight).sum(axis=(1, 2))
         carried = (np.where(loaded, pts.acceleration_coefficient, 0.0) * pts.weight).sum(
             axis=(1, 2)
@@ -172,11 +218,15 @@ def momentum_terms(
         f0 = flux + added.extra + added.vertical
     else:
         f0 = flux - added.added_mass * bias + added.extra + added.vertical
-    girth = added.girth if added.girth is not None else calm_girth(sections)
-    lower = -fluid.suction_limit * np.where(sections.wetted, girth, 0.0)
+    # a pressure no lower than -p_lim over the bottom pulls a section down by at most
+    # p_lim times the bottom's horizontal breadth (the solver's loaded breadth where it
+    # gives one), not its girth: the wetted bottom's breadth under the calm water
+    width = added.girth if added.girth is not None else submerged_widths(sections)
+    lower = -fluid.suction_limit * np.where(sections.wetted, width, 0.0)
     terms = MomentumTerms(
-        sections, velocity, added, jac, bias, f0, lower, f0 < lower, carried, loaded
-    )
+        sections, velocity, added, jac, bias, f0, lower, f0 < lower, carried, loaded,
+        exit_mass, exit_carry,
+    )  # fmt: skip
     return terms.with_limited(terms.limited)
 
 
@@ -208,15 +258,20 @@ def solve_bounded(
     Sections whose force would fall below the bound (``terms.lower``) at the solved
     accelerations are held at it and their added mass leaves the equations, and the
     accelerations are solved again, until no more sections fall below (an active set that
-    only grows, so it ends). Returns the terms with their limited sections and the
-    accelerations; the arguments are those of :func:`solve_accelerations`.
+    only grows, so it ends). Sections leaving the water of a solver whose load is its
+    pressure's positive part carry their added mass where their solved acceleration is
+    down and none where it is up (:meth:`MomentumTerms.with_exits`), in the same rounds
+    (at most :data:`MAX_BOUND_ROUNDS`: the last set where they do not settle). Returns the
+    terms with their limited sections and the accelerations; the arguments are those of
+    :func:`solve_accelerations`.
     """
     acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     for _ in range(MAX_BOUND_ROUNDS):
-        below = ~terms.limited & (terms.force(acc) < terms.lower)
-        if not below.any():
+        turned = terms.with_exits(acc)
+        below = ~turned.limited & (turned.force(acc) < turned.lower)
+        if turned is terms and not below.any():
             break
-        terms = terms.with_limited(terms.limited | below)
+        terms = turned.with_limited(turned.limited | below) if below.any() else turned
         acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     return terms, acc
 
@@ -224,6 +279,7 @@ def solve_bounded(
 def held_bounded(terms: MomentumTerms, acceleration: Acceleration) -> MomentumTerms:
     """The terms at a body acceleration that is given (not solved): the sections whose
     force falls below its bound there are held at it."""
+    terms = terms.with_exits(acceleration)
     below = ~terms.limited & (terms.force(acceleration) < terms.lower)
     return terms.with_limited(terms.limited | below) if below.any() else terms
 

@@ -285,9 +285,11 @@ class AddedMass:
         force: buoyancy), N/m, positive up; unlike ``extra`` it has no horizontal part
         along a sloping keel. Zeros by default.
     girth : (n,) float or None
-        The wetted girth of each section that carries the pressure, m (both sides), for
-        the bound on suction; None: hullslice takes the contour's chords from the keel to
-        the calm water.
+        The horizontal breadth of each section's wetted bottom that carries the pressure,
+        m (both sides), for the bound on suction (a pressure no lower than ``-p_lim``
+        pulls the section down by at most ``p_lim`` times it); None: hullslice takes the
+        breadth of the section's bottom under the calm water
+        (:func:`hullslice.solvers.section_parts.submerged_widths`).
     pressure : SectionPressures or None
         The pressure along each section's wetted contour, where the solver models it.
     """

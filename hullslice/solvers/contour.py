@@ -38,7 +38,7 @@ from collections.abc import Sequence
 import numpy as np
 
 from ..errors import InputError
-from .section_parts import _next, entry_parts, part_owners, submerged_parts
+from .section_parts import _next, entry_parts, part_owners, shared_piece_extents, submerged_parts
 
 __all__ = [
     "SAMPLES",
@@ -254,6 +254,10 @@ def contour_half_widths(
     reach = 2.5 * np.maximum(calm, 0.0)
     heights = _heights(sections, p, reach)
     ds = reach / (SAMPLES - 1)  # (2, n)
+    own = shared_piece_extents(sections)  # a float sharing its part ends at its own edges
+    if np.isfinite(own).any():
+        past = ds[..., None] * np.arange(SAMPLES) > own[..., None] * (1.0 + 1e-9)
+        heights = np.where(past, np.nan, heights)
     gamma = 0.5 * np.pi if law == "wagner" else 1.0
     with np.errstate(invalid="ignore", divide="ignore"):
         # a wedge: a straight side from the keel out to where the wetted width can reach

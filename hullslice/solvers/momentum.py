@@ -86,6 +86,7 @@ from .pileup import (
     von_karman_pile_up,
     wagner_pile_up,
 )
+from .section_parts import piece_half_widths
 
 __all__ = [
     "PILE_UP_LAWS",
@@ -104,8 +105,10 @@ __all__ = [
 
 def chine_half_width(sections: Sections) -> np.ndarray:
     """Half the width, at its widest point, of the separate part of the section that each
-    entry belongs to (one float of a catamaran), in m."""
-    return np.asarray(sections.part_half_beam, dtype=np.float64)
+    entry belongs to (one float of a catamaran), in m; where several entries share a part
+    (floats joined by a tunnel roof in one closed surface), of each one's own bottom
+    (:func:`~hullslice.solvers.section_parts.piece_half_widths`)."""
+    return piece_half_widths(sections)
 
 
 def momentum_curves(

@@ -1,11 +1,20 @@
 """The separate parts of a section (outer contours) that its wetted entries belong to, and
-their submerged areas."""
+their submerged areas and widths."""
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["entry_parts", "part_owners", "submerged_parts"]
+__all__ = [
+    "entry_parts",
+    "part_owners",
+    "piece_extents",
+    "piece_half_widths",
+    "shared_piece_extents",
+    "submerged_parts",
+    "submerged_shares",
+    "submerged_widths",
+]
 
 
 def _next(a: np.ndarray) -> np.ndarray:
@@ -71,6 +80,64 @@ def part_owners(sections, idx: np.ndarray, contours) -> tuple[list, np.ndarray]:
     return parts, owner
 
 
+def piece_extents(sections, i: int, contour: np.ndarray) -> tuple[float, float]:
+    """How far entry ``i``'s own bottom reaches from its keel on each side (port: +y;
+    starboard), m, along the part's ``contour`` that it shares with other entries (a
+    float of a catamaran whose floats are joined by a tunnel roof in one closed surface).
+
+    From the contour's point nearest the keel the bottom is followed each way while it
+    goes on outwards: it ends where it turns vertical or back (a knuckle below the tunnel's
+    wall, a round side's widest point), so that each float's bottom ends at its own
+    edges, not at the part's.
+    """
+    c = np.asarray(contour, dtype=np.float64)
+    yk, zk = float(sections.y_keel[i]), -float(sections.penetration[i])
+    start = int(np.argmin((c[:, 0] - yk) ** 2 + (c[:, 1] - zk) ** 2))
+    q = len(c)
+    port = stbd = 0.0
+    for step in (1, -1):
+        here, sign = start, 0.0
+        for _ in range(q - 1):
+            nxt = (here + step) % q
+            dy, dz = c[nxt, 0] - c[here, 0], c[nxt, 1] - c[here, 1]
+            if sign == 0.0:
+                sign = 1.0 if dy > 0 else -1.0
+            if dy * sign <= 1e-6 * abs(dz):  # vertical or turning back
+                break
+            here = nxt
+        reach = float(c[here, 0]) - yk
+        port, stbd = max(port, reach), max(stbd, -reach)
+    return port, stbd
+
+
+def shared_piece_extents(sections) -> np.ndarray:
+    """(2, n) how far each entry's own bottom reaches from its keel (port: +y, starboard),
+    m, where several entries share a part (floats joined by a tunnel roof in one closed
+    surface: :func:`piece_extents`); ``inf`` elsewhere."""
+    n = len(sections)
+    out = np.full((2, n), np.inf)
+    station = np.asarray(sections.station)
+    if len(np.unique(station)) == n:
+        return out  # one entry per station: nothing is shared
+    for idx, parts, owner in entry_parts(sections):
+        if len(idx) < 2:
+            continue
+        for k in np.unique(owner[owner >= 0]):
+            shared = idx[owner == k]
+            for i in shared if len(shared) > 1 else ():
+                out[:, i] = piece_extents(sections, int(i), parts[k][3])
+    return out
+
+
+def piece_half_widths(sections) -> np.ndarray:
+    """(n,) half the width of each entry's own bottom, m: of its part
+    (``part_half_beam``), or, where several entries share the part (floats joined by a
+    tunnel roof), of its own bottom between its edges (:func:`shared_piece_extents`)."""
+    half = np.array(sections.part_half_beam, dtype=np.float64)
+    own = 0.5 * shared_piece_extents(sections).sum(axis=0)
+    return np.minimum(half, own)
+
+
 def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
     """Each wetted entry's area below the water and its part's whole area, m^2.
 
@@ -85,9 +152,48 @@ def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
     whole : (n,) float
         The entry's share of its part's whole area.
     """
+    below, whole, _ = _shares(sections)
+    return below, whole
+
+
+def submerged_widths(sections) -> np.ndarray:
+    """(n,) each wetted entry's horizontal width under the water, m (the waterline's on a
+    dry one): its share (as in
+    :func:`submerged_parts`) of its part's breadth below ``z = 0``, at least its width at
+    the waterline. A round section past its widest point is as wide as that point; a
+    section wholly under water, as its part."""
+    station = np.asarray(sections.station)
+    stations, first, count = np.unique(station, return_index=True, return_counts=True)
+    alone = np.array([len(sections.polygons[int(st)]) == 1 for st in stations], dtype=bool)
+    if not (alone & (count == 1)).all():
+        return _shares(sections)[2]
+    # one part and one entry at every station: the part's breadth below the water is
+    # its points' below it, or the waterline's
+    breadth = np.maximum(
+        np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64), 0.0
+    )
+    wet = np.asarray(sections.wetted, dtype=bool)
+    for st, i in zip(stations, first, strict=True):
+        if not wet[i]:
+            continue
+        c = np.asarray(sections.polygons[int(st)][0], dtype=np.float64)
+        y = c[c[:, 1] <= 0.0, 0] if len(c) else c[:0, 0]
+        if len(y):
+            breadth[i] = max(breadth[i], float(y.max() - y.min()))
+    return breadth
+
+
+def submerged_shares(sections) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`submerged_parts` and :func:`submerged_widths` in one pass over the parts:
+    the areas below the water and whole (m^2), and the breadth under the water (m)."""
+    return _shares(sections)
+
+
+def _shares(sections) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     n = len(sections)
     below, whole = np.zeros(n), np.zeros(n)
     width = np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64)
+    breadth = np.maximum(width, 0.0)
     for idx, parts, owner in entry_parts(sections):
         for k, (_, _, _, c, full) in enumerate(parts):
             mine = idx[owner == k]
@@ -95,19 +201,31 @@ def submerged_parts(sections) -> tuple[np.ndarray, np.ndarray]:
                 continue
             total = width[mine].sum()
             share = width[mine] / total if total > 0 else np.full(len(mine), 1.0 / len(mine))
-            below[mine] = max(_clipped_area(c), 0.0) * share
+            q = _clipped(c)
+            below[mine] = max(_area(q), 0.0) * share
             whole[mine] = full * share
-    return below, whole
+            if len(q):
+                wide = float(q[:, 0].max() - q[:, 0].min()) * share
+                breadth[mine] = np.maximum(breadth[mine], wide)
+    return below, whole, breadth
 
 
-def _clipped_area(c: np.ndarray) -> float:
-    """Signed area of one closed contour clipped to ``z <= 0`` (Sutherland-Hodgman)."""
-    if len(c) < 3:
+def _area(q: np.ndarray) -> float:
+    """Signed area of a closed polygon, m^2."""
+    if len(q) < 3:
         return 0.0
+    y, z = q[:, 0], q[:, 1]
+    return 0.5 * float(np.dot(y, _next(z)) - np.dot(z, _next(y)))
+
+
+def _clipped(c: np.ndarray) -> np.ndarray:
+    """One closed contour clipped to ``z <= 0`` (Sutherland-Hodgman), its points."""
+    if len(c) < 3:
+        return np.empty((0, 2))
     p1, p2 = c, _next(c)
     in1, in2 = p1[:, 1] <= 0.0, p2[:, 1] <= 0.0
     if not in1.any():
-        return 0.0
+        return np.empty((0, 2))
     cross = in1 != in2
     with np.errstate(divide="ignore", invalid="ignore"):  # t is used only where it crosses
         t = p1[:, 1] / (p1[:, 1] - p2[:, 1])
@@ -116,6 +234,4 @@ def _clipped_area(c: np.ndarray) -> float:
     pts[0::2], pts[1::2] = p1, xing
     keep = np.empty(2 * len(c), dtype=bool)
     keep[0::2], keep[1::2] = in1, cross
-    q = pts[keep]
-    y, z = q[:, 0], q[:, 1]
-    return 0.5 * float(np.dot(y, _next(z)) - np.dot(z, _next(y)))
+    return pts[keep]

@@ -19,8 +19,10 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
               + V^2 [c c' / sqrt(c^2 - y^2) - 1/2 - y^2 / (2 (c^2 - y^2) (1 + f'^2))].
 
   The bracket is negative near the spray root (it falls to minus infinity there); the
-  force per metre is the integral, over ``dy``, from the keel to the point ``y*`` where
-  the bracket changes sign (Korobkin 2004: the positive part of the pressure).
+  force per metre is the integral, over ``dy``, of its positive part (Korobkin 2004): from
+  the keel to the point ``y*`` where the bracket changes sign, or, on a side steeper than
+  ``atan(pi) = 72.3`` deg at the keel (where ``c' < 1/2`` makes it negative), from where
+  it turns positive to ``y*``.
 - **Momentum form.** The ``dV/dt`` term is an added mass,
   ``m_a = rho integral_0^{y*} (sqrt(c^2 - y^2) + f - h) dy`` both sides, on the left of the
   body's equations of motion; the bracket's integral times ``rho`` is the coefficient of
@@ -31,9 +33,11 @@ distance from the keel, penetration ``h`` and penetration speed ``V = dh/dt`` (d
 
       f = 2 rho V^2 c [c' t* - s / 2 - (atanh(s) - s) / (2 (1 + k^2))],   c' = pi / (2 k),
 
+  less the same bracket at the start of the positive part on a steep wedge
   (:func:`wedge_force`), which tends to Wagner's ``rho pi c c' V^2`` as ``beta -> 0``.
 - **A sharp edge** (a chine or a knuckle: the bottom meets the section's widest point at
-  a deadrise below ``smooth_edge_deg``): once ``c`` passes the edge the flow separates.
+  a deadrise below ``smooth_edge_deg``, or a side as steep as the continuation from its
+  keel on, a steep wedge's): once ``c`` passes the edge the flow separates.
   The contact goes on along a fictitious body continuing the bottom from the edge
   (Tassin, Korobkin & Cooker 2014, Appl. Ocean Res. 48, 33-41: the fictitious body
   continuation), a straight line at the deadrise ``continuation`` (``"tangent"``: the
@@ -153,17 +157,29 @@ def wedge_force(deadrise: float, penetration: float, speed: float, rho: float = 
     def bracket(t: float) -> float:  # the velocity term's pressure times cos(t)
         return cp - 0.5 * math.cos(t) - math.sin(t) ** 2 / (2.0 * math.cos(t) * (1.0 + k * k))
 
-    if bracket(0.0) <= 0.0:
-        return 0.0
-    lo, hi = 0.0, 0.5 * math.pi * (1.0 - 1e-15)
-    for _ in range(200):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if bracket(mid) > 0.0 else (lo, mid)
-    t = 0.5 * (lo + hi)
-    s = math.sin(t)
-    return (
-        2.0 * rho * speed**2 * c * (cp * t - 0.5 * s - (math.atanh(s) - s) / (2.0 * (1.0 + k * k)))
-    )
+    def root(lo: float, hi: float) -> float:  # the sign change in (lo, hi)
+        rising = bracket(lo) <= 0.0
+        for _ in range(200):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if (bracket(mid) > 0.0) != rising else (lo, mid)
+        return 0.5 * (lo + hi)
+
+    def primitive(t: float) -> float:  # integral of bracket from 0 to t
+        s = math.sin(t)
+        return cp * t - 0.5 * s - (math.atanh(s) - s) / (2.0 * (1.0 + k * k))
+
+    top = 0.5 * math.pi * (1.0 - 1e-15)
+    t_a = 0.0
+    if bracket(0.0) <= 0.0:  # steeper than atan(pi): the bracket's maximum, where
+        # d/dt = sin(t) (1/2 - (1 + cos^2 t) / (2 cos^2 t (1 + k^2))) vanishes
+        t_peak = math.acos(1.0 / k)
+        if bracket(t_peak) <= 0.0:
+            return 0.0
+        t_a = root(0.0, t_peak)
+        t_b = root(t_peak, top)
+    else:
+        t_b = root(0.0, top)
+    return 2.0 * rho * speed**2 * c * (primitive(t_b) - primitive(t_a))
 
 
 class MLM(MomentumFormSolver):
@@ -219,7 +235,7 @@ class MLM(MomentumFormSolver):
         n = len(sections)
         p = np.asarray(sections.penetration, dtype=np.float64)
         v = np.asarray(velocity, dtype=np.float64)
-        raw, ds, last, extent, edge_in, reentrant = side_contours(
+        raw, ds, last, extent, edge_in, reentrant, wedge = side_contours(
             sections, self.settings["section_method"]
         )
         g, step, e, line, sharp, smooth, (y_last, s_last) = continued_contours(
@@ -254,9 +270,9 @@ class MLM(MomentumFormSolver):
         def body(y):  # the real bottom's height and slope at y (up to its widest point)
             return real_bottom(raw, ds, y_last, s_last, y)
 
-        t_star = sign_change(c, cp, body, t_lim)
-        tk = t_star[..., None] * U
-        wk = t_star[..., None] * WU
+        t_a, t_star = sign_change(c, cp, body, t_lim)
+        tk = t_a[..., None] + (t_star - t_a)[..., None] * U
+        wk = (t_star - t_a)[..., None] * WU
         yk = c[..., None] * np.sin(tk)
         fk, fpk = body(yk)
         cos = np.cos(tk)
@@ -319,13 +335,15 @@ class MLM(MomentumFormSolver):
             diagnostics={
                 "wetted_half_width": 0.5 * (c[0] + c[1]),
                 "pressure_half_width": 0.5 * (c * np.sin(t_star)).sum(axis=0),
+                "pressure_start": 0.5 * (c * np.sin(t_a)).sum(axis=0),
                 "edge_half_width": 0.5 * (e[0] + e[1]),
                 "separated": separated.astype(np.float64),
                 "continued": continued.astype(np.float64),
                 "submerged": submerged.astype(np.float64),
                 "froude": froude,
                 "buoyancy": vertical,
-                "contour": np.ones(n),
+                # the equivalent wedge is no contour: a flat bottom's is flagged
+                "contour": (~wedge).astype(np.float64),
                 **more,
             },
             girth=girth.sum(axis=0),

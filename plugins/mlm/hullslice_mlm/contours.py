@@ -13,6 +13,7 @@ import numpy as np
 
 from hullslice import InputError
 from hullslice.solvers.contour import contour_heights, part_owners, wagner_root
+from hullslice.solvers.section_parts import shared_piece_extents
 
 #: Gauss-Legendre nodes over ``t`` in ``(0, t*)`` per side (the pressure's points).
 NODES = 32
@@ -31,7 +32,9 @@ def side_contours(sections, method: str):
     """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising),
     the side's extent ``E`` to its widest point (the sampled reach where the grid ends
     before it),
-    the grid's step, and the sides whose contour turns back down."""
+    the grid's step, the sides whose contour turns back down, and the sections read as
+    their equivalent wedge (all of them for ``"wedge"``; under ``"auto"`` those whose
+    bottom is flat at the keel or unsampled)."""
     n = len(sections)
     p = np.asarray(sections.penetration, dtype=np.float64)
     calm = np.maximum(np.stack([sections.half_beam_port, sections.half_beam_stbd]), 0.0)
@@ -44,6 +47,10 @@ def side_contours(sections, method: str):
         reach = np.where(reach > 0, reach, 2.5 * np.maximum(calm, 1e-9))
         raw = contour_heights(sections, reach, RAW)
         ds = reach / (RAW - 1)
+        # a side ends at its extent: past it lies another float's bottom or the tunnel's
+        # roof between them, not this side's
+        past = ds[..., None] * np.arange(RAW) > extent[..., None] * (1.0 + 1e-9)
+        raw = np.where(past, np.nan, raw)
         finite = np.isfinite(raw)
         near = raw[:, :, : max(2, RAW // 10)]
         flat = np.any(np.all(np.abs(near) <= 1e-9 * p[None, :, None] + 1e-12, axis=2), axis=0)
@@ -51,8 +58,19 @@ def side_contours(sections, method: str):
         wedge |= flat
         last = np.where(finite.all(axis=-1), RAW - 1, np.argmin(finite, axis=-1) - 1)
         last = np.maximum(last, 1)
-        gap = (last < RAW - 1) & ((last + 1) * ds < extent)
-        extent = np.where(gap, (last + 1) * ds, extent)  # a side that ends before
+        # inside its part's extent a side has a bottom at every y: where the sampled
+        # heights stop short of it, the side rose above the cut's height window (a side
+        # steeper than atan 4 there), and it goes on straight at its last slope
+        gap = (last < RAW - 1) & ((last + 1) * ds < extent * (1.0 - 1e-9))
+        if gap.any():
+            j = np.arange(RAW)
+            f_last = np.take_along_axis(raw, last[..., None], axis=-1)
+            s_last = f_last - np.take_along_axis(raw, (last - 1)[..., None], axis=-1)
+            steep = f_last + (j - last[..., None]) * s_last
+            after = gap[..., None] & (j > last[..., None])
+            raw = np.where(after, steep, raw)
+            finite = np.isfinite(raw)
+            last = np.where(gap, RAW - 1, last)
         edge_in = extent <= reach * (1.0 + 1e-12)
         filled = np.where(finite, raw, -np.inf)
         rising = np.maximum.accumulate(filled, axis=-1)
@@ -74,7 +92,7 @@ def side_contours(sections, method: str):
         last[:, wedge] = RAW - 1
         edge_in[:, wedge] = True
         reentrant[:, wedge] = False
-    return raw, ds, last, extent, edge_in, reentrant
+    return raw, ds, last, extent, edge_in, reentrant, wedge
 
 
 def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_tan, cont_given):
@@ -93,14 +111,21 @@ def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_
     y_last = i_last * ds
     e = np.where(edge_in, extent, y_last)
     f_edge = real_bottom(raw, ds, y_last, s_edge, e[..., None])[0][..., 0]
-    sharp = edge_in & (np.degrees(np.arctan(s_edge)) < settings["smooth_edge_deg"])
+    tan_dep = math.tan(math.radians(settings["smooth_edge_deg"])) if cont_tan is None else cont_tan
+    # a smooth side leaves its contour where it is first as steep as the continuation
+    index = np.arange(k_raw - 1)
+    steep_at = (slope_raw >= tan_dep) & (index <= (i_last - 1)[..., None])
+    found = steep_at.any(axis=-1)
+    i_dep = np.argmax(steep_at, axis=-1)
+    # a side as steep as that from its keel on (a steep wedge) has nowhere to turn: its
+    # widest point is a sharp edge whatever its slope there
+    straight = found & (i_dep == 0)
+    sharp = edge_in & ((np.degrees(np.arctan(s_edge)) < settings["smooth_edge_deg"]) | straight)
     smooth = edge_in & ~sharp
     if cont_tan is None:
         s_cont = s_edge
-        tan_dep = math.tan(math.radians(settings["smooth_edge_deg"]))
     else:
         s_cont = np.maximum(s_edge, cont_tan)  # the default: at least the tangent
-        tan_dep = cont_tan
         steep = sharp & (s_edge > cont_tan * (1.0 + 1e-9))
         if cont_given and steep.any():
             side, i = (int(a[0]) for a in np.nonzero(steep))
@@ -110,11 +135,6 @@ def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_
                 f"{float(sections.x[i]):.6g} m ({math.degrees(math.atan(s_edge[side, i])):.4g}"
                 " deg there): give a steeper continuation or continuation=tangent"
             )
-    # a smooth side leaves its contour where it is first as steep as the continuation
-    index = np.arange(k_raw - 1)
-    steep_at = (slope_raw >= tan_dep) & (index <= (i_last - 1)[..., None])
-    found = steep_at.any(axis=-1)
-    i_dep = np.argmax(steep_at, axis=-1)
     d_smooth = np.where(found, i_dep * ds, e)
     f_smooth = np.where(found, np.take_along_axis(raw, i_dep[..., None], axis=-1)[..., 0], f_edge)
     s_smooth = np.where(found, tan_dep, np.maximum(s_edge, tan_dep))
@@ -164,29 +184,39 @@ def contact(g, step, pen, edge_in, line):
 
 
 def sign_change(c, cp, body, t_lim):
-    """The first ``t`` in ``(0, t_lim)`` where the velocity term's pressure changes sign
-    (``t_lim`` where it does not; 0 where it is not positive at the keel); ``body(y)``
-    gives the real bottom's height and slope."""
+    """The interval ``(t_a, t_b)`` of ``(0, t_lim)`` where the velocity term's pressure is
+    positive: ``t_a = 0`` where it is positive at the keel (else where it first turns
+    positive: on a side steeper than ``atan(pi) = 72.3`` deg at the keel the bracket
+    starts negative, rises and falls again), ``t_b`` where it next changes sign (``t_lim``
+    where it does not); ``t_a = t_b`` where it is nowhere positive. ``body(y)`` gives the
+    real bottom's height and slope. The first positive interval is taken: a second one
+    further out (a bottom that turns flat again) is not loaded."""
 
     def bracket(t):
         fp = body(c[..., None] * np.sin(t))[1]
         return cp[..., None] - 0.5 * np.cos(t) - np.sin(t) ** 2 / (2.0 * np.cos(t) * (1.0 + fp**2))
 
     grid = t_lim[..., None] * np.linspace(0.0, 1.0, SCAN + 1)
-    b = bracket(grid)
-    neg = b <= 0.0
-    first = np.where(neg.any(axis=-1), np.argmax(neg, axis=-1), SCAN + 1)
-    none = first > SCAN
-    at_keel = first == 0
-    j = np.clip(first, 1, SCAN)
-    lo = np.take_along_axis(grid, (j - 1)[..., None], axis=-1)[..., 0]
-    hi = np.take_along_axis(grid, j[..., None], axis=-1)[..., 0]
-    for _ in range(40):
-        mid = 0.5 * (lo + hi)
-        pos = bracket(mid[..., None])[..., 0] > 0.0
-        lo, hi = np.where(pos, mid, lo), np.where(pos, hi, mid)
-    t = 0.5 * (lo + hi)
-    return np.where(none, t_lim, np.where(at_keel, 0.0, t))
+    pos = bracket(grid) > 0.0
+    some = pos.any(axis=-1)
+    start = np.argmax(pos, axis=-1)  # first positive point
+    after = pos | (np.arange(SCAN + 1) < start[..., None])
+    end = np.where((~after).any(axis=-1), np.argmin(after, axis=-1), SCAN + 1)
+
+    def root(j, rising):  # bisect between grid points j - 1 and j
+        j = np.clip(j, 1, SCAN)
+        lo = np.take_along_axis(grid, (j - 1)[..., None], axis=-1)[..., 0]
+        hi = np.take_along_axis(grid, j[..., None], axis=-1)[..., 0]
+        for _ in range(40):
+            mid = 0.5 * (lo + hi)
+            up = (bracket(mid[..., None])[..., 0] > 0.0) != rising
+            lo, hi = np.where(up, mid, lo), np.where(up, hi, mid)
+        return 0.5 * (lo + hi)
+
+    late = some & (start > 0)  # steep at the keel: the positive part starts further out
+    t_a = np.where(late, root(start, True), 0.0) if late.any() else np.zeros_like(t_lim)
+    t_b = np.where(end > SCAN, t_lim, root(end, False))
+    return t_a, np.where(some, t_b, 0.0)
 
 
 def real_bottom(raw, ds, y_last, s_last, y):
@@ -205,7 +235,9 @@ def _extents(sections) -> np.ndarray:
     """(2, n): how far each side of each entry reaches from its keel (port: +y), m: to the
     edge of its station's polygons, or where the station has several, of its own part
     (:func:`~hullslice.solvers.section_parts.part_owners`; a float of a catamaran reaches no
-    further than its own side)."""
+    further than its own side); where several entries share a part (floats joined by a
+    tunnel roof in one closed surface), to the ends of each one's own bottom
+    (:func:`~hullslice.solvers.section_parts.shared_piece_extents`)."""
     n = len(sections)
     station = np.asarray(sections.station, dtype=np.int64)
     lo, hi = np.full(n, np.inf), np.full(n, -np.inf)
@@ -225,6 +257,7 @@ def _extents(sections) -> np.ndarray:
             hi[idx[mine]] = [parts[k][1] for k in owner[mine]]
     yk = np.asarray(sections.y_keel, dtype=np.float64)
     out = np.stack([hi - yk, yk - lo]) if n else np.zeros((2, 0))
+    out = np.minimum(out, shared_piece_extents(sections))
     chine = 2.0 * np.asarray(sections.part_half_beam, dtype=np.float64)
     out = np.where(np.isfinite(out), out, chine)
     return np.minimum(np.maximum(out, 0.0), np.maximum(chine, 1e-300))

@@ -39,7 +39,7 @@ import numpy as np
 
 from hullslice import AddedMass, InputError, MomentumSolver
 from hullslice.solvers import join_reasons
-from hullslice.solvers.contour import submerged_parts
+from hullslice.solvers.section_parts import submerged_shares
 
 __all__ = ["Zarnick"]
 __version__ = "0.1.0"
@@ -102,7 +102,7 @@ class Zarnick(MomentumSolver):
         drag = np.where(
             separated & (v < 0.0), self.settings["cross_flow_drag"] * fluid.rho * b * v * v, 0.0
         )
-        area, whole = submerged_parts(sections)
+        area, whole, breadth = submerged_shares(sections)
         buoyancy = self.settings["buoyancy_factor"] * fluid.rho * fluid.g * area
         under = (whole > 0) & (area >= (1.0 - 1e-9) * whole)
         reason = join_reasons(
@@ -125,4 +125,5 @@ class Zarnick(MomentumSolver):
                 "buoyancy": buoyancy,
                 "contour": t["contour"].astype(np.float64),
             },
+            girth=breadth,  # the bound on suction: the wetted bottom's breadth
         )
