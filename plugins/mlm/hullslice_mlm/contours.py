@@ -29,10 +29,9 @@ WU = 0.5 * _WX
 
 
 def side_contours(sections, method: str):
-    """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising),
-    the side's extent ``E`` to its widest point (the sampled reach where the grid ends
-    before it),
-    the grid's step, the sides whose contour turns back down, and the sections read as
+    """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising; a
+    side that rises above the cut's height window goes on at its last slope), the side's
+    extent ``E`` to its widest point (:func:`_extents`), the grid's step, the sides whose contour turns back down, and the sections read as
     their equivalent wedge (all of them for ``"wedge"``; under ``"auto"`` those whose
     bottom is flat at the keel or unsampled)."""
     n = len(sections)
