@@ -98,6 +98,9 @@ def test_a_steep_wedge_loads_the_positive_part_of_its_pressure(deadrise_deg):
         np.testing.assert_allclose(
             per_metre(r), mlm.wedge_force(beta, p, 5.0, RHO), rtol=1e-6, err_msg=f"{share}"
         )
+        assert r.pressures is not None  # whose points carry that part only
+        np.testing.assert_allclose(r.pressures.force_per_metre(), per_metre(r), rtol=1e-9)
+        assert r.pressures.pressure.min() >= 0.0
 
 
 def test_the_wedge_force_is_continuous_where_the_keel_pressure_changes_sign():
