@@ -31,9 +31,9 @@ WU = 0.5 * _WX
 def side_contours(sections, method: str):
     """Each side's bottom as cut: heights ``f`` on an even grid from the keel (rising; a
     side that rises above the cut's height window goes on at its last slope), the side's
-    extent ``E`` to its widest point (:func:`_extents`), the grid's step, the sides whose contour turns back down, and the sections read as
-    their equivalent wedge (all of them for ``"wedge"``; under ``"auto"`` those whose
-    bottom is flat at the keel or unsampled)."""
+    extent ``E`` to its widest point (:func:`_extents`), the grid's step, the sides whose
+    contour turns back down, and the sections read as their equivalent wedge (all of them
+    for ``"wedge"``; under ``"auto"`` those whose bottom is flat at the keel or unsampled)."""
     n = len(sections)
     p = np.asarray(sections.penetration, dtype=np.float64)
     calm = np.maximum(np.stack([sections.half_beam_port, sections.half_beam_stbd]), 0.0)
