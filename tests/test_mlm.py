@@ -385,3 +385,28 @@ def test_a_flat_bottom_is_flagged_as_outside_the_wedge_theory(solver):
     r = hs.compute_force(hull, 0.001, -5.0, slices=2, solver=solver, acceleration=0.0)
     assert not r.loads.valid.any()
     assert all("deadrise below 1 deg" in why for why in r.loads.reason)
+
+
+def test_the_breadth_under_the_water_is_the_same_from_the_kept_cut_as_per_contour():
+    # the breadths of the suction bound read from the kept cut's contours, all stations at
+    # once (ShiftedPolygons.extent_below), against each station's contour as moved when
+    # read, one at a time: the same numbers to the last bit (fixed slices, whose partial
+    # slices take a moved section, over drafts past the round sections' widest points)
+    from dataclasses import replace
+
+    from hullslice.motion import ForceModel
+    from hullslice.solvers.section_parts import submerged_widths
+
+    hull = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    model = ForceModel(hull, slices=32, slicing="fixed", solver="wagner")
+    motion = hs.Motion(-1.5, 19.0)
+    lifted = 0
+    for draft in (0.005, 0.05, 0.15, 0.3):
+        for pitch in (0.0, 0.1):
+            s = model.terms(hs.Pose(draft, pitch), motion).sections
+            lifted += s.polygons._lift is not None
+            plain = replace(s, polygons=[s.polygons[i] for i in range(len(s.polygons))])
+            np.testing.assert_array_equal(submerged_widths(s), submerged_widths(plain))
+            wet = s.wetted
+            assert (submerged_widths(s)[wet] > 0.0).all()
+    assert lifted  # partial slices moved to their depths were among them

@@ -57,6 +57,36 @@ class ShiftedPolygons(Sequence):
             shift = shift + np.array([0.0, self._lift[i]])
         return tuple(np.asarray(c) / self._scale + shift for c in self._polygons[i])
 
+    def contour_counts(self) -> np.ndarray:
+        """(s,) the number of contours of each station (none of them moved)."""
+        return np.array([len(p) for p in self._polygons], dtype=np.int64)
+
+    def extent_below(self, stations: np.ndarray) -> np.ndarray:
+        """(k,) the lateral extent (largest less smallest ``Y``, m) of the points at or
+        below ``Z = 0`` of the first contour of each of ``stations``, the points moved by
+        the same arithmetic as :meth:`__getitem__`'s, all stations at once; NaN where
+        there are none."""
+        k = np.asarray(stations, dtype=np.int64)
+        out = np.full(len(k), np.nan)
+        raw = [np.asarray(self._polygons[int(i)][0]) for i in k]
+        counts = np.array([len(c) for c in raw], dtype=np.int64)
+        if not counts.any():
+            return out
+        pts = np.concatenate([c for c in raw if len(c)])
+        shift_z = np.full(len(k), self._shift[1])
+        if self._lift is not None:
+            shift_z = self._shift[1] + self._lift[k]
+        y = pts[:, 0] / self._scale + self._shift[0]
+        z = pts[:, 1] / self._scale + np.repeat(shift_z, counts)
+        below = z <= 0.0
+        nz = counts[counts > 0]
+        start = np.cumsum(nz) - nz  # each non-empty station's first point
+        has = np.add.reduceat(below.astype(np.int64), start)
+        hi = np.maximum.reduceat(np.where(below, y, -np.inf), start)
+        lo = np.minimum.reduceat(np.where(below, y, np.inf), start)
+        out[counts > 0] = np.where(has > 0, hi - lo, np.nan)
+        return out
+
 
 @dataclass(frozen=True, eq=False)
 class Sections:

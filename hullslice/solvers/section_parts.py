@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..slicing.record import ShiftedPolygons
+
 __all__ = [
     "entry_parts",
     "part_owners",
@@ -164,7 +166,11 @@ def submerged_widths(sections) -> np.ndarray:
     section wholly under water, as its part."""
     station = np.asarray(sections.station)
     stations, first, count = np.unique(station, return_index=True, return_counts=True)
-    alone = np.array([len(sections.polygons[int(st)]) == 1 for st in stations], dtype=bool)
+    polygons = sections.polygons
+    if isinstance(polygons, ShiftedPolygons):
+        alone = polygons.contour_counts()[stations] == 1
+    else:
+        alone = np.array([len(polygons[int(st)]) == 1 for st in stations], dtype=bool)
     if not (alone & (count == 1)).all():
         return _shares(sections)[2]
     # one part and one entry at every station: the part's breadth below the water is
@@ -173,14 +179,21 @@ def submerged_widths(sections) -> np.ndarray:
         np.asarray(sections.half_beam_port + sections.half_beam_stbd, dtype=np.float64), 0.0
     )
     wet = np.asarray(sections.wetted, dtype=bool)
-    for st, i in zip(stations, first, strict=True):
-        if not wet[i]:
-            continue
-        c = np.asarray(sections.polygons[int(st)][0], dtype=np.float64)
-        y = c[c[:, 1] <= 0.0, 0] if len(c) else c[:0, 0]
-        if len(y):
-            breadth[i] = max(breadth[i], float(y.max() - y.min()))
+    own, at = stations[wet[first]], first[wet[first]]
+    if isinstance(polygons, ShiftedPolygons):
+        extent = polygons.extent_below(own)
+    else:
+        extent = np.array([_extent_below(polygons[int(st)][0]) for st in own])
+    some = np.isfinite(extent)
+    breadth[at[some]] = np.maximum(breadth[at[some]], extent[some])
     return breadth
+
+
+def _extent_below(contour) -> float:
+    """The lateral extent (m) of a contour's points at or below ``z = 0``; NaN: none."""
+    c = np.asarray(contour, dtype=np.float64)
+    y = c[c[:, 1] <= 0.0, 0] if len(c) else c[:0, 0]
+    return float(y.max() - y.min()) if len(y) else np.nan
 
 
 def submerged_shares(sections) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
