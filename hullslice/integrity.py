@@ -27,7 +27,7 @@ import numpy as np
 
 from .errors import MeshError
 
-__all__ = ["REL_TOL", "STATIONS", "check_sections_match_volume", "signed_section_areas"]
+__all__ = ["ABS_TOL", "REL_TOL", "STATIONS", "check_sections_match_volume", "signed_section_areas"]
 
 #: Stations at which the sections are compared (mid-points of equal parts of the length).
 STATIONS = 64
@@ -35,6 +35,12 @@ STATIONS = 64
 #: Largest difference of the two areas of a section, relative to the largest section
 #: (manifold3d cuts in single precision: about 1e-7).
 REL_TOL = 1e-4
+
+#: And at least this share of the body's size squared: manifold3d's section points are
+#: exact to about 1e-9 of the size, so a section's area to about its perimeter times that
+#: (a few 1e-9 of the size squared), whatever its area. A nearly flat body (a wedge prism
+#: of 0.01 deg deadrise) has sections so thin that this exceeds REL_TOL of them.
+ABS_TOL = 1e-8
 
 
 def signed_section_areas(v: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -109,7 +115,8 @@ def check_sections_match_volume(v: np.ndarray, f: np.ndarray, manifold, name: st
     Raises
     ------
     MeshError
-        The two areas of a section differ by more than :data:`REL_TOL` of the largest.
+        The two areas of a section differ by more than :data:`REL_TOL` of the largest
+        and :data:`ABS_TOL` of the body's size squared.
     """
     lo, hi = v.min(axis=0), v.max(axis=0)
     size = float(np.linalg.norm(hi - lo))
@@ -127,7 +134,7 @@ def check_sections_match_volume(v: np.ndarray, f: np.ndarray, manifold, name: st
     largest = float(max(np.abs(union).max(), np.abs(signed).max()))
     gap = np.abs(union - signed)
     k = int(np.argmax(gap))
-    if largest > 0.0 and gap[k] > REL_TOL * largest:
+    if largest > 0.0 and gap[k] > max(REL_TOL * largest, ABS_TOL):
         scale2 = size**2
         volume = float(manifold.volume())
         ratio = float(union.sum()) * length / STATIONS * scale2 / volume if volume else np.inf

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import trimesh
@@ -382,3 +384,15 @@ def test_overlapping_shells_one_inside_out_are_taken_as_their_union(reverse_both
     h30 = 0.1 * np.tan(np.radians(30.0))
     assert hull.volume == pytest.approx(1.55 * 0.1 * h30, rel=1e-9)
     np.testing.assert_allclose(hull.extents, (1.55, 0.2, h30), rtol=1e-9)
+
+
+def test_a_nearly_flat_wedge_prism_is_not_taken_for_a_self_intersection():
+    # a convex prism of 0.01 deg deadrise: its sections are so thin (26 um) that
+    # manifold3d's rounding of their points (about 1e-9 of the body's size) is more than
+    # 1e-4 of their area; the integrity check's floor of 1e-8 of the size squared lets it
+    # through, with its exact volume
+    for deadrise in (0.01, 0.0001):
+        v, f = shapes.wedge_prism(length=1.0, beam=0.3, deadrise_deg=deadrise)
+        hull = hs.Hull.from_arrays(v, f)
+        depth = 0.15 * math.tan(math.radians(deadrise))
+        assert hull.volume == pytest.approx(1.0 * 0.15 * depth, rel=1e-9)
