@@ -10,13 +10,16 @@ from typing import Any
 from hullslice import InputError
 
 
-def _number(solver: Any, key: str, lo: float, hi: float, *, open_lo: bool = False) -> float:
+def _number(
+    solver: Any, key: str, lo: float, hi: float, *, open_lo: bool = False, open_hi: bool = False
+) -> float:
     value = solver.settings[key]
     ok = isinstance(value, Real) and not isinstance(value, bool)
     v = float(value) if ok else math.nan
-    inside = math.isfinite(v) and (v > lo if open_lo else v >= lo) and v <= hi
+    inside = math.isfinite(v) and (v > lo if open_lo else v >= lo)
+    inside = inside and (v < hi if open_hi else v <= hi)
     if not inside:
-        close = "]" if math.isfinite(hi) else ")"  # finite values only
+        close = "]" if math.isfinite(hi) and not open_hi else ")"  # finite values only
         span = f"in ({lo:g}, {hi:g}{close}" if open_lo else f"in [{lo:g}, {hi:g}{close}"
         raise InputError(
             f"solver 'mlm': option {key}={value!r} is not a number {span} "
@@ -45,12 +48,12 @@ def check_options(solver: Any, options: dict[str, Any]) -> tuple[float | None, b
         s["continuation"] = "tangent"
         cont_tan = None
     else:
-        deg = _number(solver, "continuation", 0.0, 90.0, open_lo=True)
-        if deg >= 90.0:
+        if cont == 90.0:
             raise InputError(
                 f"solver 'mlm': option continuation={cont!r} deg is vertical: the contact "
                 "would stop at the edge; give a deadrise below 90 deg, e.g. 60"
             )
+        deg = _number(solver, "continuation", 0.0, 90.0, open_lo=True, open_hi=True)
         s["continuation"] = deg
         cont_tan = math.tan(math.radians(deg))
     s["smooth_edge_deg"] = _number(solver, "smooth_edge_deg", 0.0, 90.0, open_lo=True)
