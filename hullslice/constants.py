@@ -40,6 +40,9 @@ NU_SEA = 1.19e-6
 P_ATM = 101325.0
 #: Vapour pressure of water at 20 deg C, Pa (about 2.34 kPa; the IAPWS formulation).
 P_VAPOUR = 2339.0
+#: Speed of sound in fresh water at 20 deg C, m/s (1481 m/s; 1520 in sea water): a body's
+#: speed past it is refused, the water of the method being incompressible.
+SOUND_WATER = 1481.0
 
 #: Length units a mesh may be given in, as metres per unit.
 LENGTH_UNITS: dict[str, float] = {

@@ -15,7 +15,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from .constants import NU_SEA, NU_WATER, P_ATM, P_VAPOUR, RHO_SEA, RHO_WATER, G
+from .constants import NU_SEA, NU_WATER, P_ATM, P_VAPOUR, RHO_SEA, RHO_WATER, SOUND_WATER, G
 from .errors import InputError
 from .limits import check_pitch
 from .renamed import renamed_keywords
@@ -105,10 +105,16 @@ class Motion:
         return math.degrees(self.pitch_rate_rad_s)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "velocity", _finite(self.velocity, "velocity", "m/s"))
-        object.__setattr__(
-            self, "forward_speed", _finite(self.forward_speed, "forward speed", "m/s")
-        )
+        for name, what in (("velocity", "velocity"), ("forward_speed", "forward speed")):
+            v = _finite(getattr(self, name), what, "m/s")
+            if abs(v) >= SOUND_WATER:
+                raise InputError(
+                    f"{what} {v:g} m/s is past the speed of sound in water "
+                    f"({SOUND_WATER:g} m/s), where water is not the incompressible fluid "
+                    "of the method: give a speed in m/s (a ditching touches down at 50 to "
+                    "80 m/s forward, a drop test enters at a few m/s)"
+                )
+            object.__setattr__(self, name, v)
         object.__setattr__(
             self, "pitch_rate_rad_s", _finite(self.pitch_rate_rad_s, "pitch rate", "rad/s")
         )

@@ -1864,6 +1864,23 @@ CATALOGUE: tuple[Bad, ...] = (
         plugins=("huge",),
     ),
     Bad(
+        "acceleration-overflows",
+        "`--acceleration=-1e308` with a momentum solver (a force no float holds)",
+        "error: the water's force at the body's acceleration (vertical -1e+308 m/s^2, ...) "
+        "is not a finite number: give accelerations a body can have",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "mlm", "--acceleration=-1e308"],
+        error="the water's force at the body's acceleration (vertical -1e+308 m/s^2, pitch 0 "
+        "rad/s^2, forward 0 m/s^2) is not a finite number",
+    ),
+    Bad(
+        "speed-past-sound",
+        "`--forward-speed 1e308` (past the speed of sound in water)",
+        "error: forward speed 1e+308 m/s is past the speed of sound in water (1481 m/s), "
+        "where water is not the incompressible fluid of the method: give a speed in m/s",
+        lambda t: ["force", wedge_file(t), *STATE, "--forward-speed", "1e308"],
+        error="forward speed 1e+308 m/s is past the speed of sound in water (1481 m/s)",
+    ),
+    Bad(
         "stepped-hull-wetted-length",
         "a stepped hull whose middle is dry (two 0.5 m bottoms 1.6 m from bow to stern)",
         "result: wetted length 1.0 m, the wetted bottoms only (the slices still span 1.6 m)",

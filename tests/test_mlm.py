@@ -376,6 +376,23 @@ def test_a_section_leaving_the_water_keeps_its_added_mass(velocity):
     assert entering.acceleration.vertical == pytest.approx(a, rel=1e-6)
 
 
+@pytest.mark.parametrize("acceleration", [-40.0, 0.0, 40.0])
+def test_the_load_is_continuous_as_a_section_turns_to_leave_the_water(acceleration):
+    # a section whose motion turns from entering to leaving has no v^2 term left as its
+    # speed goes to zero: on either side of the turn its load is the inertia's, -m_a a,
+    # whether the body is pushed down or pulled up (the momentum form's added mass, as
+    # wagner's: water follows a body pulled up, down to its suction bound, here far off)
+    hull = hs.Hull.from_arrays(*shapes.wedge_prism(1.0, 0.5, 30.0, sides=0.3), mass=241.0)
+    forces = {}
+    for v in (-1e-6, 0.0, 1e-6):
+        r = hs.compute_force(hull, 0.05, v, slices=2, solver="mlm", acceleration=acceleration)
+        added = float(np.sum(r.loads.diagnostics["added_mass"] * r.sections.dx))
+        assert not r.loads.diagnostics["suction_limited"].any()
+        forces[v] = r.total
+        assert r.total == pytest.approx(-added * acceleration, rel=1e-9, abs=1e-6)
+    assert forces[-1e-6] == pytest.approx(forces[1e-6], rel=1e-9, abs=1e-6)
+
+
 @pytest.mark.parametrize("solver", ["mlm", "zarnick"])
 def test_a_flat_bottom_is_flagged_as_outside_the_wedge_theory(solver):
     # a box (zero deadrise, chines at 0.3 m): the 2D theory has no flat plate to give,

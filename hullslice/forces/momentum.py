@@ -63,14 +63,6 @@ class MomentumTerms:
     limited : (n,) bool
         Sections whose force is held at ``lower``: the water cannot follow them (it
         cavitates), so their added mass leaves the equations of motion.
-    exit_mass : (n,) float or None
-        For a solver whose load is the positive part of its pressure: the whole added mass
-        of each section leaving the water (zero on the others), kg/m; its pressure is the
-        inertia's alone, the same sign at every point.
-    exit_carry : (n,) bool or None
-        The sections leaving the water that carry ``exit_mass`` (their acceleration is
-        down or nil: the pressure is positive); the others carry nothing (the water
-        ventilates rather than pull).
     """
 
     sections: Sections
@@ -83,8 +75,6 @@ class MomentumTerms:
     limited: np.ndarray
     carried: np.ndarray
     loaded: np.ndarray | None = None
-    exit_mass: np.ndarray | None = None
-    exit_carry: np.ndarray | None = None
 
     @property
     def inertia(self) -> np.ndarray:
@@ -101,7 +91,8 @@ class MomentumTerms:
 
     def force(self, acceleration: Acceleration) -> np.ndarray:
         """(n,) force per metre normal to the keel line at the body's acceleration, N/m."""
-        return self.f0 - self.inertia * (self.jac @ np.asarray(acceleration.as_array()))
+        with np.errstate(over="ignore", invalid="ignore"):  # result() names a non-finite one
+            return self.f0 - self.inertia * (self.jac @ np.asarray(acceleration.as_array()))
 
     def with_limited(self, limited: np.ndarray) -> MomentumTerms:
         """The same terms with the force of the sections ``limited`` held at the bound."""
@@ -109,31 +100,7 @@ class MomentumTerms:
         f0 = np.where(limited, self.lower, self.f0)
         return MomentumTerms(
             self.sections, self.velocity, self.added, self.jac, self.bias, f0, self.lower,
-            limited, self.carried, self.loaded, self.exit_mass, self.exit_carry,
-        )  # fmt: skip
-
-    def with_exits(self, acceleration: Acceleration) -> MomentumTerms:
-        """The same terms with each section leaving the water carrying its added mass
-        where its acceleration at the body's ``acceleration`` is down or nil (its
-        pressure positive), and nothing where it is up (the terms themselves where none
-        changes)."""
-        if self.exit_mass is None or self.exit_carry is None:
-            return self
-        a_n = self.jac @ np.asarray(acceleration.as_array()) + self.bias
-        leaving = self.exit_mass > 0.0
-        carry = leaving & (a_n <= 0.0)
-        if np.array_equal(carry, self.exit_carry & leaving):
-            return self
-        added = self.added
-        free = np.where(carry, -self.exit_mass * self.bias, 0.0) + added.extra + added.vertical
-        f0 = np.where(leaving & ~self.limited, free, self.f0)
-        carried = np.where(leaving, np.where(carry, self.exit_mass, 0.0), self.carried)
-        loaded = self.loaded
-        if loaded is not None:
-            loaded = np.where(leaving[:, None, None], carry[:, None, None], loaded)
-        return MomentumTerms(
-            self.sections, self.velocity, added, self.jac, self.bias, f0, self.lower,
-            self.limited, carried, loaded, self.exit_mass, carry,
+            limited, self.carried, self.loaded,
         )  # fmt: skip
 
     @property
@@ -160,6 +127,12 @@ class MomentumTerms:
         acc = np.asarray(acceleration.as_array())
         a_n = self.jac @ acc + self.bias
         force = self.force(acceleration)
+        if not np.isfinite(force).all() or not np.isfinite(force @ self.sections.dx):
+            raise InputError(
+                f"the water's force at the body's acceleration (vertical {acc[0]:g} m/s^2, "
+                f"pitch {acc[1]:g} rad/s^2, forward {acc[2]:g} m/s^2) is not a finite "
+                "number: give accelerations a body can have, in m/s^2 and rad/s^2"
+            )
         diagnostics = {
             **self.added.diagnostics,
             "added_mass": self.carried,
@@ -196,21 +169,18 @@ def momentum_terms(
     jac, bias = section_kinematics(sections, motion, x_cg, velocity)
     flux = np.where(velocity < 0.0, added.rate * velocity * velocity, 0.0)
     carried, loaded = added.added_mass, None
-    exit_mass = exit_carry = None
     if getattr(solver, "positive_pressure", False) and added.pressure is not None:
-        # the load of the points whose pressure is positive at the body's rest; a section
-        # leaving the water (no v^2 term) has the inertia's pressure alone, positive at
-        # every point where its acceleration is down (or nil) and negative where it is up:
-        # it carries its whole added mass or none, by the acceleration solved
-        # (:meth:`MomentumTerms.with_exits`), and starts from its rest
+        # the load of the points whose pressure is positive at the body's rest; the body's
+        # own acceleration then acts on the added mass of those points, its pressure of
+        # either sign (the suction bound holds a pull the water cannot give). A section
+        # leaving the water (no v^2 term) has at rest its kinematic acceleration's
+        # pressure alone, of one sign: it carries its whole added mass where that is
+        # not negative (as an entering section does as its speed goes to zero, so that
+        # the load is continuous as the section turns), none where it is
         pts = added.pressure
         p0 = pts.pressure(velocity, bias)
-        leaving = velocity >= 0.0
-        exit_mass = np.where(
-            leaving, (pts.acceleration_coefficient * pts.weight).sum(axis=(1, 2)), 0.0
-        )
-        exit_carry = leaving & (bias <= 0.0)
-        loaded = np.where(leaving[:, None, None], exit_carry[:, None, None], p0 > 0.0)
+        leaving = (velocity >= 0.0)[:, None, None]
+        loaded = np.where(leaving, p0 >= 0.0, p0 > 0.0)
         flux = (np.where(loaded, p0, 0.0) * pts.weight).sum(axis=(1, 2))
         carried = (np.where(loaded, pts.acceleration_coefficient, 0.0) * pts.weight).sum(
             axis=(1, 2)
@@ -225,7 +195,6 @@ def momentum_terms(
     lower = -fluid.suction_limit * np.where(sections.wetted, width, 0.0)
     terms = MomentumTerms(
         sections, velocity, added, jac, bias, f0, lower, f0 < lower, carried, loaded,
-        exit_mass, exit_carry,
     )  # fmt: skip
     return terms.with_limited(terms.limited)
 
@@ -258,20 +227,15 @@ def solve_bounded(
     Sections whose force would fall below the bound (``terms.lower``) at the solved
     accelerations are held at it and their added mass leaves the equations, and the
     accelerations are solved again, until no more sections fall below (an active set that
-    only grows, so it ends). Sections leaving the water of a solver whose load is its
-    pressure's positive part carry their added mass where their solved acceleration is
-    down and none where it is up (:meth:`MomentumTerms.with_exits`), in the same rounds
-    (at most :data:`MAX_BOUND_ROUNDS`: the last set where they do not settle). Returns the
-    terms with their limited sections and the accelerations; the arguments are those of
-    :func:`solve_accelerations`.
+    only grows, so it ends). Returns the terms with their limited sections and the
+    accelerations; the arguments are those of :func:`solve_accelerations`.
     """
     acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     for _ in range(MAX_BOUND_ROUNDS):
-        turned = terms.with_exits(acc)
-        below = ~turned.limited & (turned.force(acc) < turned.lower)
-        if turned is terms and not below.any():
+        below = ~terms.limited & (terms.force(acc) < terms.lower)
+        if not below.any():
             break
-        terms = turned.with_limited(turned.limited | below) if below.any() else turned
+        terms = terms.with_limited(terms.limited | below)
         acc = solve_accelerations(terms, mass, inertia, gravity, free, fixed, when, external)
     return terms, acc
 
@@ -279,7 +243,6 @@ def solve_bounded(
 def held_bounded(terms: MomentumTerms, acceleration: Acceleration) -> MomentumTerms:
     """The terms at a body acceleration that is given (not solved): the sections whose
     force falls below its bound there are held at it."""
-    terms = terms.with_exits(acceleration)
     below = ~terms.limited & (terms.force(acceleration) < terms.lower)
     return terms.with_limited(terms.limited | below) if below.any() else terms
 
