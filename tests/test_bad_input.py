@@ -1881,6 +1881,15 @@ CATALOGUE: tuple[Bad, ...] = (
         error="forward speed 1e+308 m/s is past the speed of sound in water (1481 m/s)",
     ),
     Bad(
+        "section-past-sound",
+        "`--pitch-rate 1e200` (deg/s: sections moving faster than sound in water)",
+        "error: the section at x = ... m moves at ... m/s (up positive) across the water, from "
+        "the body's vertical velocity ..., forward speed ... and pitch rate ...: past the speed "
+        "of sound in water (1481 m/s); give a pitch rate in deg/s",
+        lambda t: ["force", wedge_file(t), *STATE, "--solver", "mlm", "--pitch-rate", "1e200"],
+        error="pitch rate 1e+200 deg/s: past the speed of sound in water (1481 m/s)",
+    ),
+    Bad(
         "stepped-hull-wetted-length",
         "a stepped hull whose middle is dry (two 0.5 m bottoms 1.6 m from bow to stern)",
         "result: wetted length 1.0 m, the wetted bottoms only (the slices still span 1.6 m)",

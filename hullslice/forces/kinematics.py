@@ -6,10 +6,13 @@ accelerations; the formulas are in the notes of :mod:`hullslice.forces`.
 
 from __future__ import annotations
 
+import math
 from typing import cast
 
 import numpy as np
 
+from ..constants import SOUND_WATER
+from ..errors import InputError
 from ..sections import Sections
 from ..state import Motion
 
@@ -31,7 +34,19 @@ def section_velocity(sections: Sections, motion: Motion, x_cg: float) -> np.ndar
     q, u = motion.pitch_rate, motion.forward_speed
     arm_x = sections.x - x_cg
     arm_z = sections.keel_z - sections.z_cg
-    return motion.velocity + q * arm_x - (u - q * arm_z) * sections.keel_slope
+    with np.errstate(over="ignore", invalid="ignore"):  # named below
+        v = motion.velocity + q * arm_x - (u - q * arm_z) * sections.keel_slope
+    fast = np.abs(v) >= SOUND_WATER  # an overflow too (inf); NaN is the solvers' to name
+    if fast.any():
+        i = int(np.flatnonzero(fast)[0])
+        raise InputError(
+            f"the section at x = {sections.x[i]:.6g} m moves at {v[i]:.6g} m/s (up "
+            f"positive) across the water, from the body's vertical velocity "
+            f"{motion.velocity:g} m/s, forward speed {u:g} m/s and pitch rate "
+            f"{math.degrees(q):g} deg/s: past the speed of sound in water ({SOUND_WATER:g} "
+            "m/s); give a pitch rate in deg/s (rad/s in Python's *_rad_s)"
+        )
+    return v
 
 
 def section_kinematics(
