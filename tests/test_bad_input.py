@@ -1883,9 +1883,9 @@ CATALOGUE: tuple[Bad, ...] = (
     Bad(
         "section-past-sound",
         "`--pitch-rate 1e200` (deg/s: sections moving faster than sound in water)",
-        "error: the section at x = ... m moves at ... m/s (up positive) across the water, from "
-        "the body's vertical velocity ..., forward speed ... and pitch rate ...: past the speed "
-        "of sound in water (1481 m/s); give a pitch rate in deg/s",
+        "error: the keel of the section at x = ... m moves at ... m/s, from the body's vertical "
+        "velocity ..., forward speed ... and pitch rate ...: past the speed of sound in water "
+        "(1481 m/s); give a pitch rate in deg/s",
         lambda t: ["force", wedge_file(t), *STATE, "--solver", "mlm", "--pitch-rate", "1e200"],
         error="pitch rate 1e+200 deg/s: past the speed of sound in water (1481 m/s)",
     ),

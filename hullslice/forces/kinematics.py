@@ -35,13 +35,15 @@ def section_velocity(sections: Sections, motion: Motion, x_cg: float) -> np.ndar
     arm_x = sections.x - x_cg
     arm_z = sections.keel_z - sections.z_cg
     with np.errstate(over="ignore", invalid="ignore"):  # named below
-        v = motion.velocity + q * arm_x - (u - q * arm_z) * sections.keel_slope
-    fast = np.abs(v) >= SOUND_WATER  # an overflow too (inf); NaN is the solvers' to name
+        up, forward = motion.velocity + q * arm_x, u - q * arm_z
+        v = up - forward * sections.keel_slope
+        # the keel point's own speed (not the slope's share of it, a step's steep chord)
+        fast = np.hypot(up, forward) >= SOUND_WATER  # an overflow too (inf)
     if fast.any():
         i = int(np.flatnonzero(fast)[0])
         raise InputError(
-            f"the section at x = {sections.x[i]:.6g} m moves at {v[i]:.6g} m/s (up "
-            f"positive) across the water, from the body's vertical velocity "
+            f"the keel of the section at x = {sections.x[i]:.6g} m moves at "
+            f"{math.hypot(up[i], forward[i]):.6g} m/s, from the body's vertical velocity "
             f"{motion.velocity:g} m/s, forward speed {u:g} m/s and pitch rate "
             f"{math.degrees(q):g} deg/s: past the speed of sound in water ({SOUND_WATER:g} "
             "m/s); give a pitch rate in deg/s (rad/s in Python's *_rad_s)"
