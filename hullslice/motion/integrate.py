@@ -245,22 +245,35 @@ def simulate(
             raise _PitchLimit
         return Pose(model.draft(z, th), th), Motion(w, u, q)
 
-    def rate(y):
+    def rate(y, record: bool = True):
+        """The state's rate, and the force result and outside forces when ``record``
+        (else only what the rate needs: a free-fall solver's sums)."""
         w, q = y[3], y[4]
+        if not (record or friction or model.momentum):  # the sums alone
+            z, th, u = y[0], y[1], y[2]
+            if abs(th) >= MAX_PITCH:
+                raise _PitchLimit
+            total, moment, total_x = model.totals_at(z, th, w, u, q)
+            ext, parts = outside(y, None, None)
+            dq = (moment + ext[1]) / inertia if free_pitch else 0.0
+            du = (total_x + ext[2]) / m if free_surge else 0.0
+            return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (None, parts)
         pose, motion = state_pose(y)
         if model.momentum:  # the added mass on the left, solved at this stage
             terms = model.terms(pose, motion)
             ext, parts = outside(y, terms.sections, calm_girth(terms.sections))
             terms, acc = solve_bounded(
-                terms, m, inertia, g, free, when=f"at t = {clock[0]:.6g} s", external=ext
-            )
+                terms, cast(float, m), inertia, g, free, when=f"at t = {clock[0]:.6g} s",
+                external=(float(ext[0]), float(ext[1]), float(ext[2])),
+            )  # fmt: skip
             r = terms.result(acc, model.solver, model.fluid, motion, x_cg)
             return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), (r, parts)
         r = model(pose, motion)
-        ext, parts = outside(y, r.sections, calm_girth(r.sections))
-        dq = (r.moment + ext[1]) / inertia if free_pitch else 0.0
-        du = (r.total_x + ext[2]) / m if free_surge else 0.0
-        return np.array([w, q, du, (r.total + ext[0]) / m - g, dq]), (r, parts)
+        total, moment, total_x = r.total, r.moment, r.total_x
+        ext, parts = outside(y, r.sections, calm_girth(r.sections) if friction else None)
+        dq = (moment + ext[1]) / inertia if free_pitch else 0.0
+        du = (total_x + ext[2]) / m if free_surge else 0.0
+        return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (r, parts)
 
     y = np.array([frame(hull, pose0.pitch).z_cg(pose0.draft), pose0.pitch, forward_speed, w0, q0])
     rec = Recorder(stop_on, max_flagged_share, sections_every)
@@ -278,10 +291,10 @@ def simulate(
         h = min(dt, t_end - t)
         try:
             clock[0] = t + 0.5 * h
-            k2, _ = rate(y + 0.5 * h * k1)
-            k3, _ = rate(y + 0.5 * h * k2)
+            k2, _ = rate(y + 0.5 * h * k1, False)
+            k3, _ = rate(y + 0.5 * h * k2, False)
             clock[0] = t + h
-            k4, _ = rate(y + h * k3)
+            k4, _ = rate(y + h * k3, False)
         except _PitchLimit:
             rec.end("pitch", t)
             break

@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import math
 from typing import cast
 
+from ..constants import SOUND_WATER
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms
+from ..forces.fused import FusedHeld, fused_for
 from ..geometry import check_cutter, frame
 from ..limits import no_mass
 from ..mesh import Hull
@@ -71,6 +74,7 @@ class ForceModel:
         self.slicing = _check_slicing(slicing)
         self.cache = bool(cache)
         self.cutter = check_cutter(cutter)
+        self._fused: FusedHeld | bool | None = False  # not yet looked for
 
     @property
     def momentum(self) -> bool:
@@ -86,16 +90,61 @@ class ForceModel:
             cutter=self.cutter,
         )  # fmt: skip
 
+    @property
+    def fused(self) -> FusedHeld | None:
+        """The fused evaluation of a held pitch (:mod:`hullslice.forces.fused`) where its
+        compiled loops describe this model, else None."""
+        if self._fused is False:
+            self._fused = fused_for(self)
+        return cast("FusedHeld | None", self._fused)
+
     def __call__(
         self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
     ) -> ForceResult:
         """The force result at a pose (its draft clipped to the body's height) and motion;
         a momentum-form solver's with the body's ``acceleration`` (default: free in heave,
         see :func:`~hullslice.forces.compute_force`)."""
+        fused = self.fused
+        if fused is not None:
+            r = fused.force(pose, motion)
+            if r is not None:
+                return r
         return force_on(
             self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
             acceleration=acceleration, mass=self.hull.mass,
         )  # fmt: skip
+
+    def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float]:
+        """The vertical force (N), the moment about the centre of gravity (N m) and the
+        horizontal force (N) of a free-fall solver at a pose and motion: what
+        :meth:`__call__`'s result gives as ``total``, ``moment`` and ``total_x``, without
+        the result where the fused evaluation serves."""
+        fused = self.fused
+        if fused is not None:
+            out = fused.totals(pose, motion)
+            if out is not None:
+                return out
+        r = self(pose, motion)
+        return r.total, r.moment, r.total_x
+
+    def totals_at(
+        self, z_cg: float, pitch_rad: float, w: float, u: float, q: float
+    ) -> tuple[float, float, float]:
+        """:meth:`totals` with the centre of gravity at height ``z_cg`` (m), pitched by
+        ``pitch_rad`` (rad), moving at ``w`` (m/s, up), ``u`` (m/s, forward) and ``q``
+        (rad/s, nose up): the state of an equation of motion, checked as :class:`Pose` and
+        :class:`Motion` check it where the fused evaluation does not serve."""
+        fused = self.fused
+        if (
+            fused is not None
+            and math.isfinite(z_cg + pitch_rad + w + u + q)
+            and max(abs(w), abs(u)) < SOUND_WATER
+        ):
+            fr = frame(self.hull, pitch_rad)
+            out = fused.totals_at(fr, max(0.0, -(fr.lowest + z_cg)), w, u, q)
+            if out is not None:
+                return out
+        return self.totals(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
 
     def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
         """A momentum-form solver's terms before the body's accelerations are known."""

@@ -60,7 +60,8 @@ class Recorder:
         ``outside`` the air's forces and the friction (zero by default)."""
         share = _valid_share(r)
         slender = r.slenderness
-        reasons = sorted({part for text in r.loads.reason if text for part in text.split("; ")})
+        texts = set(r.loads.reason.tolist())  # a few texts, each over many slices
+        reasons = sorted({part for text in texts if text for part in text.split("; ")})
         w = r.motion.velocity
         wetted = bool((r.sections.penetration > 0).any())
         self.touched = self.touched or wetted

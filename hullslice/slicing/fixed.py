@@ -59,6 +59,8 @@ class FixedCut:
     too_high : dict of str to (Outline, float)
         By estimator, the outline and the water's height at which a table cost too much
         (none is tried again for that outline at a higher water).
+    plans : dict of str to tuple
+        By estimator, the arrays of :mod:`hullslice.forces.fused` made from its table.
     """
 
     n: int
@@ -70,6 +72,8 @@ class FixedCut:
     evaluations: int = 0
     tables: dict[str, WaterlineTable] = field(default_factory=dict)
     too_high: dict[str, tuple[Outline, float]] = field(default_factory=dict)
+    #: By estimator, the fused evaluation's arrays of a table (hullslice.forces.fused).
+    plans: dict[str, tuple] = field(default_factory=dict)
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def window(

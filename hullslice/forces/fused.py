@@ -1,0 +1,345 @@
+"""The fused evaluation of a held pitch: the compiled loops of :mod:`hullslice.held_loops`
+in place of the slicing's, the solver's and the sums' numpy steps.
+
+It serves a :class:`~hullslice.motion.model.ForceModel` whose evaluation those loops
+describe: fixed slicing cut once and kept (``slicing="fixed"``, ``cache=True``), the
+``wedge`` deadrise, a curve solver with the paper's pile-up law and polynomial curves (the
+default ``extended-von-karman``), a body of one piece whose mass is spread by volume, and a
+pitch whose kept cut has its waterline table of one entry per interval. Elsewhere, and at
+any evaluation the loops hand back (the first contact, a station not yet cut, the water
+above the table), numpy's path serves. Both give the same numbers (to 1e-12; the tests
+compare them over whole histories); the fused one costs a few microseconds an evaluation
+where numpy's costs some hundreds. It needs numba (the ``fast`` extra) and is switched off
+with ``HULLSLICE_NUMBA=0``, as the other compiled loops.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .. import planecut_loops
+from ..constants import SOUND_WATER, TOL
+from ..geometry import frame
+from ..held_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
+from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
+from ..kernel.waterline_table import WaterlineTable
+from ..slicing.assemble import keel_window
+from ..slicing.fixed import FIXED_CUTS
+from ..slicing.own_keel import pieces
+from ..slicing.record import Sections, ShiftedPolygons
+from ..solvers.base import FREE_FALL, SectionLoads
+from ..solvers.karman import CurveSolver
+from ..state import Fluid, Motion, Pose
+from .evaluate import (
+    CHINE_REASON,
+    FACE_REASON,
+    FLAT_REASON,
+    MASSLESS_REASON,
+    MIN_DEADRISE,
+    STEEP_REASON,
+)
+from .result import ForceResult
+
+__all__ = ["FusedHeld", "fused_for"]
+
+_COL = {name: i for i, name in enumerate(COLUMNS)}
+_OPT = {name: i for i, name in enumerate(OPTIONS)}
+# the options FusedHeld._run sets at each evaluation, by place
+assert [_OPT[k] for k in ("level", "w", "u", "q", "frame_x_cg", "c0", "n_cut", "top",
+                          "has_chords")] == [0, 1, 2, 3, 5, 7, 8, 10, 23]  # fmt: skip
+#: The diagnostics of the curve solver, in its order.
+_DIAGNOSTICS = ("gamma", "z_tilde", "v_tilde", "a_tilde", "v_z0", "acceleration", "froude")
+#: The per-entry arrays of :class:`Sections` taken from the loops' columns.
+_SECTION_COLUMNS = (
+    "x", "dx", "penetration", "half_beam", "half_beam_port", "half_beam_stbd", "deadrise",
+    "deadrise_port", "deadrise_stbd", "area", "mass_per_metre", "keel_slope", "keel_z",
+    "y_keel", "part_half_beam", "keel_curvature",
+)  # fmt: skip
+
+
+def _serves(solver) -> bool:
+    """Whether the loops compute ``solver``'s force: a curve solver with the paper's pile-up
+    law and polynomial curves, as :class:`~hullslice.solvers.karman.CurveSolver` has them."""
+    kind = type(solver)
+    return (
+        isinstance(solver, CurveSolver)
+        and solver.kind == FREE_FALL
+        and kind.section_loads is CurveSolver.section_loads
+        and kind.pile_up is CurveSolver.pile_up
+        and solver.curves.table is None
+        and set(solver.settings) == {"froude_min"}
+    )
+
+
+def fused_for(model) -> FusedHeld | None:
+    """The fused evaluation for a force model, or None where its loops do not describe the
+    model's evaluation (see the module notes), or numba is not installed or switched off
+    (``HULLSLICE_NUMBA=0``, read here: when the model first evaluates)."""
+    hull = model.hull
+    if not (
+        model.slicing == "fixed"
+        and model.cache
+        and model.deadrise == "wedge"
+        and hull.mass is not None
+        and hull.mass_distribution is None
+        and _serves(model.solver)
+    ):
+        return None
+    loops = _loops()  # numba's, before the body's pieces are counted (a second on 1M faces)
+    return None if loops is None or pieces(hull).n > 1 else FusedHeld(model, loops)
+
+
+def _loops():
+    """The compiled loops of :func:`hullslice.held_loops.held_loops`, or None without numba
+    (or with ``HULLSLICE_NUMBA=0``)."""
+    return planecut_loops.compiled("held") if planecut_loops.available() else None
+
+
+class FusedHeld:
+    """A force model's fused evaluation: :meth:`force` and :meth:`totals` give what the
+    model gives at a pose and motion, or None where numpy's path must."""
+
+    def __init__(self, model, loops) -> None:
+        self.model = model
+        self.loops = loops
+        hull = model.hull
+        self.hull = hull
+        self.key = (model.slices, float(TOL.coordinate * hull.size), model.cutter)
+        self.fluid: Fluid = model.fluid
+        solver = model.solver
+        curves = solver.curves
+        lo, hi = curves.z_range
+        opts = np.zeros(len(OPTIONS))
+        for name, value in {
+            "x_cg": float(hull.cg[0]),
+            "n": model.slices,
+            "tol": self.key[1],
+            "density": hull.mass / hull.volume,
+            "rho_ratio": curves.rho / self.fluid.rho,
+            "rho_curves": curves.rho,
+            "g": self.fluid.g,
+            "froude_min": float(solver.settings["froude_min"]),
+            "z_lo": lo,
+            "z_hi": hi,
+            "keel_window": keel_window(hull),
+            "sound": SOUND_WATER,
+            "min_deadrise": MIN_DEADRISE,
+            "end_face": END_FACE_SLOPE,
+            "steep": STEEP_SLOPE,
+        }.items():
+            opts[_OPT[name]] = value
+        self.opts = opts
+        self.a_c = np.array(curves.a_coeffs, dtype=np.float64)
+        self.v_c = np.array(curves.v_coeffs, dtype=np.float64)
+        self.reasons = _reason_texts(solver, lo, hi)
+        self._texts: dict[int, str] = {0: ""}
+        n = model.slices
+        self._scratch = (np.empty((len(COLUMNS), n)), np.empty((3, n), dtype=np.int64))
+        self.scal = np.empty(8)
+        #: The outline and the water's height at which a table cost too much.
+        self._too_high: tuple[object, float] | None = None
+        self.x_cg = float(hull.cg[0])
+
+    def _plan(self, fr) -> tuple | None:
+        """The kept cut's arrays for the loops at this frame, made once per table; None
+        without a kept cut and its table of one entry per interval."""
+        kept = fr.cache[FIXED_CUTS].get(self.key)
+        if kept is None or kept.outline is None or kept.range is None:
+            return None
+        table = kept.tables.get("wedge")
+        if table is None or table.outline is not kept.outline or not table.one_each:
+            return None
+        plan = kept.plans.get("wedge")
+        if plan is None or plan[0] is not table:
+            plan = (table, _arrays(fr, kept, table), kept.rows, kept.range[0])
+            kept.plans["wedge"] = plan
+        with kept._lock:  # an evaluation of the kept cut's, as numpy's path counts them
+            kept.evaluations += 1
+        return plan
+
+    def _run(self, fr, draft: float, w: float, u: float, q: float, fout, iout):
+        """The loops at a frame (its pitch), a draft (m, clipped to the body's height) and
+        the body's velocities (m/s, m/s, rad/s): (plan, level, draft) when they did the
+        evaluation, or None."""
+        plan = self._plan(fr)
+        if plan is None:
+            return None
+        height = fr.highest - fr.lowest
+        if draft > height:
+            draft = height
+        table, arrays, _, c0 = plan
+        level = fr.lowest + draft
+        opts = self.opts
+        opts[0], opts[1], opts[2], opts[3] = level, w, u, q
+        opts[5] = fr.cg[0]
+        opts[7] = c0
+        opts[8] = arrays["n_cut"]
+        opts[10] = table.top
+        opts[23] = arrays["has_chords"]
+        status = self.loops(
+            fout, iout, self.scal, opts, arrays["keel"], arrays["runs"], arrays["chords"],
+            arrays["heights"], arrays["tkey"], arrays["tvals"], arrays["stations"], self.a_c,
+            self.v_c,
+        )  # fmt: skip
+        if status == 3 and self._higher(fr, table, float(self.scal[7])):
+            return self._run(fr, draft, w, u, q, fout, iout)
+        if status != 0:
+            return None
+        return plan, level, draft
+
+    def _higher(self, fr, table, need: float) -> bool:
+        """Make the kept cut's waterline table again, up to above ``need`` (m, the water's
+        height the loops asked for: the water's own, or that at which a partial slice takes
+        its moved section); False where it would cost too much. The table's intervals and
+        their samples do not depend on its top: the same values, more of them."""
+        kept = fr.cache[FIXED_CUTS].get(self.key)
+        outline = table.outline
+        too_high = self._too_high
+        if kept is None:
+            return False
+        if too_high is not None and too_high[0] is outline and need >= too_high[1]:
+            return False
+        new = WaterlineTable.of(outline, need, table.tol, "wedge")
+        if new is None or not new.one_each or new.top < need:
+            self._too_high = (outline, need)
+            return False
+        with kept._lock:
+            if kept.tables.get("wedge") is not table:  # another thread made one
+                return False
+            kept.tables["wedge"] = new
+        return True
+
+    def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float] | None:
+        """The vertical force (N), the moment about the centre of gravity (N m) and the
+        horizontal force (N) at a pose and motion, or None where numpy's path must."""
+        fr = frame(self.hull, pose.pitch)
+        return self.totals_at(fr, pose.draft, motion.velocity, motion.forward_speed,
+                              motion.pitch_rate)  # fmt: skip
+
+    def totals_at(
+        self, fr, draft: float, w: float, u: float, q: float
+    ) -> tuple[float, float, float] | None:
+        """:meth:`totals` at a frame (its pitch), a draft (m, >= 0) and the body's vertical
+        velocity, forward speed (m/s) and pitch rate (rad/s), all finite."""
+        fout, iout = self._scratch
+        if self._run(fr, draft, w, u, q, fout, iout) is None:
+            return None
+        s = self.scal
+        return float(s[2]), float(s[4]), float(s[3])
+
+    def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
+        """The :class:`ForceResult` at a pose and motion, or None where numpy's path must."""
+        n = self.model.slices
+        fout, iout = np.empty((len(COLUMNS), n)), np.empty((3, n), dtype=np.int64)
+        fr = frame(self.hull, pose.pitch)
+        done = self._run(fr, pose.draft, motion.velocity, motion.forward_speed,
+                         motion.pitch_rate, fout, iout)  # fmt: skip
+        if done is None:
+            return None
+        plan, level, draft = done
+        m = int(self.scal[0])
+        cols = {name: fout[_COL[name], :m] for name in COLUMNS}
+        source = iout[I_SOURCE, :m]
+        code = iout[I_CODE, :m]
+        rows = plan[2]
+        z_cg = -level
+        sections = Sections(
+            station=np.arange(m),
+            **{name: cols[name] for name in _SECTION_COLUMNS},
+            chine_wetted=iout[I_CHINE, :m] > 0,
+            polygons=ShiftedPolygons(
+                [rows[k] for k in source.tolist()],
+                (fr.origin[0], fr.origin[1] + z_cg),
+                fr.scale,
+                cols["lift"],
+            ),
+            deadrise_method="wedge",
+            draft=draft,
+            pitch=pose.pitch,
+            wetted_length=float(self.scal[1]),
+            z_cg=z_cg,
+        )
+        loads = SectionLoads(
+            force_per_metre=cols["force_per_metre"],
+            valid=code == 0,
+            reason=self._reason(code),
+            diagnostics={name: cols[name] for name in _DIAGNOSTICS},
+        )
+        return ForceResult(
+            sections, cols["velocity"], loads, self.model.solver.name, self.fluid,
+            Pose(sections.draft, sections.pitch), motion, self.x_cg,
+        )  # fmt: skip
+
+    def _reason(self, code: np.ndarray) -> np.ndarray:
+        """The reasons' texts of the loops' codes."""
+        texts = self._texts
+        out = np.empty(len(code), dtype=object)
+        out[:] = [texts.get(c) if c in texts else self._text(c) for c in code.tolist()]
+        return out
+
+    def _text(self, c: int) -> str:
+        """The reasons of code ``c`` joined, as the solver and the checks join them."""
+        text = self._texts[c] = "; ".join(t for bit, t in enumerate(self.reasons) if c >> bit & 1)
+        return text
+
+
+def _reason_texts(solver, lo: float, hi: float) -> tuple[str, ...]:
+    """The texts of :data:`hullslice.held_loops.REASON_BITS`, as the solver and
+    :func:`~hullslice.forces.evaluate.evaluate` word them."""
+    fr_min = float(solver.settings["froude_min"])
+    return (
+        f"z~ outside the curves' range [{lo:.4g}, {hi:.4g}]",
+        "v~ <= 0 (past the end of the curves)",
+        "section not moving down into the water (no force)",
+        f"Fr* <= {fr_min:g} (gravity not negligible)",
+        MASSLESS_REASON,
+        FACE_REASON,
+        FLAT_REASON,
+        CHINE_REASON,
+        STEEP_REASON,
+    )
+
+
+def _padded(rows, width: int, fill: float = np.nan) -> np.ndarray:
+    out = np.full((len(rows), max(width, 1)), fill)
+    for i, row in enumerate(rows):
+        out[i, : len(row)] = row
+    return out
+
+
+def _arrays(fr, kept, table) -> dict[str, Any]:
+    """The loops' arrays of a frame's keel line and a kept cut's waterline table."""
+    keel = fr.keel
+    runs = keel._runs
+    k = len(keel.x)
+    steep = np.asarray(runs.steep, dtype=np.float64)[: k - 1]
+    chords = runs.chords
+    f = max(len(runs.mid), len(runs.offsets))
+    low_from_first = np.minimum.accumulate(keel.z)
+    low_from_last = np.minimum.accumulate(keel.z[::-1])[::-1]
+    out: dict[str, Any] = {
+        "keel": _padded([keel.x, keel.z, steep, low_from_first, low_from_last], k, 0.0),
+        "runs": _padded([runs.mid, runs.cont, runs.bend, runs.starts, runs.offsets], f),
+        "has_chords": 0.0 if chords is None else 1.0,
+        "chords": (
+            np.zeros((3, k)) if chords is None else _padded([chords[1], chords[2], chords[3]], k)
+        ),
+    }
+    t = table
+    ints = [t.bp_key, t.bp_start, t.v_start, t.e_start]
+    width = max(len(a) for a in ints)
+    tkey = np.zeros((4, width), dtype=np.int64)
+    for i, a in enumerate(ints):
+        tkey[i, : len(a)] = a
+    e_v = np.repeat(np.arange(len(t.exact)), np.diff(t.e_start))  # each entry's interval
+    out["tkey"] = tkey
+    out["heights"] = np.ascontiguousarray(t.heights, dtype=np.float64)
+    columns = [t.wet.astype(np.float64), t.keel, t.intercept, t.slope, t.const]
+    columns.append(t.exact[e_v].astype(np.float64))
+    out["tvals"] = np.ascontiguousarray(np.column_stack(columns))
+    o = t.outline
+    out["stations"] = np.ascontiguousarray(np.stack([o.zmin, o.z_chine, o.area]))
+    out["n_cut"] = float(o.n_stations)
+    return out

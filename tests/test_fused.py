@@ -1,0 +1,199 @@
+"""The fused evaluation of a held pitch (hullslice.forces.fused, its loops in
+hullslice.held_loops) against numpy's path: the same force result, slice by slice (every
+section array, the velocities, the solver's forces, diagnostics, validity and reasons, the
+contours) to 1e-12, at poses over the whole depth of every catalogued body, and the same
+histories. The loops run as Python (on every machine) and, where numba is installed,
+compiled."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import planecut_loops
+from hullslice.forces import fused
+from hullslice.held_loops import held_loops
+from hullslice.motion import ForceModel
+from hullslice.slicing.fixed import TABLE_AFTER
+from hullslice.solvers.karman import ExtendedVonKarman
+from hullslice.state import Motion, Pose
+
+from .fake_solvers import ConstantSolver
+from .test_bad_input import catamaran
+from .test_planecut import BODIES
+
+#: Relative agreement of the two paths (numpy's sums are pairwise, the loops' in order).
+RTOL = 1e-12
+
+
+def _paths() -> list[tuple[str, object]]:
+    paths: list[tuple[str, object]] = [("python", held_loops)]
+    if planecut_loops.available():
+        paths.append(("numba", planecut_loops.compiled("held")))
+    return paths
+
+
+def _models(hull, loops, slices: int = 48, **kw) -> tuple[ForceModel, ForceModel]:
+    """A model evaluated by the loops and one by numpy's path, on the same hull."""
+    fast = ForceModel(hull, slices=slices, slicing="fixed", **kw)
+    fast._fused = fused.FusedHeld(fast, loops)
+    slow = ForceModel(hull, slices=slices, slicing="fixed", **kw)
+    slow._fused = None
+    return fast, slow
+
+
+def _close(a, b, scale: float) -> bool:
+    a, b = np.asarray(a), np.asarray(b)
+    if a.dtype.kind in "biuO":
+        return a.shape == b.shape and bool(np.all(a == b))
+    return a.shape == b.shape and np.allclose(a, b, rtol=RTOL, atol=RTOL * scale, equal_nan=True)
+
+
+def assert_same_result(a, b) -> None:
+    """Two force results equal: every per-slice array, the sums, the contours."""
+    sa, sb = a.sections, b.sections
+    size = max(float(np.nanmax(np.abs(sb.x))), 1.0)
+    for name in sa._ARRAYS:
+        x, y = getattr(sa, name), getattr(sb, name)
+        scale = size if x.dtype.kind == "f" else 0.0
+        if name == "mass_per_metre":
+            scale = max(float(np.nanmax(np.abs(y), initial=0.0)), 1e-300)
+        assert _close(x, y, scale), (name, x, y)
+    for name in ("draft", "pitch", "wetted_length", "z_cg", "deadrise_method"):
+        x, y = getattr(sa, name), getattr(sb, name)
+        assert x == y if isinstance(x, str) else abs(x - y) <= RTOL * size, name
+    force = max(float(np.abs(b.loads.force_per_metre).max(initial=0.0)), 1e-300)
+    assert _close(a.loads.force_per_metre, b.loads.force_per_metre, force)
+    assert _close(a.velocity, b.velocity, 1.0)
+    assert np.array_equal(a.loads.valid, b.loads.valid)
+    assert list(a.loads.reason) == list(b.loads.reason)
+    assert list(a.loads.diagnostics) == list(b.loads.diagnostics)
+    for k, x in a.loads.diagnostics.items():
+        y = b.loads.diagnostics[k]
+        assert _close(x, y, max(float(np.nanmax(np.abs(y), initial=0.0)), 1.0)), k
+    total = max(abs(b.total), float(np.abs(b.force).sum()), 1e-300)
+    assert abs(a.total - b.total) <= RTOL * total
+    assert abs(a.total_x - b.total_x) <= RTOL * total
+    assert abs(a.moment - b.moment) <= RTOL * total * size
+    assert (a.pose, a.motion, a.solver, a.x_cg) == (b.pose, b.motion, b.solver, b.x_cg)
+    assert len(sa.polygons) == len(sb.polygons)
+    for pa, pb in zip(sa.polygons, sb.polygons, strict=True):
+        assert len(pa) == len(pb)
+        assert all(np.array_equal(u, v) for u, v in zip(pa, pb, strict=True))
+
+
+def _massive(hull):
+    """The body with a mass (its own, or 1000 kg per cubic metre)."""
+    return hull if hull.mass is not None else hull.with_mass(1000.0 * hull.volume)
+
+
+#: One-piece bodies whose mass the fused evaluation spreads (every catalogued one).
+NAMES = sorted(BODIES)
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
+@pytest.mark.parametrize("name", NAMES)
+def test_the_fused_evaluation_equals_numpy_on_every_body(name, path):
+    """At three pitches, drafts from a touch to most of the body's height, and motions
+    down, up (a section leaving: no force, flagged) and turning: the same results; the
+    loops serve many of them (the rest, handed back, are numpy's own)."""
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES[name])
+    served = tried = 0
+    rng = np.random.default_rng(7)
+    for pitch in (0.08, 0.3, -0.05):
+        fast, slow = _models(hull, loops)
+        fr = hs.geometry.frame(hull, pitch)
+        depth = fr.highest - fr.lowest
+        for _ in range(TABLE_AFTER):  # the kept cut's table is made from here on
+            slow(Pose(0.3 * depth, pitch), Motion(-2.0, 10.0))
+        for share in np.linspace(0.004, 0.9, 25):
+            w = -float(rng.uniform(0.5, 3.0)) if rng.random() < 0.85 else 0.4
+            motion = Motion(w, float(rng.uniform(0.0, 20.0)), float(rng.normal(0.0, 0.3)))
+            pose = Pose(share * depth, pitch)
+            tried += 1
+            served += fast.fused.force(pose, motion) is not None
+            assert_same_result(fast(pose, motion), slow(pose, motion))
+            total, moment, total_x = fast.totals(pose, motion)
+            want = slow(pose, motion)
+            scale = max(abs(want.total), float(np.abs(want.force).sum()), 1e-300)
+            assert abs(total - want.total) <= RTOL * scale
+            assert abs(total_x - want.total_x) <= RTOL * scale
+            assert abs(moment - want.moment) <= RTOL * scale * max(hull.size, 1.0)
+    # a round body's table stops well under its widest point (its cost): numpy's path then
+    assert served >= 10, (served, tried)
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
+@pytest.mark.parametrize(
+    ("name", "kw"),
+    [
+        ("fuselage_model.obj", dict(velocity=-1.5, pitch_deg=6.0, forward_speed=19.0)),
+        ("wedge_prism.stl", dict(velocity=-3.0, pitch_deg=2.0, forward_speed=4.0)),
+        ("fuselage", dict(velocity=-2.0, pitch_deg=4.0, forward_speed=30.0)),
+    ],
+)
+def test_a_held_pitch_history_equals_numpy(name, kw, path, monkeypatch):
+    """A whole run at a held pitch with its stages evaluated by the loops (the three later
+    stages of each step by their sums alone) against numpy's path: the same history."""
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES[name])
+    t_end = 0.04 * hull.size / abs(kw["velocity"])
+    run = dict(kw, slices=40, slicing="fixed", stop_on=(), dt=t_end / 60)
+    velocity = run.pop("velocity")
+    monkeypatch.setattr(fused, "_loops", lambda: None)
+    want = hs.simulate(hull.with_mass(hull.mass), velocity, t_end, **run)
+    monkeypatch.setattr(fused, "_loops", lambda: loops)
+    got = hs.simulate(hull.with_mass(hull.mass), velocity, t_end, **run)
+    peak = float(np.abs(want.force).max())
+    assert peak > 0.0
+    assert len(got) == len(want)
+    for key in ("force", "force_x", "draft", "velocity", "acceleration", "wetted_length"):
+        a, b = getattr(got, key), getattr(want, key)
+        scale = peak if key.startswith("force") else float(np.abs(b).max()) or 1.0
+        assert np.allclose(a, b, rtol=0.0, atol=1e-11 * scale), key
+    moment = float(np.abs(want.moment).max()) or 1.0
+    assert np.allclose(got.moment, want.moment, rtol=0.0, atol=1e-11 * moment)
+    assert np.array_equal(got.valid, want.valid)
+    assert list(got.reason) == list(want.reason)
+    assert np.array_equal(got.slices, want.slices)
+
+
+class _OwnPileUp(ExtendedVonKarman):
+    name = "own-pile-up"
+
+    def pile_up(self, deadrise):
+        return np.full_like(deadrise, 1.2)
+
+
+def test_the_fused_evaluation_serves_only_what_its_loops_describe(monkeypatch):
+    """Numpy's path serves every model the loops do not describe: other slicing, cache,
+    deadrise estimator, solver, a mass distribution, a body of several pieces, and a
+    machine without the compiled loops."""
+    monkeypatch.setattr(fused, "_loops", lambda: held_loops)
+    hull = _massive(BODIES["wedge"])
+    assert fused.fused_for(ForceModel(hull, slicing="fixed")) is not None
+    for kw in (
+        dict(slicing="wetted"),
+        dict(slicing="fixed", cache=False),
+        dict(slicing="fixed", deadrise="waterline-slope"),
+        dict(slicing="fixed", solver=ConstantSolver),
+        dict(slicing="fixed", solver=_OwnPileUp),
+    ):
+        assert fused.fused_for(ForceModel(hull, **kw)) is None, kw
+    v, f = catamaran()
+    cat = hs.Hull.from_arrays(v, f).with_mass(50.0)
+    assert fused.fused_for(ForceModel(cat, slicing="fixed")) is None
+    x = np.linspace(0.0, 1.0, 11)
+    spread = hull.with_mass(mass_distribution=hs.MassDistribution(x=x, mass_per_metre=10.0 + x))
+    assert fused.fused_for(ForceModel(spread, slicing="fixed")) is None
+    monkeypatch.setattr(fused, "_loops", lambda: None)
+    assert fused.fused_for(ForceModel(hull, slicing="fixed")) is None
+
+
+def test_numba_switched_off_is_read_when_a_model_first_evaluates(monkeypatch):
+    """``HULLSLICE_NUMBA=0`` keeps numpy's path for the models made while it is set."""
+    monkeypatch.setenv("HULLSLICE_NUMBA", "0")
+    hull = _massive(BODIES["wedge"])
+    assert fused.fused_for(ForceModel(hull, slicing="fixed")) is None
