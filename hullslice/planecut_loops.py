@@ -26,15 +26,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .held_loops import (
-    div_loops,
-    held_loops,
-    interp_loops,
-    left_loops,
-    left_loops_desc,
-    right_loops,
-    slope_loops,
-)
+from .held_loops import held_loops, pitch_entries_loops, pitch_loops, table_entry_loops
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
@@ -45,6 +37,20 @@ from .keel_loops import (
     search_loops,
     side_view_loops,
     sorted_loops,
+)
+from .slices_loops import (
+    crossing_loops,
+    div_loops,
+    extent_loops,
+    finish_loops,
+    interp_loops,
+    layout_loops,
+    left_loops,
+    left_loops_desc,
+    right_loops,
+    runs_of_loops,
+    slope_loops,
+    window_loops,
 )
 from .wetted_loops import wetted_loops
 
@@ -375,8 +381,13 @@ LOOPS["abscissae"] = abscissae_loops
 #: it, into their module's namespace and the caller's (numba calls compiled functions
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
 #: namespaces are numba's).
+#: What the fused evaluation's loops call, helpers before callers.
+_HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
+         "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
 CALLS = {
-    "held": ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope"),
+    "held": (*_HELD, "h_table"),
+    "pitch": (*_HELD, "wetted", "h_entries"),
+    "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent"),
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
@@ -390,4 +401,14 @@ LOOPS["h_right"] = right_loops
 LOOPS["h_left"] = left_loops
 LOOPS["h_div"] = div_loops
 LOOPS["h_desc"] = left_loops_desc
+LOOPS["h_cross"] = crossing_loops
+LOOPS["h_runs"] = runs_of_loops
+LOOPS["h_extent"] = extent_loops
+LOOPS["h_window"] = window_loops
+LOOPS["h_layout"] = layout_loops
+LOOPS["h_finish"] = finish_loops
+LOOPS["h_table"] = table_entry_loops
+LOOPS["h_entries"] = pitch_entries_loops
+LOOPS["pitch"] = pitch_loops
+LOOPS["window"] = window_loops
 LOOPS["h_slope"] = slope_loops

@@ -57,6 +57,7 @@ LAYERS: dict[str, int] = {
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
     "hullslice.held_loops": 3,
+    "hullslice.slices_loops": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

@@ -13,7 +13,6 @@ import pytest
 import hullslice as hs
 from hullslice import planecut_loops
 from hullslice.forces import fused
-from hullslice.held_loops import held_loops
 from hullslice.motion import ForceModel
 from hullslice.slicing.fixed import TABLE_AFTER
 from hullslice.solvers.karman import ExtendedVonKarman
@@ -27,10 +26,14 @@ from .test_planecut import BODIES
 RTOL = 1e-12
 
 
+#: The loops as Python.
+PYTHON = tuple(planecut_loops.LOOPS[name] for name in ("held", "pitch", "window"))
+
+
 def _paths() -> list[tuple[str, object]]:
-    paths: list[tuple[str, object]] = [("python", held_loops)]
+    paths: list[tuple[str, object]] = [("python", PYTHON)]
     if planecut_loops.available():
-        paths.append(("numba", planecut_loops.compiled("held")))
+        paths.append(("numba", fused._loops()))
     return paths
 
 
@@ -126,6 +129,52 @@ def test_the_fused_evaluation_equals_numpy_on_every_body(name, path):
 
 
 @pytest.mark.parametrize("path", [p for p, _ in _paths()])
+@pytest.mark.parametrize("name", NAMES)
+def test_the_fused_evaluation_at_new_pitches_equals_numpy(name, path):
+    """At new pitches (each cut afresh by the exact kernel, as free pitch cuts them, without
+    a waterline table): the same results, the wetted properties computed afresh by the
+    loops."""
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES[name])
+    fast, slow = _models(hull, loops, cutter="exact")
+    rng = np.random.default_rng(11)
+    served = 0
+    for pitch in rng.uniform(-0.05, 0.3, 14):
+        fr = hs.geometry.frame(hull, pitch)
+        depth = fr.highest - fr.lowest
+        for share in (0.01, 0.08, 0.3, 0.6):
+            motion = Motion(-float(rng.uniform(0.5, 3.0)), 15.0, float(rng.normal(0.0, 0.3)))
+            pose = Pose(share * depth, pitch)
+            want = slow(pose, motion)
+            got = fast.fused.force(pose, motion)
+            served += got is not None
+            assert_same_result(fast(pose, motion) if got is None else got, want)
+    assert served >= 20, served
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "wedge_prism.stl"])
+def test_a_free_pitch_history_equals_numpy(name, path, monkeypatch):
+    """A run with free pitch (every stage a new pitch, cut afresh) by the loops against
+    numpy's path: the same history."""
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES[name])
+    t_end = 0.03 * hull.size / 1.5
+    run = dict(pitch_deg=6.0, forward_speed=10.0, slices=32, slicing="fixed", stop_on=(),
+               dt=t_end / 40, free_pitch=True)  # fmt: skip
+    monkeypatch.setattr(fused, "_loops", lambda: None)
+    want = hs.simulate(hull.with_mass(hull.mass), -1.5, t_end, **run)
+    monkeypatch.setattr(fused, "_loops", lambda: loops)
+    got = hs.simulate(hull.with_mass(hull.mass), -1.5, t_end, **run)
+    assert len(got) == len(want)
+    assert float(np.abs(want.force).max()) > 0.0
+    for key in ("force", "force_x", "moment", "draft", "pitch", "pitch_rate", "acceleration"):
+        a, b = getattr(got, key), getattr(want, key)
+        assert np.allclose(a, b, rtol=0.0, atol=1e-11 * (float(np.abs(b).max()) or 1.0)), key
+    assert list(got.reason) == list(want.reason)
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
 @pytest.mark.parametrize(
     ("name", "kw"),
     [
@@ -171,7 +220,7 @@ def test_the_fused_evaluation_serves_only_what_its_loops_describe(monkeypatch):
     """Numpy's path serves every model the loops do not describe: other slicing, cache,
     deadrise estimator, solver, a mass distribution, a body of several pieces, and a
     machine without the compiled loops."""
-    monkeypatch.setattr(fused, "_loops", lambda: held_loops)
+    monkeypatch.setattr(fused, "_loops", lambda: PYTHON)
     hull = _massive(BODIES["wedge"])
     assert fused.fused_for(ForceModel(hull, slicing="fixed")) is not None
     for kw in (

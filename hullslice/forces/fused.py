@@ -1,20 +1,23 @@
-"""The fused evaluation of a held pitch: the compiled loops of :mod:`hullslice.held_loops`
+"""The fused evaluation of fixed slicing: the compiled loops of :mod:`hullslice.held_loops`
 in place of the slicing's, the solver's and the sums' numpy steps.
 
 It serves a :class:`~hullslice.motion.model.ForceModel` whose evaluation those loops
-describe: fixed slicing cut once and kept (``slicing="fixed"``, ``cache=True``), the
-``wedge`` deadrise, a curve solver with the paper's pile-up law and polynomial curves (the
-default ``extended-von-karman``), a body of one piece whose mass is spread by volume, and a
-pitch whose kept cut has its waterline table of one entry per interval. Elsewhere, and at
-any evaluation the loops hand back (the first contact, a station not yet cut, the water
-above the table), numpy's path serves. Both give the same numbers (to 1e-12; the tests
-compare them over whole histories); the fused one costs a few microseconds an evaluation
-where numpy's costs some hundreds. It needs numba (the ``fast`` extra) and is switched off
-with ``HULLSLICE_NUMBA=0``, as the other compiled loops.
+describe: fixed slicing cut once per pitch and kept (``slicing="fixed"``, ``cache=True``),
+the ``wedge`` deadrise, a curve solver with the paper's pile-up law and polynomial curves
+(the default ``extended-von-karman``), and a body of one piece whose mass is spread by
+volume. At a held pitch with its waterline table it reads the table; at a new pitch (every
+stage of a free-pitch run) it evaluates the sections of the stations it cuts, as numpy's
+path does. At any evaluation the loops hand back (the first contact, a section in two
+wetted pieces, the evaluation that makes a pitch's table), numpy's path serves. Both give
+the same numbers (to 1e-12; the tests compare them over whole histories); the fused one
+costs some microseconds an evaluation where numpy's costs some hundreds. It needs numba
+(the ``fast`` extra) and is switched off with ``HULLSLICE_NUMBA=0``, as the other
+compiled loops.
 """
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -22,11 +25,11 @@ import numpy as np
 from .. import planecut_loops
 from ..constants import SOUND_WATER, TOL
 from ..geometry import frame
-from ..held_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
+from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
+from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
-from ..slicing.fixed import FIXED_CUTS
 from ..slicing.own_keel import pieces
 from ..slicing.record import Sections, ShiftedPolygons
 from ..solvers.base import FREE_FALL, SectionLoads
@@ -57,6 +60,13 @@ _SECTION_COLUMNS = (
     "deadrise_port", "deadrise_stbd", "area", "mass_per_metre", "keel_slope", "keel_z",
     "y_keel", "part_half_beam", "keel_curvature",
 )  # fmt: skip
+
+
+#: The loops' columns a result reads, with their rows.
+_USED = tuple(
+    (name, _COL[name])
+    for name in (*_SECTION_COLUMNS, *_DIAGNOSTICS, "velocity", "force_per_metre", "lift")
+)
 
 
 def _serves(solver) -> bool:
@@ -92,9 +102,11 @@ def fused_for(model) -> FusedHeld | None:
 
 
 def _loops():
-    """The compiled loops of :func:`hullslice.held_loops.held_loops`, or None without numba
-    (or with ``HULLSLICE_NUMBA=0``)."""
-    return planecut_loops.compiled("held") if planecut_loops.available() else None
+    """The compiled loops of :mod:`hullslice.held_loops` (``held_loops``, ``pitch_loops``,
+    ``window_loops``), or None without numba (or with ``HULLSLICE_NUMBA=0``)."""
+    if not planecut_loops.available():
+        return None
+    return tuple(planecut_loops.compiled(name) for name in ("held", "pitch", "window"))
 
 
 class FusedHeld:
@@ -103,7 +115,7 @@ class FusedHeld:
 
     def __init__(self, model, loops) -> None:
         self.model = model
-        self.loops = loops
+        self.loops, self.pitch, self.window = loops
         hull = model.hull
         self.hull = hull
         self.key = (model.slices, float(TOL.coordinate * hull.size), model.cutter)
@@ -136,69 +148,106 @@ class FusedHeld:
         self.reasons = _reason_texts(solver, lo, hi)
         self._texts: dict[int, str] = {0: ""}
         n = model.slices
-        self._scratch = (np.empty((len(COLUMNS), n)), np.empty((3, n), dtype=np.int64))
+        self._scratch = (np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64))
         self.scal = np.empty(8)
         #: The outline and the water's height at which a table cost too much.
         self._too_high: tuple[object, float] | None = None
         self.x_cg = float(hull.cg[0])
 
-    def _plan(self, fr) -> tuple | None:
-        """The kept cut's arrays for the loops at this frame, made once per table; None
-        without a kept cut and its table of one entry per interval."""
-        kept = fr.cache[FIXED_CUTS].get(self.key)
-        if kept is None or kept.outline is None or kept.range is None:
-            return None
-        table = kept.tables.get("wedge")
-        if table is None or table.outline is not kept.outline or not table.one_each:
-            return None
-        plan = kept.plans.get("wedge")
-        if plan is None or plan[0] is not table:
-            plan = (table, _arrays(fr, kept, table), kept.rows, kept.range[0])
-            kept.plans["wedge"] = plan
-        with kept._lock:  # an evaluation of the kept cut's, as numpy's path counts them
-            kept.evaluations += 1
-        return plan
+    def _keel(self, fr, kept) -> dict[str, Any]:
+        """The loops' arrays of a frame's keel line, made once per kept cut."""
+        arrays = kept.plans.get("keel")
+        if arrays is None:
+            arrays = kept.plans["keel"] = _keel_arrays(fr)
+        return arrays
 
     def _run(self, fr, draft: float, w: float, u: float, q: float, fout, iout):
         """The loops at a frame (its pitch), a draft (m, clipped to the body's height) and
-        the body's velocities (m/s, m/s, rad/s): (plan, level, draft) when they did the
-        evaluation, or None."""
-        plan = self._plan(fr)
-        if plan is None:
-            return None
+        the body's velocities (m/s, m/s, rad/s): (rows, c0, level, draft) when they did the
+        evaluation (the kept cut's contours from its station ``c0``), or None.
+
+        With the kept cut's waterline table, :func:`~hullslice.held_loops.held_loops`;
+        before the evaluation that makes one (or where one costs too much),
+        :func:`~hullslice.held_loops.pitch_loops` on the stations it cuts, as numpy's path
+        cuts them. An evaluation counts as numpy's path counts them."""
         height = fr.highest - fr.lowest
         if draft > height:
             draft = height
-        table, arrays, _, c0 = plan
         level = fr.lowest + draft
+        kept = fixed_slicing.fixed_cut(fr, *self.key)
+        table = kept.tables.get("wedge")
+        if table is not None and kept.outline is not None and table.outline is kept.outline:
+            done = self._held(fr, kept, table, level, w, u, q, fout, iout)
+        elif table is None:
+            done = self._pitch(fr, kept, level, w, u, q, fout, iout)
+        else:  # the kept cut grew: numpy's path makes its table again
+            return None
+        if done is None:
+            return None
+        with kept._lock:
+            kept.evaluations += 1
+        return (*done, level, draft)
+
+    def _options(self, level, w, u, q, fr, c0, n_cut, top, keel) -> np.ndarray:
         opts = self.opts
         opts[0], opts[1], opts[2], opts[3] = level, w, u, q
         opts[5] = fr.cg[0]
         opts[7] = c0
-        opts[8] = arrays["n_cut"]
-        opts[10] = table.top
-        opts[23] = arrays["has_chords"]
+        opts[8] = n_cut
+        opts[10] = top
+        opts[23] = keel["has_chords"]
+        return opts
+
+    def _held(self, fr, kept, table, level, w, u, q, fout, iout):
+        """The loops with the kept cut's waterline table."""
+        if not table.one_each:
+            return None
+        plan = kept.plans.get("wedge")
+        if plan is None or plan[0] is not table:
+            plan = kept.plans["wedge"] = (table, _table_arrays(table), kept.rows, kept.range[0])
+        keel = self._keel(fr, kept)
+        _, arrays, rows, c0 = plan
+        opts = self._options(level, w, u, q, fr, c0, arrays["n_cut"], table.top, keel)
         status = self.loops(
-            fout, iout, self.scal, opts, arrays["keel"], arrays["runs"], arrays["chords"],
-            arrays["heights"], arrays["tkey"], arrays["tvals"], arrays["stations"], self.a_c,
+            fout, iout, self.scal, opts, keel["keel"], keel["runs"], keel["chords"],
+            arrays["stations"], arrays["heights"], arrays["tkey"], arrays["tvals"], self.a_c,
             self.v_c,
         )  # fmt: skip
-        if status == 3 and self._higher(fr, table, float(self.scal[7])):
-            return self._run(fr, draft, w, u, q, fout, iout)
+        if status == 3 and self._higher(kept, table, float(self.scal[7])):
+            return self._held(fr, kept, kept.tables["wedge"], level, w, u, q, fout, iout)
+        return (rows, c0) if status == 0 else None
+
+    def _pitch(self, fr, kept, level, w, u, q, fout, iout):
+        """The loops on the stations cut afresh: the evaluations of a pitch before its
+        table, or where its table costs too much."""
+        keel = self._keel(fr, kept)
+        status, w0, w1 = self.window(keel["keel"], level, self.model.slices)
         if status != 0:
             return None
-        return plan, level, draft
+        outline, rows, c0 = kept.window(fr, w0, w1, self.model.cutter)
+        if kept.evaluations + 1 >= fixed_slicing.TABLE_AFTER:  # numpy's path makes a table
+            too_high = kept.too_high.get("wedge")
+            if too_high is None or too_high[0] is not outline or level < too_high[1]:
+                return None
+        o = outline
+        stations = np.stack([o.zmin, o.z_chine, o.area])
+        arrays = (o.station, o.ya, o.za, o.yb, o.zb, o.zlo, o.start, o.area, o.contour,
+                  o.part_area, o.part_station, o.part_zmax, o.part_ymin, o.part_ymax,
+                  o.z_chine)  # fmt: skip
+        opts = self._options(level, w, u, q, fr, c0, o.n_stations, math.inf, keel)
+        status = self.pitch(
+            fout, iout, self.scal, opts, keel["keel"], keel["runs"], keel["chords"], stations,
+            arrays, self.a_c, self.v_c,
+        )  # fmt: skip
+        return (rows, c0) if status == 0 else None
 
-    def _higher(self, fr, table, need: float) -> bool:
+    def _higher(self, kept, table, need: float) -> bool:
         """Make the kept cut's waterline table again, up to above ``need`` (m, the water's
         height the loops asked for: the water's own, or that at which a partial slice takes
         its moved section); False where it would cost too much. The table's intervals and
         their samples do not depend on its top: the same values, more of them."""
-        kept = fr.cache[FIXED_CUTS].get(self.key)
         outline = table.outline
         too_high = self._too_high
-        if kept is None:
-            return False
         if too_high is not None and too_high[0] is outline and need >= too_high[1]:
             return False
         new = WaterlineTable.of(outline, need, table.tol, "wedge")
@@ -232,18 +281,17 @@ class FusedHeld:
     def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
         """The :class:`ForceResult` at a pose and motion, or None where numpy's path must."""
         n = self.model.slices
-        fout, iout = np.empty((len(COLUMNS), n)), np.empty((3, n), dtype=np.int64)
+        fout, iout = np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64)
         fr = frame(self.hull, pose.pitch)
         done = self._run(fr, pose.draft, motion.velocity, motion.forward_speed,
                          motion.pitch_rate, fout, iout)  # fmt: skip
         if done is None:
             return None
-        plan, level, draft = done
+        rows, _, level, draft = done
         m = int(self.scal[0])
-        cols = {name: fout[_COL[name], :m] for name in COLUMNS}
+        cols = {name: fout[i, :m] for name, i in _USED}
         source = iout[I_SOURCE, :m]
         code = iout[I_CODE, :m]
-        rows = plan[2]
         z_cg = -level
         sections = Sections(
             station=np.arange(m),
@@ -309,8 +357,8 @@ def _padded(rows, width: int, fill: float = np.nan) -> np.ndarray:
     return out
 
 
-def _arrays(fr, kept, table) -> dict[str, Any]:
-    """The loops' arrays of a frame's keel line and a kept cut's waterline table."""
+def _keel_arrays(fr) -> dict[str, Any]:
+    """The loops' arrays of a frame's keel line."""
     keel = fr.keel
     runs = keel._runs
     k = len(keel.x)
@@ -319,7 +367,7 @@ def _arrays(fr, kept, table) -> dict[str, Any]:
     f = max(len(runs.mid), len(runs.offsets))
     low_from_first = np.minimum.accumulate(keel.z)
     low_from_last = np.minimum.accumulate(keel.z[::-1])[::-1]
-    out: dict[str, Any] = {
+    return {
         "keel": _padded([keel.x, keel.z, steep, low_from_first, low_from_last], k, 0.0),
         "runs": _padded([runs.mid, runs.cont, runs.bend, runs.starts, runs.offsets], f),
         "has_chords": 0.0 if chords is None else 1.0,
@@ -327,6 +375,10 @@ def _arrays(fr, kept, table) -> dict[str, Any]:
             np.zeros((3, k)) if chords is None else _padded([chords[1], chords[2], chords[3]], k)
         ),
     }
+
+
+def _table_arrays(table) -> dict[str, Any]:
+    """The loops' arrays of a kept cut's waterline table and its outline's stations."""
     t = table
     ints = [t.bp_key, t.bp_start, t.v_start, t.e_start]
     width = max(len(a) for a in ints)
@@ -334,12 +386,13 @@ def _arrays(fr, kept, table) -> dict[str, Any]:
     for i, a in enumerate(ints):
         tkey[i, : len(a)] = a
     e_v = np.repeat(np.arange(len(t.exact)), np.diff(t.e_start))  # each entry's interval
-    out["tkey"] = tkey
-    out["heights"] = np.ascontiguousarray(t.heights, dtype=np.float64)
     columns = [t.wet.astype(np.float64), t.keel, t.intercept, t.slope, t.const]
     columns.append(t.exact[e_v].astype(np.float64))
-    out["tvals"] = np.ascontiguousarray(np.column_stack(columns))
     o = t.outline
-    out["stations"] = np.ascontiguousarray(np.stack([o.zmin, o.z_chine, o.area]))
-    out["n_cut"] = float(o.n_stations)
-    return out
+    return {
+        "tkey": tkey,
+        "heights": np.ascontiguousarray(t.heights, dtype=np.float64),
+        "tvals": np.ascontiguousarray(np.column_stack(columns)),
+        "stations": np.ascontiguousarray(np.stack([o.zmin, o.z_chine, o.area])),
+        "n_cut": o.n_stations,
+    }
