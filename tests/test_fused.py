@@ -40,7 +40,7 @@ def _paths() -> list[tuple[str, object]]:
 def _models(hull, loops, slices: int = 48, **kw) -> tuple[ForceModel, ForceModel]:
     """A model evaluated by the loops and one by numpy's path, on the same hull."""
     fast = ForceModel(hull, slices=slices, slicing="fixed", **kw)
-    fast._fused = fused.FusedHeld(fast, loops)
+    fast._fused = fused.FusedEvaluation(fast, loops)
     slow = ForceModel(hull, slices=slices, slicing="fixed", **kw)
     slow._fused = None
     return fast, slow

@@ -45,11 +45,11 @@ from .evaluate import (
 )
 from .result import ForceResult
 
-__all__ = ["FusedHeld", "fused_for"]
+__all__ = ["FusedEvaluation", "fused_for"]
 
 _COL = {name: i for i, name in enumerate(COLUMNS)}
 _OPT = {name: i for i, name in enumerate(OPTIONS)}
-# the options FusedHeld._run sets at each evaluation, by place
+# the options FusedEvaluation._run sets at each evaluation, by place
 assert [_OPT[k] for k in ("level", "w", "u", "q", "frame_x_cg", "c0", "n_cut", "top",
                           "has_chords")] == [0, 1, 2, 3, 5, 7, 8, 10, 23]  # fmt: skip
 #: The diagnostics of the curve solver, in its order.
@@ -83,7 +83,7 @@ def _serves(solver) -> bool:
     )
 
 
-def fused_for(model) -> FusedHeld | None:
+def fused_for(model) -> FusedEvaluation | None:
     """The fused evaluation for a force model, or None where its loops do not describe the
     model's evaluation (see the module notes), or numba is not installed or switched off
     (``HULLSLICE_NUMBA=0``, read here: when the model first evaluates)."""
@@ -98,7 +98,7 @@ def fused_for(model) -> FusedHeld | None:
     ):
         return None
     loops = _loops()  # numba's, before the body's pieces are counted (a second on 1M faces)
-    return None if loops is None or pieces(hull).n > 1 else FusedHeld(model, loops)
+    return None if loops is None or pieces(hull).n > 1 else FusedEvaluation(model, loops)
 
 
 def _loops():
@@ -109,7 +109,7 @@ def _loops():
     return tuple(planecut_loops.compiled(name) for name in ("held", "pitch", "window"))
 
 
-class FusedHeld:
+class FusedEvaluation:
     """A force model's fused evaluation: :meth:`force` and :meth:`totals` give what the
     model gives at a pose and motion, or None where numpy's path must."""
 

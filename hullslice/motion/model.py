@@ -7,7 +7,7 @@ from typing import cast
 
 from ..constants import SOUND_WATER
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms
-from ..forces.fused import FusedHeld, fused_for
+from ..forces.fused import FusedEvaluation, fused_for
 from ..geometry import check_cutter, frame
 from ..limits import no_mass
 from ..mesh import Hull
@@ -74,7 +74,7 @@ class ForceModel:
         self.slicing = _check_slicing(slicing)
         self.cache = bool(cache)
         self.cutter = check_cutter(cutter)
-        self._fused: FusedHeld | bool | None = False  # not yet looked for
+        self._fused: FusedEvaluation | bool | None = False  # not yet looked for
 
     @property
     def momentum(self) -> bool:
@@ -91,12 +91,12 @@ class ForceModel:
         )  # fmt: skip
 
     @property
-    def fused(self) -> FusedHeld | None:
+    def fused(self) -> FusedEvaluation | None:
         """The fused evaluation of a held pitch (:mod:`hullslice.forces.fused`) where its
         compiled loops describe this model, else None."""
         if self._fused is False:
             self._fused = fused_for(self)
-        return cast("FusedHeld | None", self._fused)
+        return cast("FusedEvaluation | None", self._fused)
 
     def __call__(
         self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
