@@ -22,6 +22,15 @@ from .fake_solvers import ConstantSolver
 from .test_bad_input import catamaran
 from .test_planecut import BODIES
 
+
+@pytest.fixture(autouse=True)
+def _ieee_division():
+    """The loops run as Python on numpy's scalars, whose division by zero warns where the
+    compiled loops give the same infinity or NaN silently (numba's ``error_model="numpy"``)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        yield
+
+
 #: Relative agreement of the two paths (numpy's sums are pairwise, the loops' in order).
 RTOL = 1e-12
 
