@@ -49,7 +49,7 @@ STATUS = {
     3: "the water above the table's top (or a moved slice's)",
     4: "an inexact interval of the table, or a section in two wetted pieces",
     5: "a slice cut afresh (the first contact)",
-    6: "a keel point faster than sound, or a non-finite value",
+    6: "a keel point faster than sound, or a non-finite mass or force",
     7: "the keel line's end faces walk out of its range",
 }
 
@@ -286,7 +286,8 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
     """From the slices' entries (``e0`` by kept station at the water's height, ``e1`` by
     slice for the moved ones) to the sections (``assemble``), their velocities, the curve
     solver's force, the flags and the sums (``evaluate``, ``ForceResult``). Returns 0, or
-    6 (a keel point faster than sound, a non-finite mass)."""
+    6 (a keel point faster than sound, a non-finite mass, a non-finite force or sum of
+    forces: numpy's path names them in its errors)."""
     level, w, u, q = opts[0], opts[1], opts[2], opts[3]
     x_cg, frame_x_cg = opts[4], opts[5]
     n, c0 = int(opts[6]), int(opts[7])
@@ -303,6 +304,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
     total = 0.0
     total_x = 0.0
     moment = 0.0
+    size = 0.0
     z_cg = -level
     for i in range(m):
         s = iout[I_SOURCE, i] - c0
@@ -418,12 +420,17 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
             code |= 256
         iout[I_CODE, i] = code
         fout[_FPM, i] = force
+        if not math.isfinite(force):  # numpy's path refuses the solver's output
+            return 6
         # the sums of forces.result.ForceResult
         f = force * width
+        size += abs(f)
         fx = -f * slope
         total += f
         total_x += fx
         moment += arm_x * f - (0.5 * keel_at - z_cg) * fx
+    if not (math.isfinite(total) and math.isfinite(size)):  # numpy's path refuses them
+        return 6
     # KeelLine.wet_length(level, x0, x1)
     _, x0, x1 = extent_loops(keel, level)
     length = 0.0  # facets outside [x0, x1] add nothing (clipped to no length)

@@ -12,6 +12,7 @@ import pytest
 
 import hullslice as hs
 from hullslice import planecut_loops
+from hullslice.errors import UnitsWarning
 from hullslice.forces import fused
 from hullslice.motion import ForceModel
 from hullslice.slicing.fixed import TABLE_AFTER
@@ -255,3 +256,78 @@ def test_numba_switched_off_is_read_when_a_model_first_evaluates(monkeypatch):
     monkeypatch.setenv("HULLSLICE_NUMBA", "0")
     hull = _massive(BODIES["wedge"])
     assert fused.fused_for(ForceModel(hull, slicing="fixed")) is None
+
+
+def test_the_loops_cache_sees_their_helpers():
+    """numba's cache of a compiled function is stale when its own file changes; the fused
+    loops call helpers in other files, whose digest their file holds."""
+    import hashlib
+    from pathlib import Path
+
+    from hullslice import held_loops
+
+    root = Path(held_loops.__file__).parent
+    source = (root / "slices_loops.py").read_bytes() + (root / "wetted_loops.py").read_bytes()
+    digest = hashlib.sha256(source).hexdigest()[:16]
+    assert held_loops.HELPERS_DIGEST == digest, (
+        f"set HELPERS_DIGEST = {digest!r} in hullslice/held_loops.py (its helpers changed)"
+    )
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
+def test_one_model_serves_two_threads(path):
+    """A model shared by the threads of a Dask worker (the compiled loops release the GIL):
+    each thread's sums are its own pose's."""
+    import threading
+
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES["fuselage_model.obj"])
+    fast, slow = _models(hull, loops, slices=40)
+    fr = hs.geometry.frame(hull, 0.1)
+    depth = fr.highest - fr.lowest
+    motion = Motion(-2.0, 10.0)
+    poses = [Pose(share * depth, 0.1) for share in (0.25, 0.35)]
+    for _ in range(TABLE_AFTER + 2):
+        slow(Pose(0.4 * depth, 0.1), motion)
+    want = [fast.totals(pose, motion) for pose in poses]
+    assert all(fast.fused.totals(pose, motion) is not None for pose in poses)
+    wrong = [0, 0]
+
+    def work(i: int) -> None:
+        for _ in range(2000 if path == "numba" else 20):
+            wrong[i] += fast.totals(poses[i], motion) != want[i]
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in (0, 1)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert wrong == [0, 0]
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
+def test_what_numpy_refuses_or_leaves_out_the_loops_do_too(path):
+    """A mass so large that the slices' forces overflow: numpy's path refuses the solver's
+    output, and the loops hand it back (the same SolverError, in the sums too); a water a
+    rounding above the keel, where no section is given to the solver: no diagnostics."""
+    loops = dict(_paths())[path]
+    base = BODIES["cylinder"]
+    _, area = hs.sections.area_curve(base, 40)
+    with pytest.warns(UnitsWarning):  # the density is refused by no check: warned of
+        hull = base.with_mass(5e307 / area.max() * base.volume)
+    fast, slow = _models(hull, loops, slices=40)
+    fr = hs.geometry.frame(hull, 0.05)
+    pose, motion = Pose(0.4 * (fr.highest - fr.lowest), 0.05), Motion(-2.0, 5.0)
+    for model in (slow, fast):
+        for _ in range(TABLE_AFTER + 1):
+            with pytest.raises(hs.SolverError, match="extended-von-karman"):
+                model(pose, motion)
+    assert fast.fused.totals(pose, motion) is None
+    with pytest.raises(hs.SolverError):
+        fast.totals(pose, motion)
+    hull = _massive(base)
+    fast, slow = _models(hull, loops, slices=40)
+    pose = Pose(float(np.spacing(abs(hs.geometry.frame(hull, 0.0).lowest))), 0.0)
+    want, got = slow(pose, motion), fast.fused.force(pose, motion)
+    assert got is not None and got.loads.diagnostics == want.loads.diagnostics == {}
+    assert_same_result(got, want)

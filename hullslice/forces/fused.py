@@ -18,6 +18,7 @@ compiled loops.
 from __future__ import annotations
 
 import math
+import threading
 from typing import Any
 
 import numpy as np
@@ -142,17 +143,25 @@ class FusedEvaluation:
             "steep": STEEP_SLOPE,
         }.items():
             opts[_OPT[name]] = value
-        self.opts = opts
+        self._opts = opts  # each thread fills a copy (see _buffers)
         self.a_c = np.array(curves.a_coeffs, dtype=np.float64)
         self.v_c = np.array(curves.v_coeffs, dtype=np.float64)
         self.reasons = _reason_texts(solver, lo, hi)
         self._texts: dict[int, str] = {0: ""}
-        n = model.slices
-        self._scratch = (np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64))
-        self.scal = np.empty(8)
-        #: The outline and the water's height at which a table cost too much.
-        self._too_high: tuple[object, float] | None = None
+        self._local = threading.local()
         self.x_cg = float(hull.cg[0])
+
+    def _buffers(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """This thread's options, sums and scratch columns (a model may serve the threads
+        of a Dask worker at once, and the loops release the GIL)."""
+        buffers = getattr(self._local, "buffers", None)
+        if buffers is None:
+            n = self.model.slices
+            buffers = self._local.buffers = (
+                self._opts.copy(), np.empty(8), np.empty((len(COLUMNS), n)),
+                np.empty((4, n), dtype=np.int64),
+            )  # fmt: skip
+        return buffers
 
     def _keel(self, fr, kept) -> dict[str, Any]:
         """The loops' arrays of a frame's keel line, made once per kept cut."""
@@ -163,8 +172,9 @@ class FusedEvaluation:
 
     def _run(self, fr, draft: float, w: float, u: float, q: float, fout, iout):
         """The loops at a frame (its pitch), a draft (m, clipped to the body's height) and
-        the body's velocities (m/s, m/s, rad/s): (rows, c0, level, draft) when they did the
-        evaluation (the kept cut's contours from its station ``c0``), or None.
+        the body's velocities (m/s, m/s, rad/s): ``(rows, c0, level, draft, sums)`` when
+        they did the evaluation (the kept cut's contours from its station ``c0``; the
+        loops' ``scal``, this thread's), or None.
 
         With the kept cut's waterline table, :func:`~hullslice.held_loops.held_loops`;
         before the evaluation that makes one (or where one costs too much),
@@ -175,21 +185,24 @@ class FusedEvaluation:
             draft = height
         level = fr.lowest + draft
         kept = fixed_slicing.fixed_cut(fr, *self.key)
-        table = kept.tables.get("wedge")
-        if table is not None and kept.outline is not None and table.outline is kept.outline:
-            done = self._held(fr, kept, table, level, w, u, q, fout, iout)
+        with kept._lock:  # the kept cut's table, outline and contours of one moment
+            table = kept.tables.get("wedge")
+            outline, rows, held = kept.outline, kept.rows, kept.range
+        opts, scal, _, _ = self._buffers()
+        args = (level, w, u, q, fout, iout, opts, scal)
+        if table is not None and held is not None and table.outline is outline:
+            done = self._held(fr, kept, table, rows, held[0], *args)
         elif table is None:
-            done = self._pitch(fr, kept, level, w, u, q, fout, iout)
+            done = self._pitch(fr, kept, *args)
         else:  # the kept cut grew: numpy's path makes its table again
             return None
         if done is None:
             return None
         with kept._lock:
             kept.evaluations += 1
-        return (*done, level, draft)
+        return (*done, level, draft, scal)
 
-    def _options(self, level, w, u, q, fr, c0, n_cut, top, keel) -> np.ndarray:
-        opts = self.opts
+    def _options(self, opts, level, w, u, q, fr, c0, n_cut, top, keel) -> np.ndarray:
         opts[0], opts[1], opts[2], opts[3] = level, w, u, q
         opts[5] = fr.cg[0]
         opts[7] = c0
@@ -198,26 +211,30 @@ class FusedEvaluation:
         opts[23] = keel["has_chords"]
         return opts
 
-    def _held(self, fr, kept, table, level, w, u, q, fout, iout):
-        """The loops with the kept cut's waterline table."""
+    def _held(self, fr, kept, table, rows, c0, level, w, u, q, fout, iout, opts, scal):
+        """The loops with the kept cut's waterline table (``rows`` from station ``c0``:
+        its outline's contours)."""
         if not table.one_each:
             return None
         plan = kept.plans.get("wedge")
         if plan is None or plan[0] is not table:
-            plan = kept.plans["wedge"] = (table, _table_arrays(table), kept.rows, kept.range[0])
+            plan = kept.plans["wedge"] = (table, _table_arrays(table))
         keel = self._keel(fr, kept)
-        _, arrays, rows, c0 = plan
-        opts = self._options(level, w, u, q, fr, c0, arrays["n_cut"], table.top, keel)
+        arrays = plan[1]
+        self._options(opts, level, w, u, q, fr, c0, arrays["n_cut"], table.top, keel)
         status = self.loops(
-            fout, iout, self.scal, opts, keel["keel"], keel["runs"], keel["chords"],
+            fout, iout, scal, opts, keel["keel"], keel["runs"], keel["chords"],
             arrays["stations"], arrays["heights"], arrays["tkey"], arrays["tvals"], self.a_c,
             self.v_c,
         )  # fmt: skip
-        if status == 3 and self._higher(kept, table, float(self.scal[7])):
-            return self._held(fr, kept, kept.tables["wedge"], level, w, u, q, fout, iout)
+        if status == 3:
+            higher = self._higher(kept, table, float(scal[7]))
+            if higher is not None:
+                return self._held(fr, kept, higher, rows, c0, level, w, u, q, fout, iout, opts,
+                                  scal)  # fmt: skip
         return (rows, c0) if status == 0 else None
 
-    def _pitch(self, fr, kept, level, w, u, q, fout, iout):
+    def _pitch(self, fr, kept, level, w, u, q, fout, iout, opts, scal):
         """The loops on the stations cut afresh: the evaluations of a pitch before its
         table, or where its table costs too much."""
         keel = self._keel(fr, kept)
@@ -234,31 +251,32 @@ class FusedEvaluation:
         arrays = (o.station, o.ya, o.za, o.yb, o.zb, o.zlo, o.start, o.area, o.contour,
                   o.part_area, o.part_station, o.part_zmax, o.part_ymin, o.part_ymax,
                   o.z_chine)  # fmt: skip
-        opts = self._options(level, w, u, q, fr, c0, o.n_stations, math.inf, keel)
+        self._options(opts, level, w, u, q, fr, c0, o.n_stations, math.inf, keel)
         status = self.pitch(
-            fout, iout, self.scal, opts, keel["keel"], keel["runs"], keel["chords"], stations,
+            fout, iout, scal, opts, keel["keel"], keel["runs"], keel["chords"], stations,
             arrays, self.a_c, self.v_c,
         )  # fmt: skip
         return (rows, c0) if status == 0 else None
 
-    def _higher(self, kept, table, need: float) -> bool:
-        """Make the kept cut's waterline table again, up to above ``need`` (m, the water's
+    def _higher(self, kept, table, need: float):
+        """The kept cut's waterline table made again, up to above ``need`` (m, the water's
         height the loops asked for: the water's own, or that at which a partial slice takes
-        its moved section); False where it would cost too much. The table's intervals and
-        their samples do not depend on its top: the same values, more of them."""
+        its moved section), or None where it would cost too much (kept on the cut, for
+        every model). The table's intervals and their samples do not depend on its top:
+        the same values, more of them; numpy's path reads it as its own."""
         outline = table.outline
-        too_high = self._too_high
+        too_high = kept.plans.get("too_high")
         if too_high is not None and too_high[0] is outline and need >= too_high[1]:
-            return False
+            return None
         new = WaterlineTable.of(outline, need, table.tol, "wedge")
         if new is None or not new.one_each or new.top < need:
-            self._too_high = (outline, need)
-            return False
+            kept.plans["too_high"] = (outline, need)
+            return None
         with kept._lock:
             if kept.tables.get("wedge") is not table:  # another thread made one
-                return False
+                return None
             kept.tables["wedge"] = new
-        return True
+        return new
 
     def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float] | None:
         """The vertical force (N), the moment about the centre of gravity (N m) and the
@@ -272,10 +290,11 @@ class FusedEvaluation:
     ) -> tuple[float, float, float] | None:
         """:meth:`totals` at a frame (its pitch), a draft (m, >= 0) and the body's vertical
         velocity, forward speed (m/s) and pitch rate (rad/s), all finite."""
-        fout, iout = self._scratch
-        if self._run(fr, draft, w, u, q, fout, iout) is None:
+        _, _, fout, iout = self._buffers()
+        done = self._run(fr, draft, w, u, q, fout, iout)
+        if done is None:
             return None
-        s = self.scal
+        s = done[-1]
         return float(s[2]), float(s[4]), float(s[3])
 
     def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
@@ -287,8 +306,8 @@ class FusedEvaluation:
                          motion.pitch_rate, fout, iout)  # fmt: skip
         if done is None:
             return None
-        rows, _, level, draft = done
-        m = int(self.scal[0])
+        rows, _, level, draft, scal = done
+        m = int(scal[0])
         cols = {name: fout[i, :m] for name, i in _USED}
         source = iout[I_SOURCE, :m]
         code = iout[I_CODE, :m]
@@ -306,14 +325,17 @@ class FusedEvaluation:
             deadrise_method="wedge",
             draft=draft,
             pitch=pose.pitch,
-            wetted_length=float(self.scal[1]),
+            wetted_length=float(scal[1]),
             z_cg=z_cg,
         )
         loads = SectionLoads(
             force_per_metre=cols["force_per_metre"],
             valid=code == 0,
             reason=self._reason(code),
-            diagnostics={name: cols[name] for name in _DIAGNOSTICS},
+            # as numpy's path: none where the solver was given no section
+            diagnostics={name: cols[name] for name in _DIAGNOSTICS}
+            if np.isfinite(cols["gamma"]).any()
+            else {},
         )
         return ForceResult(
             sections, cols["velocity"], loads, self.model.solver.name, self.fluid,

@@ -92,7 +92,7 @@ class ForceModel:
 
     @property
     def fused(self) -> FusedEvaluation | None:
-        """The fused evaluation of a held pitch (:mod:`hullslice.forces.fused`) where its
+        """The fused evaluation of fixed slicing (:mod:`hullslice.forces.fused`) where its
         compiled loops describe this model, else None."""
         if self._fused is False:
             self._fused = fused_for(self)
@@ -109,6 +109,12 @@ class ForceModel:
             r = fused.force(pose, motion)
             if r is not None:
                 return r
+        return self._numpy(pose, motion, acceleration)
+
+    def _numpy(
+        self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
+    ) -> ForceResult:
+        """:meth:`__call__` by numpy's path (the layers' steps, whatever the model)."""
         return force_on(
             self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
             acceleration=acceleration, mass=self.hull.mass,
@@ -124,7 +130,7 @@ class ForceModel:
             out = fused.totals(pose, motion)
             if out is not None:
                 return out
-        r = self(pose, motion)
+        r = self._numpy(pose, motion)
         return r.total, r.moment, r.total_x
 
     def totals_at(
@@ -144,7 +150,8 @@ class ForceModel:
             out = fused.totals_at(fr, max(0.0, -(fr.lowest + z_cg)), w, u, q)
             if out is not None:
                 return out
-        return self.totals(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
+        r = self._numpy(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
+        return r.total, r.moment, r.total_x
 
     def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
         """A momentum-form solver's terms before the body's accelerations are known."""
