@@ -26,9 +26,10 @@ from .test_planecut import BODIES
 
 @pytest.fixture(autouse=True)
 def _ieee_division():
-    """The loops run as Python on numpy's scalars, whose division by zero warns where the
-    compiled loops give the same infinity or NaN silently (numba's ``error_model="numpy"``)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
+    """The loops run as Python on numpy's scalars, whose division by zero or overflow warns
+    where the compiled loops give the same infinity or NaN silently (numba's
+    ``error_model="numpy"``)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         yield
 
 
