@@ -11,8 +11,8 @@ slicing cut once (cached, with its waterline table) against re-cutting the 3D hu
 every step (naive); the cost of an evaluation at a new pitch (the cut must be redone),
 once the hull has its first region, and the cost of making that region. Then: the cached
 cost against the slice count (32 to 512), whole free falls of 100 to 10,000 steps, a
-2,000-step free fall of the 1M-face fuselage in a process of its own (time, time per
-RK4 step of 4 evaluations against 0.5 ms, peak memory), the face pressures of a saved
+2,000-step free fall of the 1M-face fuselage in a process of its own (time, time over
+its steps with its first frame and cut, peak memory), the face pressures of a saved
 instant and its ``.vtu`` file at 128k and 1M faces (time, peak memory), the paper's
 free-fall case from process start to printed report, and the time of ``import
 hullslice`` and ``hullslice --help``.
@@ -21,10 +21,13 @@ Free pitch: the time step with free pitch (each of its 4 stages at a new pitch, 
 afresh by manifold3d on the turned mesh, and by the exact kernel of
 ``hullslice.planecut``) against the same run at a held pitch, 100 steps of 0.2 ms each
 with 128 fixed slices, at 10k, 128k (in this process) and 1M faces (in the 1M free fall's
-process), the runs interleaved (A B C D A B C D; the kernel with numpy's loops and, with the
-``fast`` extra, numba's) after a warm-up (the held run over all its steps, cut once;
-each free run over 5 steps: the hull's first region, its plane index, numba's
-compilation); target free / held <= 3 with numpy alone, <= 2 compiled. The kernel's
+process), the runs interleaved (A B C D E A B C D E; the held run by numpy's path and, with
+the ``fast`` extra, by the fused evaluation compiled by numba; the kernel with numpy's
+loops and numba's) after a warm-up (the held runs over all their steps, cut once; each
+free run over 5 steps: the hull's first region, its plane index, numba's compilation);
+target free / held <= 3 with numpy alone, <= 2 compiled (compiled free over compiled
+held). The 1M process's held RK4 step (target 0.5 ms) is the median step of its compiled
+held run (numpy's without numba). The kernel's
 force at 40 random new poses of the 128k fuselage against manifold3d's cut (target 1e-9
 relative), and a 100-step free-pitch history by the kernel against a manifold3d-only run
 (the largest force difference over the peak force). What the approximations cost
