@@ -52,7 +52,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "fbec97bc445ba8f4"
+HELPERS_DIGEST = "28f55818143b369c"
 
 __all__ = [
     "COLUMNS",

@@ -67,14 +67,7 @@ def interp_loops(x, xp, fp):
         return fp[0]
     if x > xp[n - 1]:
         return fp[n - 1]
-    lo, hi = 0, n  # the largest j with xp[j] <= x
-    while lo < hi:
-        mid = (lo + hi) >> 1
-        if x >= xp[mid]:
-            lo = mid + 1
-        else:
-            hi = mid
-    j = lo - 1
+    j = right_loops(xp, x) - 1  # the largest j with xp[j] <= x
     if j == n - 1 or xp[j] == x:
         return fp[j]
     slope = (fp[j + 1] - fp[j]) / (xp[j + 1] - xp[j])
