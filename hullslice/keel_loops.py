@@ -18,9 +18,11 @@ import numpy as np
 __all__ = [
     "abscissae_loops",
     "envelope_loops",
+    "keel_arrays_loops",
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
+    "row_loops",
     "runs_loops",
     "search_loops",
     "side_view_loops",
@@ -296,3 +298,54 @@ def runs_loops(x, z, end_face, steep_slope):
             hi[k] = x[j]
         i = j
     return True, fmid, cont, starts, offsets, steep, bend, bottom, height, lo, hi
+
+
+def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo, hi):
+    """The fused evaluation's arrays of a keel line (see
+    :func:`hullslice.forces.fused._keel_arrays`, which builds the same with numpy): the
+    break points ``x``, ``z`` with the facets' ``steep`` flags and the lowest height from
+    the first point and from the last, ``(5, k)``, zero beyond; the runs' ``mid``,
+    ``cont``, ``bend``, ``starts`` and ``offsets``, ``(5, f)``, NaN beyond; the chords'
+    ``height``, ``lo`` and ``hi`` (empty arrays where the line has none), ``(3, k)``, NaN
+    beyond (zeros where none). A running minimum as numpy's ``minimum.accumulate`` takes
+    it (a NaN kept, the new value on a tie)."""
+    k = len(x)
+    keel = np.zeros((5, max(k, 1)))
+    for i in range(k):
+        keel[0, i] = x[i]
+        keel[1, i] = z[i]
+    for i in range(min(len(steep), k - 1)):
+        keel[2, i] = 1.0 if steep[i] else 0.0
+    for i in range(k):
+        if i == 0:
+            keel[3, 0] = z[0]
+        else:
+            a, b = keel[3, i - 1], z[i]
+            keel[3, i] = a if (a < b or a != a) else b
+    for i in range(k - 1, -1, -1):
+        if i == k - 1:
+            keel[4, i] = z[i]
+        else:
+            a, b = keel[4, i + 1], z[i]
+            keel[4, i] = a if (a < b or a != a) else b
+    f = max(len(mid), len(offsets))
+    runs = np.full((5, max(f, 1)), np.nan)
+    row_loops(runs, 0, mid)
+    row_loops(runs, 1, cont)
+    row_loops(runs, 2, bend)
+    row_loops(runs, 3, starts)
+    row_loops(runs, 4, offsets)
+    if len(height) == 0:
+        chords = np.zeros((3, k))
+    else:
+        chords = np.full((3, max(k, 1)), np.nan)
+        row_loops(chords, 0, height)
+        row_loops(chords, 1, lo)
+        row_loops(chords, 2, hi)
+    return keel, runs, chords
+
+
+def row_loops(out, row, values):
+    """``values`` into the start of ``out``'s row ``row``."""
+    for i in range(len(values)):
+        out[row, i] = values[i]

@@ -30,9 +30,11 @@ from .held_loops import held_loops, pitch_entries_loops, pitch_loops, table_entr
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
+    keel_arrays_loops,
     lower_loops,
     lowest_loops,
     lowest_walk_loops,
+    row_loops,
     runs_loops,
     search_loops,
     side_view_loops,
@@ -95,33 +97,36 @@ def cut_loops(
     e_out = np.empty(q, dtype=np.int64)
     e_in = np.empty(q, dtype=np.int64)
     point = np.empty((q, 2))
-    d = np.empty(3)
+    m00, m01, m02, m03 = m[0, 0], m[0, 1], m[0, 2], m[0, 3]
+    m10, m11, m12, m13 = m[1, 0], m[1, 1], m[1, 2], m[1, 3]
     n = 0
     for st in range(n_st):
+        xs = x_rel[st]
         for b in range(n_bins):
             for f in range(first[st, b], last[st, b]):
-                xs = x_rel[st]
-                code = 0
-                for k in range(3):
-                    d[k] = (corner_x[f, k] - gx) * c - (corner_z[f, k] - gz) * s - xs
-                    if d[k] >= 0.0:
-                        code += 1 << k
+                d0 = (corner_x[f, 0] - gx) * c - (corner_z[f, 0] - gz) * s - xs
+                d1 = (corner_x[f, 1] - gx) * c - (corner_z[f, 1] - gz) * s - xs
+                d2 = (corner_x[f, 2] - gx) * c - (corner_z[f, 2] - gz) * s - xs
+                code = (d0 >= 0.0) + 2 * (d1 >= 0.0) + 4 * (d2 >= 0.0)
                 if code == 0 or code == 7:
                     continue
                 ko = k_out_of[code]
-                kn = (ko + 1) % 3
+                kn = ko + 1
+                if kn == 3:
+                    kn = 0
                 e_out[n] = face_edges[f, ko]
                 e_in[n] = face_edges[f, k_in_of[code]]
                 ka, kb = ko, kn
                 if faces[f, ko] > faces[f, kn]:  # the edge's canonical order: by vertex number
                     ka, kb = kn, ko
-                da, db = d[ka], d[kb]
+                da = d0 if ka == 0 else (d1 if ka == 1 else d2)
+                db = d0 if kb == 0 else (d1 if kb == 1 else d2)
                 xa, wa, ha = corner_x[f, ka], corner_y[f, ka], corner_z[f, ka]
                 xb, wb, hb = corner_x[f, kb], corner_y[f, kb], corner_z[f, kb]
-                ya = m[0, 0] * xa + m[0, 1] * wa + m[0, 2] * ha + m[0, 3]
-                za = m[1, 0] * xa + m[1, 1] * wa + m[1, 2] * ha + m[1, 3]
-                yb = m[0, 0] * xb + m[0, 1] * wb + m[0, 2] * hb + m[0, 3]
-                zb = m[1, 0] * xb + m[1, 1] * wb + m[1, 2] * hb + m[1, 3]
+                ya = m00 * xa + m01 * wa + m02 * ha + m03
+                za = m10 * xa + m11 * wa + m12 * ha + m13
+                yb = m00 * xb + m01 * wb + m02 * hb + m03
+                zb = m10 * xb + m11 * wb + m12 * hb + m13
                 if abs(da) <= abs(db):
                     t = da / (da - db)
                     point[n, 0] = ya + t * (yb - ya)
@@ -169,18 +174,20 @@ def cut_loops(
             length += 1
             j = succ[j]
         first = n_out
+        area = 0.0  # the shoelace sum, term by term in the points' order, closing last
         for k in range(length):
             p = ring[k]
             r = ring[k - 1] if k > 0 else ring[length - 1]
             if abs(point[p, 0] - point[r, 0]) > merge or abs(point[p, 1] - point[r, 1]) > merge:
                 out[n_out, 0] = point[p, 0]
                 out[n_out, 1] = point[p, 1]
+                if n_out > first:
+                    area += out[n_out - 1, 0] * out[n_out, 1] - out[n_out, 0] * out[n_out - 1, 1]
                 n_out += 1
         kept = n_out - first
-        area = 0.0
-        for k in range(first, n_out):
-            k2 = k + 1 if k + 1 < n_out else first
-            area += out[k, 0] * out[k2, 1] - out[k2, 0] * out[k, 1]
+        if kept > 0:
+            k = n_out - 1
+            area += out[k, 0] * out[first, 1] - out[first, 0] * out[k, 1]
         if kept >= 3 and area != 0.0:
             ring_station[n_ring] = seg_station[j0]
             n_ring += 1
@@ -225,6 +232,8 @@ _HELPERS: dict[str, Callable] = {}
 
 
 _FOUND: list[bool] = []
+#: Holds True once a loop has been compiled in this process.
+_IN_USE: list[bool] = []
 
 
 def available() -> bool:
@@ -240,7 +249,7 @@ def available() -> bool:
 def in_use() -> bool:
     """Whether this process has compiled loops already (numba imported for them): then the
     keel line's are worth using too."""
-    return any(fn is not None for fn in list(_COMPILED.values()))  # another thread may add
+    return bool(_IN_USE)
 
 
 #: The loops :func:`compiled` compiles, by name.
@@ -265,6 +274,7 @@ def compiled(name: str = "cut") -> Callable | None:
                     for space in (LOOPS[callee].__globals__, LOOPS[name].__globals__):
                         space[helper] = _HELPERS[callee]
                 fn = jit(LOOPS[name])
+                _IN_USE.append(True)
             _COMPILED[name] = fn
         return _COMPILED[name]
 
@@ -279,7 +289,8 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
 
     Returns ``(ok, station, ya, za, yb, zb, zlo, start, area, contour, part_area,
     part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
-    edges in their final order (by station, then by the height of their lower end).
+    edges in their final order (by station, then by the height of their lower end: the
+    order of numpy's stable sort, found by :func:`stable_order_loops`).
     """
     n = ring_start[-1]
     r = len(ring_station)
@@ -297,16 +308,26 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     contour = np.empty(n, dtype=np.int64)
     area = np.zeros(n_st)
     c_area = np.zeros(r)
+    zlo = np.empty(n)
+    grouped = True  # the rings' stations ascending: each station's edges one run
     for j in range(r):
+        st = ring_station[j]
+        if j > 0 and st < ring_station[j - 1]:
+            grouped = False
+        sum_st = area[st]
+        sum_c = c_area[j]
         for i in range(ring_start[j], ring_start[j + 1]):
             k = i + 1 if i + 1 < ring_start[j + 1] else ring_start[j]
             b[i, 0] = a[k, 0]
             b[i, 1] = a[k, 1]
-            station[i] = ring_station[j]
+            station[i] = st
             contour[i] = j
             cross = a[i, 0] * b[i, 1] - b[i, 0] * a[i, 1]
-            area[ring_station[j]] += 0.5 * cross
-            c_area[j] += cross
+            sum_st += 0.5 * cross
+            sum_c += cross
+            zlo[i] = a[i, 1] if (a[i, 1] < b[i, 1] or a[i, 1] != a[i, 1]) else b[i, 1]
+        area[st] = sum_st
+        c_area[j] = sum_c
     ok = True
     for j in range(r):
         c_area[j] = 0.5 * c_area[j]
@@ -320,38 +341,42 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     zmin = np.full(n_st, np.inf)
     ymin = np.full(n_st, np.inf)
     ymax = np.full(n_st, -np.inf)
-    for i in range(n):
-        s = station[i]
-        y, z = a[i, 0], a[i, 1]
-        if not (zmin[s] < z or zmin[s] != zmin[s]):  # np.minimum's: the second on a tie
-            zmin[s] = z
-        if not (ymin[s] < y or ymin[s] != ymin[s]):
-            ymin[s] = y
-        if not (ymax[s] > y or ymax[s] != ymax[s]):
-            ymax[s] = y
-    z_chine = np.full(n_st, np.inf)
-    for i in range(n):
-        s = station[i]
-        if a[i, 0] >= ymax[s] - tol or a[i, 0] <= ymin[s] + tol:
-            if not (z_chine[s] < a[i, 1] or z_chine[s] != z_chine[s]):
-                z_chine[s] = a[i, 1]
     part_station = np.empty(r, dtype=np.int64)
     part_zmax = np.full(r, -np.inf)
     part_ymin = np.full(r, np.inf)
     part_ymax = np.full(r, -np.inf)
+    # the minima and maxima ring by ring, as numpy's np.minimum and np.maximum take them
+    # point by point (the second on a tie, a NaN kept)
     for j in range(r):
-        part_station[j] = ring_station[j]
+        s = ring_station[j]
+        part_station[j] = s
+        lo_z, lo_y, hi_y = zmin[s], ymin[s], ymax[s]
+        p_z, p_lo, p_hi = part_zmax[j], part_ymin[j], part_ymax[j]
         for i in range(ring_start[j], ring_start[j + 1]):
             y, z = a[i, 0], a[i, 1]
-            if not (part_zmax[j] > z or part_zmax[j] != part_zmax[j]):
-                part_zmax[j] = z
-            if not (part_ymin[j] < y or part_ymin[j] != part_ymin[j]):
-                part_ymin[j] = y
-            if not (part_ymax[j] > y or part_ymax[j] != part_ymax[j]):
-                part_ymax[j] = y
-    zlo = np.empty(n)
-    for i in range(n):
-        zlo[i] = a[i, 1] if (a[i, 1] < b[i, 1] or a[i, 1] != a[i, 1]) else b[i, 1]
+            if not (lo_z < z or lo_z != lo_z):
+                lo_z = z
+            if not (lo_y < y or lo_y != lo_y):
+                lo_y = y
+            if not (hi_y > y or hi_y != hi_y):
+                hi_y = y
+            if not (p_z > z or p_z != p_z):
+                p_z = z
+            if not (p_lo < y or p_lo != p_lo):
+                p_lo = y
+            if not (p_hi > y or p_hi != p_hi):
+                p_hi = y
+        zmin[s], ymin[s], ymax[s] = lo_z, lo_y, hi_y
+        part_zmax[j], part_ymin[j], part_ymax[j] = p_z, p_lo, p_hi
+    z_chine = np.full(n_st, np.inf)
+    for j in range(r):
+        s = ring_station[j]
+        low, y_lo, y_hi = z_chine[s], ymin[s] + tol, ymax[s] - tol
+        for i in range(ring_start[j], ring_start[j + 1]):
+            if a[i, 0] >= y_hi or a[i, 0] <= y_lo:
+                if not (low < a[i, 1] or low != low):
+                    low = a[i, 1]
+        z_chine[s] = low
     order = np.arange(n)
     if n:
         lo, hi = zlo.min(), zlo.max()
@@ -359,15 +384,100 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
         key = np.empty(n)
         for i in range(n):
             key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
-        order = np.argsort(key, kind="mergesort")
+        if not (grouped and stable_order_loops(key, start, order)):
+            order = np.argsort(key, kind="mergesort")
+    ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
+    for i in range(n):
+        k = order[i]
+        o_station[i] = station[k]
+        ya[i], za[i], yb[i], zb[i] = a[k, 0], a[k, 1], b[k, 0], b[k, 1]
+        o_zlo[i] = zlo[k]
+        o_contour[i] = contour[k]
     return (
-        ok, station[order], a[order, 0], a[order, 1], b[order, 0], b[order, 1], zlo[order],
-        start, area, contour[order], c_area.copy(), part_station, part_zmax, part_ymin,
-        part_ymax, zmin, ymin, ymax, z_chine,
+        ok, o_station, ya, za, yb, zb, o_zlo, start, area, o_contour, c_area.copy(),
+        part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
     )  # fmt: skip
 
 
+def stable_order_loops(key, start, order):
+    """``order`` (``arange(n)`` on entry) sorted within each group ``start[g] ..
+    start[g + 1] - 1`` by ``key``, ties in their first order: numpy's stable sort of the
+    group. A natural merge sort: a section's edges come as a few runs of rising or falling
+    height around its contours, so this takes a few passes where a full sort takes
+    log2(n); the keys move with the indices (one load fewer on the merge's critical path).
+    Returns False, leaving ``order`` unusable, where a key is NaN (numpy's sort puts those
+    last)."""
+    n = len(key)
+    for i in range(n):
+        if key[i] != key[i]:
+            return False
+    run = np.empty(n + 1, dtype=np.int64)  # the runs' starts (and the end)
+    kv = np.empty(n)  # the keys in the order's order
+    tmp = np.empty(n, dtype=np.int64)
+    tk = np.empty(n)
+    for g in range(len(start) - 1):
+        lo, hi = start[g], start[g + 1]
+        if hi - lo < 2:
+            continue
+        for i in range(lo, hi):
+            kv[i] = key[order[i]]
+        n_run = 0
+        i = lo
+        while i < hi:
+            run[n_run] = i
+            n_run += 1
+            j = i + 1
+            if j < hi and kv[j] < kv[j - 1]:  # strictly falling: reversed, still stable
+                while j < hi and kv[j] < kv[j - 1]:
+                    j += 1
+                p, q = i, j - 1
+                while p < q:
+                    order[p], order[q] = order[q], order[p]
+                    kv[p], kv[q] = kv[q], kv[p]
+                    p += 1
+                    q -= 1
+            else:
+                while j < hi and kv[j] >= kv[j - 1]:
+                    j += 1
+            i = j
+        run[n_run] = hi
+        while n_run > 1:  # merge neighbouring runs, the left one first on a tie
+            m = 0
+            for r in range(0, n_run, 2):
+                if r + 1 >= n_run:
+                    run[m] = run[r]
+                    m += 1
+                    continue
+                p, mid, end = run[r], run[r + 1], run[r + 2]
+                for t in range(p, mid):
+                    tmp[t] = order[t]
+                    tk[t] = kv[t]
+                q, w, u = mid, p, p
+                while u < mid and q < end:
+                    if kv[q] < tk[u]:
+                        order[w] = order[q]
+                        kv[w] = kv[q]
+                        q += 1
+                    else:
+                        order[w] = tmp[u]
+                        kv[w] = tk[u]
+                        u += 1
+                    w += 1
+                while u < mid:
+                    order[w] = tmp[u]
+                    kv[w] = tk[u]
+                    u += 1
+                    w += 1
+                run[m] = p
+                m += 1
+            run[m] = hi
+            n_run = m
+    return True
+
+
 LOOPS["outline"] = outline_loops
+LOOPS["order"] = stable_order_loops
 LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
 LOOPS["ranges"] = range_loops
@@ -377,6 +487,8 @@ LOOPS["walk"] = lowest_walk_loops
 LOOPS["lower"] = lower_loops
 LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
+LOOPS["keel_arrays"] = keel_arrays_loops
+LOOPS["row"] = row_loops
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into their module's namespace and the caller's (numba calls compiled functions
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
@@ -393,6 +505,8 @@ CALLS = {
     "walk": ("lower",),
     "side": ("search", "lowest", "sorted", "abscissae", "lower", "walk"),
     "ranges": ("search",),
+    "outline": ("order",),
+    "keel_arrays": ("row",),
 }
 LOOPS["wetted"] = wetted_loops
 LOOPS["held"] = held_loops

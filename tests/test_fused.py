@@ -252,6 +252,27 @@ def test_the_fused_evaluation_serves_only_what_its_loops_describe(monkeypatch):
     assert fused.fused_for(ForceModel(hull, slicing="fixed")) is None
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_the_keel_arrays_by_the_loops_equal_numpy(name):
+    """The fused evaluation's arrays of a keel line, built by
+    :func:`~hullslice.keel_loops.keel_arrays_loops` (as Python, and compiled where numba
+    serves) at pitches from nose down to well up: numpy's arrays, to the bit."""
+    hull = BODIES[name]
+    packs = [planecut_loops.LOOPS["keel_arrays"]]
+    if planecut_loops.available():
+        packs.append(planecut_loops.compiled("keel_arrays"))
+    for pitch in (-0.2, 0.0, 0.08, 0.3, 0.6):
+        fr = hs.geometry.frame(hull, pitch)
+        want = fused._keel_arrays(fr)
+        for pack in packs:
+            got = fused._keel_arrays(fr, pack)
+            assert got["has_chords"] == want["has_chords"]
+            for key in ("keel", "runs", "chords"):
+                assert got[key].shape == want[key].shape, (key, pitch)
+                assert np.array_equal(got[key], want[key], equal_nan=True), (key, pitch)
+                assert not np.any(np.signbit(got[key]) != np.signbit(want[key])), (key, pitch)
+
+
 def test_numba_switched_off_is_read_when_a_model_first_evaluates(monkeypatch):
     """``HULLSLICE_NUMBA=0`` keeps numpy's path for the models made while it is set."""
     monkeypatch.setenv("HULLSLICE_NUMBA", "0")

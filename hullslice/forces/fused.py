@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -117,6 +118,9 @@ class FusedEvaluation:
     def __init__(self, model, loops) -> None:
         self.model = model
         self.loops, self.pitch, self.window = loops
+        # the keel line's arrays by the compiled loops where these are compiled
+        compiled = self.loops is not planecut_loops.LOOPS["held"]
+        self.pack = planecut_loops.compiled("keel_arrays") if compiled else None
         hull = model.hull
         self.hull = hull
         self.key = (model.slices, float(TOL.coordinate * hull.size), model.cutter)
@@ -164,10 +168,12 @@ class FusedEvaluation:
         return buffers
 
     def _keel(self, fr, kept) -> dict[str, Any]:
-        """The loops' arrays of a frame's keel line, made once per kept cut."""
+        """The loops' arrays of a frame's keel line, made once per kept cut (by the
+        compiled :func:`~hullslice.keel_loops.keel_arrays_loops` with the compiled loops:
+        the same arrays)."""
         arrays = kept.plans.get("keel")
         if arrays is None:
-            arrays = kept.plans["keel"] = _keel_arrays(fr)
+            arrays = kept.plans["keel"] = _keel_arrays(fr, self.pack)
         return arrays
 
     def _run(self, fr, draft: float, w: float, u: float, q: float, fout, iout):
@@ -379,11 +385,19 @@ def _padded(rows, width: int, fill: float = np.nan) -> np.ndarray:
     return out
 
 
-def _keel_arrays(fr) -> dict[str, Any]:
-    """The loops' arrays of a frame's keel line."""
+def _keel_arrays(fr, pack: Callable | None = None) -> dict[str, Any]:
+    """The loops' arrays of a frame's keel line; by ``pack``
+    (:func:`~hullslice.keel_loops.keel_arrays_loops`, compiled) where given."""
     keel = fr.keel
     runs = keel._runs
     k = len(keel.x)
+    if pack is not None:
+        chords, none = runs.chords, np.empty(0)
+        h, lo, hi = (none, none, none) if chords is None else chords[1:]
+        arrays = pack(keel.x, keel.z, runs.steep, runs.mid, runs.cont, runs.bend, runs.starts,
+                      runs.offsets, h, lo, hi)  # fmt: skip
+        return {"keel": arrays[0], "runs": arrays[1], "chords": arrays[2],
+                "has_chords": 0.0 if chords is None else 1.0}  # fmt: skip
     steep = np.asarray(runs.steep, dtype=np.float64)[: k - 1]
     chords = runs.chords
     f = max(len(runs.mid), len(runs.offsets))
