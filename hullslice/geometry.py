@@ -321,6 +321,11 @@ def _side_keel(
     xa, za, xb, zb, seg, xs, mid, z, zm = side(
         a, b, float(g[0]), float(g[2]), float(c), float(s), order
     )
+    refine = loops_in_use("refine")
+    if refine is not None:  # most pitches: only close break points to merge, by loops
+        ok, xr, zr = refine(xs, z, zm, merge)
+        if ok:
+            return KeelLine(xr, zr, loops_in_use("runs")), za, zb
     walk, none = loops_in_use("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
         heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731

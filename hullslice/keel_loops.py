@@ -22,6 +22,7 @@ __all__ = [
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
+    "refine_loops",
     "row_loops",
     "runs_loops",
     "search_loops",
@@ -349,3 +350,45 @@ def row_loops(out, row, values):
     """``values`` into the start of ``out``'s row ``row``."""
     for i in range(len(values)):
         out[row, i] = values[i]
+
+
+def refine_loops(xs, z, zm, merge):
+    """:func:`hullslice.kernel.envelope.refined` where it only merges: where no interval's
+    middle lies off its chord (no gap, ``zm`` infinite; no jump or crossing, ``zm`` above
+    the chord) the break points closer together than ``merge`` become one, at their mean
+    abscissa (numpy's ``add.reduceat``: the first plus the running sum of the others) and
+    their lowest height. Returns ``(ok, xs, z)``; ``ok`` False where the refinement has
+    more to do, or a group of points is longer than 8 (numpy sums those pairwise): then
+    numpy's path."""
+    n = len(xs)
+    for i in range(n - 1):
+        if math.isinf(zm[i]):
+            return False, xs, z
+        chord = 0.5 * (z[i + 1] + z[i])
+        if math.isfinite(zm[i]) and math.isfinite(chord):
+            if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
+                return False, xs, z
+    if not (merge > 0.0 and n > 1):
+        return True, xs, z
+    out_x = np.empty(n)
+    out_z = np.empty(n)
+    g = 0
+    i = 0
+    while i < n:
+        j = i + 1
+        while j < n and xs[j] - xs[j - 1] <= merge:
+            j += 1
+        if j - i > 8:
+            return False, xs, z
+        rest = 0.0
+        low = z[i]
+        for k in range(i + 1, j):
+            rest += xs[k]
+            low = low if (low < z[k] or low != low) else z[k]
+        out_x[g] = (xs[i] + rest) / (j - i) if j - i > 1 else xs[i] / 1
+        out_z[g] = low
+        g += 1
+        i = j
+    if g == n:  # none closer than merge: numpy's path keeps the arrays
+        return True, xs, z
+    return True, out_x[:g], out_z[:g]

@@ -34,6 +34,7 @@ from .keel_loops import (
     lower_loops,
     lowest_loops,
     lowest_walk_loops,
+    refine_loops,
     row_loops,
     runs_loops,
     search_loops,
@@ -489,6 +490,7 @@ LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
 LOOPS["keel_arrays"] = keel_arrays_loops
 LOOPS["row"] = row_loops
+LOOPS["refine"] = refine_loops
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into their module's namespace and the caller's (numba calls compiled functions
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
