@@ -275,7 +275,8 @@ def _frame(hull, pitch: float) -> Frame:
     highest = float(max(za.max(), zb.max()))
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
-    box = hull.bounds.mean(axis=0) - g
+    bounds = hull.bounds
+    box = (bounds[0] + bounds[1]) * 0.5 - g  # numpy's mean of the two, to the bit
     ox = box[0] * c - box[2] * s
     oz = box[0] * s + box[2] * c
     oy = box[1] + g[1]
@@ -312,7 +313,8 @@ def _side_keel(
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
-    side = loops_in_use("side")
+    compiled = planecut_loops.compiled if keel_loops() else lambda name: None
+    side = compiled("side")
     if side is None:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         return lower_envelope(ta, tb, merge=merge), ta[:, 1], tb[:, 1]
@@ -321,18 +323,18 @@ def _side_keel(
     xa, za, xb, zb, seg, xs, mid, z, zm = side(
         a, b, float(g[0]), float(g[2]), float(c), float(s), order
     )
-    refine = loops_in_use("refine")
+    refine, runs = compiled("refine"), compiled("runs")
     if refine is not None:  # most pitches: only close break points to merge, by loops
         ok, xr, zr = refine(xs, z, zm, merge)
         if ok:
-            return KeelLine(xr, zr, loops_in_use("runs")), za, zb
-    walk, none = loops_in_use("walk"), np.empty(0)
+            return KeelLine(xr, zr, runs), za, zb
+    walk, none = compiled("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
         heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
     else:
         turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
         heights = lowest_segments(make=turned)
-    return refined(xs, mid, z, zm, merge, heights, loops_in_use("runs")), za, zb
+    return refined(xs, mid, z, zm, merge, heights, runs), za, zb
 
 
 def _side_order(hull, n: int, piece: int | None = None) -> np.ndarray:

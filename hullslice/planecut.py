@@ -56,13 +56,17 @@ class PlaneIndex:
     ----------
     vertices : (n, 3) float
         Vertex coordinates, m, body frame.
-    corner_x, corner_y, corner_z : (m, 3) float
-        The coordinates of each face's corners (read in face order: the loops read a
-        crossed edge's ends here, next to the face, not from the vertices).
-    faces : (m, 3) int
-        The faces in index order (bin by bin, each bin's by lowest ``x``).
-    face_edges : (m, 3) int
-        Each face's edges (corner ``k`` to ``k + 1``) as undirected edge numbers.
+    corners : (m, 9) float
+        Each face's corners' ``x``, ``z`` and ``y`` (``x0 x1 x2 z0 z1 z2 y0 y1 y2``), m, in
+        index order: one record per face, so that a station's candidate faces (a few
+        short runs of the index per height bin) are read as a few runs of memory, the
+        sign test's ``x`` and ``z`` first (the loops read a crossed edge's ends here, next
+        to the face, not from the vertices). :attr:`corner_x`, :attr:`corner_y` and
+        :attr:`corner_z` are its ``(m, 3)`` views.
+    ends : (m, 6) int32 (int64 for a mesh of 2**31 vertices or edges)
+        Each face's vertices, then its edges (corner ``k`` to ``k + 1``) as undirected
+        edge numbers, in index order (bin by bin, each bin's by lowest ``x``):
+        :attr:`faces` and :attr:`face_edges` are its ``(m, 3)`` views.
     xmin : (m,) float
         Each face's lowest ``x``, m (sorted within each bin).
     bin_start : (b + 1,) int
@@ -82,11 +86,8 @@ class PlaneIndex:
     """
 
     vertices: np.ndarray
-    corner_x: np.ndarray
-    corner_y: np.ndarray
-    corner_z: np.ndarray
-    faces: np.ndarray
-    face_edges: np.ndarray
+    corners: np.ndarray
+    ends: np.ndarray
     xmin: np.ndarray
     bin_start: np.ndarray
     bin_zlo: np.ndarray
@@ -101,6 +102,32 @@ class PlaneIndex:
     #: at every cut is mapped anew and faulted in page by page.
     _scratch: threading.local = field(default_factory=threading.local, repr=False)
 
+    @property
+    def corner_x(self) -> np.ndarray:
+        """(m, 3) float: each face's corners' ``x``, m (a view of :attr:`corners`)."""
+        return self.corners[:, 0:3]
+
+    @property
+    def corner_z(self) -> np.ndarray:
+        """(m, 3) float: each face's corners' ``z``, m (a view of :attr:`corners`)."""
+        return self.corners[:, 3:6]
+
+    @property
+    def corner_y(self) -> np.ndarray:
+        """(m, 3) float: each face's corners' ``y``, m (a view of :attr:`corners`)."""
+        return self.corners[:, 6:9]
+
+    @property
+    def faces(self) -> np.ndarray:
+        """(m, 3) int: the faces in index order (a view of :attr:`ends`)."""
+        return self.ends[:, 0:3]
+
+    @property
+    def face_edges(self) -> np.ndarray:
+        """(m, 3) int: each face's edges as undirected edge numbers (a view of
+        :attr:`ends`)."""
+        return self.ends[:, 3:6]
+
     def scratch(self) -> np.ndarray:
         """This thread's scratch array of one integer per edge (a value left by an earlier
         cut is never trusted: the loops check each one against their own segments)."""
@@ -114,7 +141,7 @@ class PlaneIndex:
         candidates' ``(q, 3)`` corners ``cx``, ``cz``) of the crossed faces ``face`` (the
         candidates' ``rows``)."""
         k = at - 3 * rows
-        x, y, z = cx.ravel()[at], self.corner_y.ravel()[3 * face + k], cz.ravel()[at]
+        x, y, z = cx.ravel()[at], self.corners[face, 6 + k], cz.ravel()[at]
         m = matrix
         return np.stack(
             [m[0, 0] * x + m[0, 1] * y + m[0, 2] * z + m[0, 3],
@@ -162,13 +189,13 @@ class PlaneIndex:
         x0 = float(fx0.min()) - size
         key_span = 4.0 * size
         key = b * key_span + (fx0 - x0)
+        wide = max(len(v), n_edges) >= 2**31
         return cls(
             vertices=v,
-            corner_x=np.ascontiguousarray(v[f, 0]),
-            corner_y=np.ascontiguousarray(v[f, 1]),
-            corner_z=np.ascontiguousarray(v[f, 2]),
-            faces=f,
-            face_edges=edge.reshape(m, 3),
+            corners=np.ascontiguousarray(np.concatenate([v[f, 0], v[f, 2], v[f, 1]], axis=1)),
+            ends=np.concatenate([f, edge.reshape(m, 3)], axis=1).astype(
+                np.int64 if wide else np.int32
+            ),
             xmin=fx0,
             bin_start=start,
             bin_zlo=zlo,
@@ -273,8 +300,8 @@ class PlaneIndex:
         # the segment runs from the edge that leaves the ahead side (corner k ahead, k + 1
         # not) to the one that enters it: counter-clockwise around the section seen along X
         k_out, k_in = _K_OUT[code], _K_IN[code]
-        flat = self.face_edges.ravel()
-        e_out, e_in = flat[face * 3 + k_out], flat[face * 3 + k_in]
+        e_out = self.ends[face, 3 + k_out].astype(np.int64)
+        e_in = self.ends[face, 3 + k_in].astype(np.int64)
         # the crossing point of each segment's first edge (every crossed edge is the first
         # edge of exactly one segment of its station): from the edge's canonical ends
         at_a = rows * 3 + k_out
@@ -312,8 +339,8 @@ class PlaneIndex:
         slot = self.scratch()
         m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
         points, start, ring_station, status = loops(
-            first, last, self.faces, self.face_edges, self.corner_x, self.corner_y,
-            self.corner_z, x_rel, float(cg[0]), float(cg[2]), float(c), float(s),
+            first, last, self.corners, self.ends, x_rel, float(cg[0]), float(cg[2]),
+            float(c), float(s),
             m, float(merge), slot, planecut_loops.K_OUT, planecut_loops.K_IN,
         )  # fmt: skip
         if status:

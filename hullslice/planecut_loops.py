@@ -75,14 +75,16 @@ K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0], dtype=np.int64)
 
 
 def cut_loops(
-    first, last, faces, face_edges, corner_x, corner_y, corner_z, x_rel, gx, gz, c, s, m,
-    merge, slot, k_out_of, k_in_of,
+    first, last, corners, ends, x_rel, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of,
 ):  # fmt: skip
     """The contours of the candidate faces of each station ``i``, the faces
     ``first[i, j] .. last[i, j] - 1`` of each bin ``j`` (as
     :meth:`hullslice.planecut.PlaneIndex.ranges` gives them), cut by the planes ``x_rel``
     at a pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, mapped by ``m``
-    (2 x 4) to the cutter's ``(Y, Z)``.
+    (2 x 4) to the cutter's ``(Y, Z)``. ``corners`` and ``ends`` are the index's records
+    of the faces (:attr:`hullslice.planecut.PlaneIndex.corners`, ``x0 x1 x2 z0 z1 z2 y0
+    y1 y2``, and :attr:`~hullslice.planecut.PlaneIndex.ends`, the vertices then the
+    edges).
 
     Returns ``(points, ring_start, ring_station, status)``: the kept contours' points one
     after another, each kept contour's first point (and the end), its station, and 0, or
@@ -105,9 +107,9 @@ def cut_loops(
         xs = x_rel[st]
         for b in range(n_bins):
             for f in range(first[st, b], last[st, b]):
-                d0 = (corner_x[f, 0] - gx) * c - (corner_z[f, 0] - gz) * s - xs
-                d1 = (corner_x[f, 1] - gx) * c - (corner_z[f, 1] - gz) * s - xs
-                d2 = (corner_x[f, 2] - gx) * c - (corner_z[f, 2] - gz) * s - xs
+                d0 = (corners[f, 0] - gx) * c - (corners[f, 3] - gz) * s - xs
+                d1 = (corners[f, 1] - gx) * c - (corners[f, 4] - gz) * s - xs
+                d2 = (corners[f, 2] - gx) * c - (corners[f, 5] - gz) * s - xs
                 code = (d0 >= 0.0) + 2 * (d1 >= 0.0) + 4 * (d2 >= 0.0)
                 if code == 0 or code == 7:
                     continue
@@ -115,15 +117,15 @@ def cut_loops(
                 kn = ko + 1
                 if kn == 3:
                     kn = 0
-                e_out[n] = face_edges[f, ko]
-                e_in[n] = face_edges[f, k_in_of[code]]
+                e_out[n] = ends[f, 3 + ko]
+                e_in[n] = ends[f, 3 + k_in_of[code]]
                 ka, kb = ko, kn
-                if faces[f, ko] > faces[f, kn]:  # the edge's canonical order: by vertex number
+                if ends[f, ko] > ends[f, kn]:  # the edge's canonical order: by vertex number
                     ka, kb = kn, ko
                 da = d0 if ka == 0 else (d1 if ka == 1 else d2)
                 db = d0 if kb == 0 else (d1 if kb == 1 else d2)
-                xa, wa, ha = corner_x[f, ka], corner_y[f, ka], corner_z[f, ka]
-                xb, wb, hb = corner_x[f, kb], corner_y[f, kb], corner_z[f, kb]
+                xa, wa, ha = corners[f, ka], corners[f, 6 + ka], corners[f, 3 + ka]
+                xb, wb, hb = corners[f, kb], corners[f, 6 + kb], corners[f, 3 + kb]
                 ya = m00 * xa + m01 * wa + m02 * ha + m03
                 za = m10 * xa + m11 * wa + m12 * ha + m13
                 yb = m00 * xb + m01 * wb + m02 * hb + m03
