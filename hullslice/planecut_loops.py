@@ -218,14 +218,40 @@ def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s
         za = (bin_zlo[b] - gz) * s
         zb = (bin_zhi[b] - gz) * s
         base = b * span
+        end = bin_start[b + 1]
+        lo_was, hi_was = np.inf, np.inf
         for i in range(n_st):
             xa = gx + (x_rel[i] + za) / c
             xb = gx + (x_rel[i] + zb) / c
             lo = min(max(min(xa, xb) - bin_reach[b] - margin - x0, 0.0), half) + base
             hi = min(max(max(xa, xb) + margin - x0, 0.0), half) + base
-            first[i, b] = search_loops(key, bin_start[b], bin_start[b + 1], lo, False)
-            last[i, b] = search_loops(key, first[i, b], bin_start[b + 1], hi, True)
+            # from the station before where its bounds were no higher (every key before
+            # its indices is below these bounds too): a short gallop, not a whole search
+            at = first[i - 1, b] if lo_was <= lo else bin_start[b]
+            first[i, b] = gallop_loops(key, at, end, lo, False)
+            at = max(first[i, b], last[i - 1, b]) if hi_was <= hi else first[i, b]
+            last[i, b] = gallop_loops(key, at, end, hi, True)
+            lo_was, hi_was = lo, hi
     return first, last
+
+
+def gallop_loops(a, lo, hi, v, right):
+    """:func:`~hullslice.keel_loops.search_loops` of ``v`` in the sorted ``a[lo:hi]``
+    (every value before ``lo`` below ``v``), probing from ``lo`` in steps of 1, 2, 4, ...
+    before the binary search: the same index, found in a few probes near ``lo`` when it is
+    near."""
+    step = 1
+    while True:
+        probe = lo + step - 1
+        if probe >= hi:
+            break
+        if a[probe] < v or (right and a[probe] == v):
+            lo = probe + 1
+            step *= 2
+        else:
+            hi = probe + 1  # the index is at most the probe
+            break
+    return search_loops(a, lo, hi, v, right)
 
 
 _LOCK = threading.Lock()
@@ -485,6 +511,7 @@ LOOPS["envelope"] = envelope_loops
 LOOPS["side"] = side_view_loops
 LOOPS["ranges"] = range_loops
 LOOPS["search"] = search_loops
+LOOPS["gallop"] = gallop_loops
 LOOPS["sorted"] = sorted_loops
 LOOPS["walk"] = lowest_walk_loops
 LOOPS["lower"] = lower_loops
@@ -508,7 +535,7 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": ("search", "lowest", "sorted", "abscissae", "lower", "walk"),
-    "ranges": ("search",),
+    "ranges": ("search", "gallop"),
     "outline": ("order",),
     "keel_arrays": ("row",),
 }

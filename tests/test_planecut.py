@@ -239,14 +239,18 @@ def test_the_candidate_ranges_by_the_loops_equal_numpy(name):
     """The candidate faces' ranges searched bin by bin by the loops (run as Python, and
     compiled where numba is installed) are numpy's search of all the keys, index for
     index, at pitches from -40 to 40 degrees and stations before, along and past the
-    body."""
+    body, in order (each search from the station before), backwards and shuffled."""
     hull = BODIES[name]
     index = plane_index(hull)
     g = np.asarray(hull.cg, dtype=np.float64)
     x0, x1 = (float(v) - g[0] for v in hull.bounds[:, 0])
     rng = np.random.default_rng(7)
+    cases = []
     for pitch in np.radians([-40.0, -3.0, 0.0, 1e-9, 6.0, 17.0, 40.0]):
         x = np.sort(rng.uniform(x0 - 0.2 * (x1 - x0), x1 + 0.2 * (x1 - x0), 37))
+        x[5] = x[6]  # two stations at one place
+        cases += [(pitch, x), (pitch, x[::-1].copy()), (pitch, rng.permutation(x))]
+    for pitch, x in cases:
         want = index.ranges(x, pitch, g)
         c, s = np.cos(pitch), np.sin(pitch)
         args = (index.key, index.bin_start, index.bin_zlo, index.bin_zhi, index.bin_reach, x,
