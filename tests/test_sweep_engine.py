@@ -106,6 +106,34 @@ def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):
     assert os.environ["MALLOC_TRIM_THRESHOLD_"] == "65536"
 
 
+def _profiled(dask_worker) -> tuple[bool, bool]:
+    """A worker's setting of Dask's statistical profiler, and whether its callbacks run."""
+    import dask
+
+    return (
+        bool(dask.config.get("distributed.worker.profile.enabled")),
+        "profile" in dask_worker.periodic_callbacks,
+    )
+
+
+def test_a_sweeps_own_cluster_runs_its_workers_without_the_profiler():
+    # Dask's workers sample every thread's stack every 10 ms for a dashboard; a sweep's
+    # cluster has none, and a free-pitch case took a tenth longer with it
+    pytest.importorskip("distributed")
+    import dask
+
+    from hullslice.sweeps import engine
+
+    before = dask.config.get("distributed.worker.profile.enabled")
+    with engine.session(None, 2, 30.0, True) as client:
+        seen = client.run(_profiled)
+        client.restart()  # workers started again (as after a crash) go without it too
+        again = client.run(_profiled)
+    assert list(seen.values()) == [(False, False)] * 2
+    assert list(again.values()) == [(False, False)] * 2
+    assert dask.config.get("distributed.worker.profile.enabled") == before
+
+
 @contextlib.contextmanager
 def _port_taken(port: int):
     """``port`` on this machine taken for the while (already taken by another program: as

@@ -141,6 +141,10 @@ def _client(client, workers: int | None, timeout: float):
 HTTP_ADDRESS = "127.0.0.1:0"
 
 
+#: Dask settings of a sweep's own cluster, passed to each worker by its nanny.
+WORKER_CONFIG = {"distributed.worker.profile.enabled": False}
+
+
 def local_client(workers: int):
     """A Dask client of a cluster of ``workers`` processes on this machine, one thread each,
     made as a sweep makes its own (:data:`UNSET_WORKER_ENVIRON` unset in the workers; a
@@ -150,7 +154,10 @@ def local_client(workers: int):
     The cluster starts quietly: no dashboard, its HTTP server on a free port
     (:data:`HTTP_ADDRESS`), its logs silenced below CRITICAL, and the warnings Dask's own
     modules give while it starts (its notes on ports and start-up times, for a programmer
-    running Dask, not for a sweep's user) are not shown; hullslice's are.
+    running Dask, not for a sweep's user) are not shown; hullslice's are. Its workers run
+    without Dask's statistical profiler (:data:`WORKER_CONFIG`, see :func:`worker_environ`),
+    which reads every thread's stack every 10 ms for a dashboard the cluster does not have:
+    a free-pitch case took a tenth longer in a worker with it.
     """
     require("distributed")
     from distributed import Client, LocalCluster
@@ -177,14 +184,16 @@ def worker_environ() -> Iterator[None]:
     """While inside, Dask workers started by this process go without
     :data:`UNSET_WORKER_ENVIRON`: unset in Dask's settings (read by each nanny as it is made)
     and in this process's environment (which every worker inherits, and where an earlier
-    cluster of this process may have left it); both are as they were on leaving."""
+    cluster of this process may have left it); both are as they were on leaving. They get
+    :data:`WORKER_CONFIG` too (Dask's settings, which a nanny hands to each worker it
+    starts)."""
     require("distributed")
     import dask
 
     unset = {f"distributed.nanny.pre-spawn-environ.{key}": None for key in UNSET_WORKER_ENVIRON}
     saved = {key: os.environ.pop(key) for key in UNSET_WORKER_ENVIRON if key in os.environ}
     try:
-        with dask.config.set(unset):
+        with dask.config.set({**unset, **WORKER_CONFIG}):
             yield
     finally:
         os.environ.update(saved)
