@@ -356,7 +356,7 @@ class Rings(list):
     contours per station, the contours views of one array), with that array as the loops
     gave it: ``flat = (points, ring_start, ring_station)`` (see
     :func:`~hullslice.planecut_loops.cut_loops`), for
-    :func:`~hullslice.planecut_loops.outline_loops`."""
+    :func:`~hullslice.outline_loops.outline_loops`."""
 
     def __init__(self, sections: list, flat: tuple[np.ndarray, np.ndarray, np.ndarray]):
         super().__init__(sections)

@@ -89,7 +89,7 @@ class Outline:
         contours counter-clockwise, holes clockwise, ``(y, z)`` in m), each point divided by
         ``scale`` and moved by ``origin``.
 
-        ``loops``, when given (:func:`hullslice.planecut_loops.outline_loops`, compiled),
+        ``loops``, when given (:func:`hullslice.outline_loops.outline_loops`, compiled),
         builds it from the exact cut's own array where ``polygons`` carries one (its
         ``flat``) and no section has a hole: the same outline.
         """

@@ -1,0 +1,211 @@
+"""The outline of the exact cut's sections by loops, written for a compiler: numba's, when
+installed (compiled by :func:`hullslice.planecut_loops.compiled`, which holds them by name).
+
+:func:`outline_loops` is :meth:`hullslice.kernel.outline.Outline.of` on
+:func:`~hullslice.planecut_loops.cut_loops`'s contours as they come (one array of points,
+the rings' starts and stations), with the same sums in the same order and numpy's stable
+order of the edges (:func:`stable_order_loops`): the same outline.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["outline_loops", "stable_order_loops"]
+
+
+def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
+    """:meth:`hullslice.kernel.outline.Outline.of` of the exact cut's contours as
+    :func:`cut_loops` gives them (``points``, ``ring_start``, ``ring_station``; the rings
+    grouped by station), each point divided by ``scale`` (unless 1) and moved by
+    ``(oy, oz)`` (unless both are 0): the same arithmetic in the same order, the same
+    arrays. A station with a hole (a clockwise contour) needs the containment tests of
+    numpy's path: then ``ok`` is False and nothing else is meaningful.
+
+    Returns ``(ok, station, ya, za, yb, zb, zlo, start, area, contour, part_area,
+    part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
+    edges in their final order (by station, then by the height of their lower end: the
+    order of numpy's stable sort, found by :func:`stable_order_loops`).
+    """
+    n = ring_start[-1]
+    r = len(ring_station)
+    a = np.empty((n, 2))
+    for i in range(n):
+        y, z = points[i, 0], points[i, 1]
+        if scale != 1.0:
+            y, z = y / scale, z / scale
+        if oy != 0.0 or oz != 0.0:
+            y, z = y + oy, z + oz
+        a[i, 0] = y
+        a[i, 1] = z
+    b = np.empty((n, 2))
+    station = np.empty(n, dtype=np.int64)
+    contour = np.empty(n, dtype=np.int64)
+    area = np.zeros(n_st)
+    c_area = np.zeros(r)
+    zlo = np.empty(n)
+    grouped = True  # the rings' stations ascending: each station's edges one run
+    for j in range(r):
+        st = ring_station[j]
+        if j > 0 and st < ring_station[j - 1]:
+            grouped = False
+        sum_st = area[st]
+        sum_c = c_area[j]
+        for i in range(ring_start[j], ring_start[j + 1]):
+            k = i + 1 if i + 1 < ring_start[j + 1] else ring_start[j]
+            b[i, 0] = a[k, 0]
+            b[i, 1] = a[k, 1]
+            station[i] = st
+            contour[i] = j
+            cross = a[i, 0] * b[i, 1] - b[i, 0] * a[i, 1]
+            sum_st += 0.5 * cross
+            sum_c += cross
+            zlo[i] = a[i, 1] if (a[i, 1] < b[i, 1] or a[i, 1] != a[i, 1]) else b[i, 1]
+        area[st] = sum_st
+        c_area[j] = sum_c
+    ok = True
+    for j in range(r):
+        c_area[j] = 0.5 * c_area[j]
+        if not c_area[j] > 0.0:
+            ok = False
+    start = np.zeros(n_st + 1, dtype=np.int64)
+    for i in range(n):
+        start[station[i] + 1] += 1
+    for s in range(n_st):
+        start[s + 1] += start[s]
+    zmin = np.full(n_st, np.inf)
+    ymin = np.full(n_st, np.inf)
+    ymax = np.full(n_st, -np.inf)
+    part_station = np.empty(r, dtype=np.int64)
+    part_zmax = np.full(r, -np.inf)
+    part_ymin = np.full(r, np.inf)
+    part_ymax = np.full(r, -np.inf)
+    # the minima and maxima ring by ring, as numpy's np.minimum and np.maximum take them
+    # point by point (the second on a tie, a NaN kept)
+    for j in range(r):
+        s = ring_station[j]
+        part_station[j] = s
+        lo_z, lo_y, hi_y = zmin[s], ymin[s], ymax[s]
+        p_z, p_lo, p_hi = part_zmax[j], part_ymin[j], part_ymax[j]
+        for i in range(ring_start[j], ring_start[j + 1]):
+            y, z = a[i, 0], a[i, 1]
+            if not (lo_z < z or lo_z != lo_z):
+                lo_z = z
+            if not (lo_y < y or lo_y != lo_y):
+                lo_y = y
+            if not (hi_y > y or hi_y != hi_y):
+                hi_y = y
+            if not (p_z > z or p_z != p_z):
+                p_z = z
+            if not (p_lo < y or p_lo != p_lo):
+                p_lo = y
+            if not (p_hi > y or p_hi != p_hi):
+                p_hi = y
+        zmin[s], ymin[s], ymax[s] = lo_z, lo_y, hi_y
+        part_zmax[j], part_ymin[j], part_ymax[j] = p_z, p_lo, p_hi
+    z_chine = np.full(n_st, np.inf)
+    for j in range(r):
+        s = ring_station[j]
+        low, y_lo, y_hi = z_chine[s], ymin[s] + tol, ymax[s] - tol
+        for i in range(ring_start[j], ring_start[j + 1]):
+            if a[i, 0] >= y_hi or a[i, 0] <= y_lo:
+                if not (low < a[i, 1] or low != low):
+                    low = a[i, 1]
+        z_chine[s] = low
+    order = np.arange(n)
+    if n:
+        lo, hi = zlo.min(), zlo.max()
+        span = hi - lo
+        key = np.empty(n)
+        for i in range(n):
+            key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
+        if not (grouped and stable_order_loops(key, start, order)):
+            order = np.argsort(key, kind="mergesort")
+    ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
+    o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
+    for i in range(n):
+        k = order[i]
+        o_station[i] = station[k]
+        ya[i], za[i], yb[i], zb[i] = a[k, 0], a[k, 1], b[k, 0], b[k, 1]
+        o_zlo[i] = zlo[k]
+        o_contour[i] = contour[k]
+    return (
+        ok, o_station, ya, za, yb, zb, o_zlo, start, area, o_contour, c_area.copy(),
+        part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
+    )  # fmt: skip
+
+
+def stable_order_loops(key, start, order):
+    """``order`` (``arange(n)`` on entry) sorted within each group ``start[g] ..
+    start[g + 1] - 1`` by ``key``, ties in their first order: numpy's stable sort of the
+    group. A natural merge sort: a section's edges come as a few runs of rising or falling
+    height around its contours, so this takes a few passes where a full sort takes
+    log2(n); the keys move with the indices (one load fewer on the merge's critical path).
+    Returns False, leaving ``order`` unusable, where a key is NaN (numpy's sort puts those
+    last)."""
+    n = len(key)
+    for i in range(n):
+        if key[i] != key[i]:
+            return False
+    run = np.empty(n + 1, dtype=np.int64)  # the runs' starts (and the end)
+    kv = np.empty(n)  # the keys in the order's order
+    tmp = np.empty(n, dtype=np.int64)
+    tk = np.empty(n)
+    for g in range(len(start) - 1):
+        lo, hi = start[g], start[g + 1]
+        if hi - lo < 2:
+            continue
+        for i in range(lo, hi):
+            kv[i] = key[order[i]]
+        n_run = 0
+        i = lo
+        while i < hi:
+            run[n_run] = i
+            n_run += 1
+            j = i + 1
+            if j < hi and kv[j] < kv[j - 1]:  # strictly falling: reversed, still stable
+                while j < hi and kv[j] < kv[j - 1]:
+                    j += 1
+                p, q = i, j - 1
+                while p < q:
+                    order[p], order[q] = order[q], order[p]
+                    kv[p], kv[q] = kv[q], kv[p]
+                    p += 1
+                    q -= 1
+            else:
+                while j < hi and kv[j] >= kv[j - 1]:
+                    j += 1
+            i = j
+        run[n_run] = hi
+        while n_run > 1:  # merge neighbouring runs, the left one first on a tie
+            m = 0
+            for r in range(0, n_run, 2):
+                if r + 1 >= n_run:
+                    run[m] = run[r]
+                    m += 1
+                    continue
+                p, mid, end = run[r], run[r + 1], run[r + 2]
+                for t in range(p, mid):
+                    tmp[t] = order[t]
+                    tk[t] = kv[t]
+                q, w, u = mid, p, p
+                while u < mid and q < end:
+                    if kv[q] < tk[u]:
+                        order[w] = order[q]
+                        kv[w] = kv[q]
+                        q += 1
+                    else:
+                        order[w] = tmp[u]
+                        kv[w] = tk[u]
+                        u += 1
+                    w += 1
+                while u < mid:
+                    order[w] = tmp[u]
+                    kv[w] = tk[u]
+                    u += 1
+                    w += 1
+                run[m] = p
+                m += 1
+            run[m] = hi
+            n_run = m
+    return True
