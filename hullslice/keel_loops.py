@@ -385,7 +385,7 @@ def refine_loops(xs, z, zm, merge):
         for k in range(i + 1, j):
             rest += xs[k]
             low = low if (low < z[k] or low != low) else z[k]
-        out_x[g] = (xs[i] + rest) / (j - i) if j - i > 1 else xs[i] / 1
+        out_x[g] = (xs[i] + rest) / (j - i) if j - i > 1 else xs[i]  # numpy's: x / 1
         out_z[g] = low
         g += 1
         i = j

@@ -16,11 +16,12 @@ __all__ = ["outline_loops", "stable_order_loops"]
 
 def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     """:meth:`hullslice.kernel.outline.Outline.of` of the exact cut's contours as
-    :func:`cut_loops` gives them (``points``, ``ring_start``, ``ring_station``; the rings
-    grouped by station), each point divided by ``scale`` (unless 1) and moved by
-    ``(oy, oz)`` (unless both are 0): the same arithmetic in the same order, the same
-    arrays. A station with a hole (a clockwise contour) needs the containment tests of
-    numpy's path: then ``ok`` is False and nothing else is meaningful.
+    :func:`~hullslice.planecut_loops.cut_loops` gives them (``points``, ``ring_start``,
+    ``ring_station``; the rings grouped by station), each point divided by ``scale``
+    (unless 1) and moved by ``(oy, oz)`` (unless both are 0): the same arithmetic in the
+    same order, the same arrays. A station with a hole (a clockwise contour) needs the
+    containment tests of numpy's path: then ``ok`` is False and nothing else is
+    meaningful.
 
     Returns ``(ok, station, ya, za, yb, zb, zlo, start, area, contour, part_area,
     part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
@@ -130,7 +131,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
         o_zlo[i] = zlo[k]
         o_contour[i] = contour[k]
     return (
-        ok, o_station, ya, za, yb, zb, o_zlo, start, area, o_contour, c_area.copy(),
+        ok, o_station, ya, za, yb, zb, o_zlo, start, area, o_contour, c_area,
         part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
     )  # fmt: skip
 

@@ -61,12 +61,10 @@ class PlaneIndex:
         index order: one record per face, so that a station's candidate faces (a few
         short runs of the index per height bin) are read as a few runs of memory, the
         sign test's ``x`` and ``z`` first (the loops read a crossed edge's ends here, next
-        to the face, not from the vertices). :attr:`corner_x`, :attr:`corner_y` and
-        :attr:`corner_z` are its ``(m, 3)`` views.
+        to the face, not from the vertices).
     ends : (m, 6) int32 (int64 for a mesh of 2**31 vertices or edges)
         Each face's vertices, then its edges (corner ``k`` to ``k + 1``) as undirected
-        edge numbers, in index order (bin by bin, each bin's by lowest ``x``):
-        :attr:`faces` and :attr:`face_edges` are its ``(m, 3)`` views.
+        edge numbers, in index order (bin by bin, each bin's by lowest ``x``).
     xmin : (m,) float
         Each face's lowest ``x``, m (sorted within each bin).
     bin_start : (b + 1,) int
@@ -101,32 +99,6 @@ class PlaneIndex:
     #: Per thread, the compiled loops' scratch (one integer per edge), kept: a fresh one
     #: at every cut is mapped anew and faulted in page by page.
     _scratch: threading.local = field(default_factory=threading.local, repr=False)
-
-    @property
-    def corner_x(self) -> np.ndarray:
-        """(m, 3) float: each face's corners' ``x``, m (a view of :attr:`corners`)."""
-        return self.corners[:, 0:3]
-
-    @property
-    def corner_z(self) -> np.ndarray:
-        """(m, 3) float: each face's corners' ``z``, m (a view of :attr:`corners`)."""
-        return self.corners[:, 3:6]
-
-    @property
-    def corner_y(self) -> np.ndarray:
-        """(m, 3) float: each face's corners' ``y``, m (a view of :attr:`corners`)."""
-        return self.corners[:, 6:9]
-
-    @property
-    def faces(self) -> np.ndarray:
-        """(m, 3) int: the faces in index order (a view of :attr:`ends`)."""
-        return self.ends[:, 0:3]
-
-    @property
-    def face_edges(self) -> np.ndarray:
-        """(m, 3) int: each face's edges as undirected edge numbers (a view of
-        :attr:`ends`)."""
-        return self.ends[:, 3:6]
 
     def scratch(self) -> np.ndarray:
         """This thread's scratch array of one integer per edge (a value left by an earlier
@@ -288,8 +260,8 @@ class PlaneIndex:
             first, last = self.ranges(x_rel, pitch, cg, compiled=compiled)
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
         station, face = self.candidates(x_rel, pitch, cg)
-        corner = self.faces[face]  # (q, 3)
-        cx, cz = self.corner_x[face], self.corner_z[face]
+        corner = self.ends[face, 0:3]  # (q, 3): the vertices
+        cx, cz = self.corners[face, 0:3], self.corners[face, 3:6]
         # each vertex's distance ahead of its station's plane, the same for all its faces
         d = (cx - cg[0]) * c - (cz - cg[2]) * s
         d -= x_rel[station][:, None]
