@@ -99,3 +99,23 @@ def test_no_fix_on_the_command_line(tmp_path, capsys):
     assert "inside out" in capsys.readouterr().err
     assert main([*argv, "--no-fix"]) != 0
     assert "'turn outward' would fix it" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("n", [1, 3, 17])
+def test_shell_sizes_are_each_shells_box_corner_by_corner(n):
+    from hullslice.topology import shell_sizes
+
+    rng = np.random.default_rng(n)
+    v = rng.normal(size=(500, 3)) * [30.0, 4.0, 3.0]
+    f = rng.integers(0, 500, size=(2000, 3))
+    labels = rng.integers(0, n, size=2000)
+    # the reference: every corner taken into its shell's box one at a time
+    lo, hi = np.full((n, 3), np.inf), np.full((n, 3), -np.inf)
+    for face, label in zip(f, labels, strict=True):
+        for corner in v[face]:
+            lo[label] = np.minimum(lo[label], corner)
+            hi[label] = np.maximum(hi[label], corner)
+    assert np.array_equal(shell_sizes(v, f, labels, n), np.linalg.norm(hi - lo, axis=1))
+    # a label with no face: an empty box, infinitely large
+    sizes = shell_sizes(v, f, labels, n + 1)
+    assert np.array_equal(sizes[:n], np.linalg.norm(hi - lo, axis=1)) and sizes[n] == np.inf
