@@ -388,28 +388,13 @@ def _contours(
     out: list[list[np.ndarray]] = [[] for _ in range(n_st)]
     if n == 0:
         return [tuple(c) for c in out]
-    # each chain's lowest segment number and each segment's distance ahead to it, by
-    # pointer jumping (windows of 1, 2, 4, ... segments)
-    label = np.arange(n)
-    dist = np.zeros(n, dtype=np.int64)
-    jump, width = succ, 1
-    while True:
-        lab2 = label[jump]
-        if width >= 2 and np.array_equal(lab2, label) and np.array_equal(label[succ], label):
-            break
-        better = lab2 < label
-        label = np.where(better, lab2, label)
-        dist = np.where(better, dist[jump] + width, dist)
-        jump, width = jump[jump], 2 * width
-    roots = np.flatnonzero(label == np.arange(n))  # ascending: grouped by station
-    size = np.bincount(label, minlength=n)
-    length = size[roots]
-    offset = np.zeros(n, dtype=np.int64)
-    offset[roots] = np.cumsum(length) - length
-    ring_size = size[label]
-    where = offset[label] + (ring_size - dist) % ring_size
-    ordered = np.empty_like(point)
-    ordered[where] = point
+    walked = _walk(succ)
+    if walked is not None:  # the rings' own order, in one depth-first walk
+        ordered, first = point[walked[0]], walked[1]
+        length = np.diff(np.append(first, n))
+        roots = walked[0][first]
+    else:
+        ordered, roots, length = _jump(point, succ)
     ring = np.repeat(np.arange(len(roots)), length)
     first = np.cumsum(length) - length
     prev = np.arange(n) - 1
@@ -431,6 +416,67 @@ def _contours(
     for i in np.flatnonzero((length >= 3) & (area != 0.0)):  # contours with an area
         out[int(root_station[i])].append(ordered[bounds[i] : bounds[i + 1]])
     return [tuple(c) for c in out]
+
+
+def _walk(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The segments ring by ring, each ring from its lowest segment number along ``succ``,
+    the rings by that number: ``(order, first)``, the order and each ring's first place in
+    it; None where that is not what a depth-first walk gave (checked: then
+    :func:`_jump` orders them).
+
+    The walk is scipy's, from a root joined to every segment in turn: it follows the
+    first segment's ring to its end, returns to the root, and the next segment it has not
+    seen is the lowest of the next ring.
+    """
+    from scipy.sparse import csr_array
+    from scipy.sparse.csgraph import depth_first_order
+
+    n = len(succ)
+    indptr = np.append(np.arange(n + 1), 2 * n)
+    graph = csr_array(
+        (np.ones(2 * n), np.concatenate((succ, np.arange(n))), indptr), shape=(n + 1, n + 1)
+    )
+    order = depth_first_order(graph, n, directed=True, return_predecessors=False)[1:]
+    if len(order) != n:
+        return None
+    first = np.flatnonzero(np.append(True, order[1:] != succ[order[:-1]]))
+    last = np.append(first[1:], n) - 1
+    heads = order[first]
+    closed = np.array_equal(succ[order[last]], heads)
+    if not (closed and np.all(np.diff(heads) > 0)):
+        return None
+    if not np.array_equal(np.minimum.reduceat(order, first), heads):
+        return None
+    return order, first
+
+
+def _jump(point: np.ndarray, succ: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points ring by ring as :func:`_walk` orders them, by pointer jumping (windows
+    of 1, 2, 4, ... segments): ``(ordered, roots, length)``, the points, each ring's
+    lowest segment and its length."""
+    n = len(succ)
+    # each chain's lowest segment number and each segment's distance ahead to it
+    label = np.arange(n)
+    dist = np.zeros(n, dtype=np.int64)
+    jump, width = succ, 1
+    while True:
+        lab2 = label[jump]
+        if width >= 2 and np.array_equal(lab2, label) and np.array_equal(label[succ], label):
+            break
+        better = lab2 < label
+        label = np.where(better, lab2, label)
+        dist = np.where(better, dist[jump] + width, dist)
+        jump, width = jump[jump], 2 * width
+    roots = np.flatnonzero(label == np.arange(n))  # ascending: grouped by station
+    size = np.bincount(label, minlength=n)
+    length = size[roots]
+    offset = np.zeros(n, dtype=np.int64)
+    offset[roots] = np.cumsum(length) - length
+    ring_size = size[label]
+    where = offset[label] + (ring_size - dist) % ring_size
+    ordered = np.empty_like(point)
+    ordered[where] = point
+    return ordered, roots, length
 
 
 #: A hull's plane index (geometry alone).
