@@ -42,6 +42,7 @@ from .errors import InputError
 from .kernel.envelope import lower_envelope, lowest_segments, refined
 from .kernel.keel import KeelLine
 from .planecut import plane_index
+from .reduce import row_max, row_min
 
 __all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
 
@@ -259,7 +260,7 @@ def _face_reach(hull) -> float:
 
     def reach() -> float:
         x = hull.vertices[:, 0][hull.faces]
-        return float((x.max(axis=1) - x.min(axis=1)).max())
+        return float((row_max(x) - row_min(x)).max())
 
     return hull.cache[FACE_REACH].get(reach)
 
@@ -427,7 +428,7 @@ def _silhouette_ends(hull) -> np.ndarray:
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     use = np.flatnonzero(both[directed[:, 0]] & both[directed[:, 1]])
     directed = directed[use]
-    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    lo, hi = row_min(directed), row_max(directed)
     order = np.argsort(lo.astype(np.int64) * len(v) + hi)
     face = (use // 3)[order]
     # a closed manifold uses each edge twice: the two uses are neighbours once sorted

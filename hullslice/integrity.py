@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from .errors import MeshError
+from .reduce import bounds, row_max, row_min
 
 __all__ = ["ABS_TOL", "REL_TOL", "STATIONS", "check_sections_match_volume", "signed_section_areas"]
 
@@ -63,7 +64,7 @@ def signed_section_areas(v: np.ndarray, f: np.ndarray, x: np.ndarray) -> np.ndar
         cross the plane. A vertex on the plane counts as below it, for every face alike.
     """
     tx = v[:, 0][f]  # (m, 3): only the faces a plane crosses are gathered whole
-    lo, hi = tx.min(axis=1), tx.max(axis=1)
+    lo, hi = row_min(tx), row_max(tx)
     del tx
     out = np.zeros(len(x))
     for k, h in enumerate(np.asarray(x, dtype=np.float64)):
@@ -118,7 +119,7 @@ def check_sections_match_volume(v: np.ndarray, f: np.ndarray, manifold, name: st
         The two areas of a section differ by more than :data:`REL_TOL` of the largest
         and :data:`ABS_TOL` of the body's size squared.
     """
-    lo, hi = v.min(axis=0), v.max(axis=0)
+    lo, hi = bounds(v)
     size = float(np.linalg.norm(hi - lo))
     length = float(hi[0] - lo[0])
     if length <= 0.0:

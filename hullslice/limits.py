@@ -17,6 +17,7 @@ import numpy as np
 
 from .constants import LENGTH_UNITS, MAX_SLICES, MAX_STEPS
 from .errors import HullsliceWarning, InputError, MeshError, UnitsWarning
+from .reduce import bounds
 
 __all__ = [
     "MASS_OFF_BODY_NOISE",
@@ -309,7 +310,7 @@ def check_precision(
     v = v[used]
     if not np.isfinite(v).all():
         return None
-    lo, hi = v.min(axis=0).astype(np.float64), v.max(axis=0).astype(np.float64)
+    lo, hi = (b.astype(np.float64) for b in bounds(v))
     size = float(np.linalg.norm(hi - lo))
     if size == 0.0:
         return None

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import InputError, MeshError
+from .reduce import bounds, row_max, row_min
 from .topology import mesh_arrays
 
 __all__ = ["Body", "box_note", "cut_to_box", "find_bodies", "keep_faces", "parse_box", "parse_keep"]
@@ -100,7 +101,7 @@ def open_faces(faces: np.ndarray) -> np.ndarray:
     """(m,) bool: the faces with an edge not shared by exactly two faces (open or worse)."""
     f = np.asarray(faces, dtype=np.int64)
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    key = directed.min(axis=1) * (int(f.max()) + 1) + directed.max(axis=1)
+    key = row_min(directed) * (int(f.max()) + 1) + row_max(directed)
     _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
     return (counts[inverse.reshape(-1)] != 2).reshape(-1, 3).any(axis=1)
 
@@ -264,7 +265,7 @@ def cut_to_box(vertices: np.ndarray, faces: np.ndarray, manifold, box, name: str
     cube = manifold3d.Manifold.cube(tuple(hi - lo)).translate(tuple(lo))
     part = manifold ^ cube
     if part.is_empty() or part.volume() <= 0.0:
-        bmin, bmax = vertices.min(axis=0), vertices.max(axis=0)
+        bmin, bmax = bounds(vertices)
         spans = ", ".join(f"{a} {bmin[k]:.6g} to {bmax[k]:.6g}" for k, a in enumerate("xyz"))
         raise InputError(
             f"keep box {','.join(f'{x:g}' for x in np.ravel(np.asarray(box).T))} keeps nothing "

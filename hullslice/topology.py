@@ -11,6 +11,7 @@ import numpy as np
 
 from .constants import TOL
 from .errors import MeshError
+from .reduce import row_max, row_min
 
 __all__ = [
     "MAX_MERGE_PAIRS",
@@ -64,8 +65,8 @@ def edge_use(faces: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     In a closed, consistently oriented surface every edge is used twice, once each way.
     """
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    lo = directed.min(axis=1)
-    hi = directed.max(axis=1)
+    lo = row_min(directed)
+    hi = row_max(directed)
     _, inverse, counts = group(lo * (int(faces.max()) + 1) + hi)
     n_forward = np.bincount(inverse, weights=directed[:, 0] < directed[:, 1])
     return counts, n_forward
@@ -167,12 +168,20 @@ def drop_repeated_faces(f: np.ndarray) -> tuple[np.ndarray, int]:
     # rotate each triangle so that its smallest index comes first: the winding is kept
     r = np.argmin(f, axis=1)
     rolled = f[np.arange(len(f))[:, None], (r[:, None] + np.arange(3)) % 3]
-    unique, inverse = unique_rows(rolled.astype(np.float64))  # exact below 2^53 vertices
-    if len(unique) == len(f):
+    top = int(f.max()) + 1 if len(f) else 1
+    if top <= 1 << 21:  # the three indices packed into one integer: grouped exactly
+        r0, r1, r2 = (rolled[:, k].astype(np.int64) for k in range(3))
+        key = (r0 << 42) | (r1 << 21) | r2
+        _, inverse, counts = group(key)
+        n_unique = len(counts)
+    else:
+        unique, inverse = unique_rows(rolled.astype(np.float64))  # exact below 2^53 vertices
+        n_unique = len(unique)
+    if n_unique == len(f):
         return f, 0
-    first = np.full(len(unique), len(f))
+    first = np.full(n_unique, len(f))
     np.minimum.at(first, inverse, np.arange(len(f)))
-    return f[np.sort(first)], len(f) - len(unique)
+    return f[np.sort(first)], len(f) - n_unique
 
 
 def drop_unused_vertices(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -227,8 +236,8 @@ def shell_sizes(v: np.ndarray, f: np.ndarray, labels: np.ndarray, n: int) -> np.
     # and maxima as taken corner by corner)
     order = np.argsort(labels, kind="stable") if n > 1 else slice(None)
     starts = np.concatenate(([0], np.cumsum(counts)[:-1]))
-    lo = np.minimum.reduceat(tri.min(axis=1)[order], starts, axis=0)
-    hi = np.maximum.reduceat(tri.max(axis=1)[order], starts, axis=0)
+    lo = np.minimum.reduceat(row_min(tri)[order], starts, axis=0)
+    hi = np.maximum.reduceat(row_max(tri)[order], starts, axis=0)
     return np.linalg.norm(hi - lo, axis=1)
 
 
@@ -311,7 +320,7 @@ def orient_consistently(faces: np.ndarray, name: str) -> tuple[np.ndarray, int]:
     m = len(faces)
     directed = faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     owner = np.repeat(np.arange(m), 3)
-    lo, hi = directed.min(axis=1), directed.max(axis=1)
+    lo, hi = row_min(directed), row_max(directed)
     order = np.argsort(lo * (int(faces.max()) + 1) + hi, kind="stable")
     a, b = order[0::2], order[1::2]  # the two uses of each edge, side by side
     fa, fb = owner[a], owner[b]

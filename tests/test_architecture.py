@@ -25,6 +25,7 @@ LAYERS: dict[str, int] = {
     "hullslice.errors": 0,
     "hullslice.constants": 0,
     "hullslice.limits": 0,
+    "hullslice.reduce": 0,
     "hullslice.safety": 0,
     "hullslice.paths": 0,
     "hullslice.atomic": 0,

@@ -119,3 +119,27 @@ def test_shell_sizes_are_each_shells_box_corner_by_corner(n):
     # a label with no face: an empty box, infinitely large
     sizes = shell_sizes(v, f, labels, n + 1)
     assert np.array_equal(sizes[:n], np.linalg.norm(hi - lo, axis=1)) and sizes[n] == np.inf
+
+
+@pytest.mark.parametrize("top", [10, 1000, 2**21, 2**21 + 5])
+def test_repeated_faces_are_found_by_packed_indices_as_by_rows(top, monkeypatch):
+    """Faces' indices packed into one integer (below 2**21 vertices) against the rows'
+    exact grouping: the same faces kept, the same count dropped."""
+    from hullslice import topology
+
+    rng = np.random.default_rng(top)
+    f = rng.integers(0, top, size=(3000, 3))
+    f = np.concatenate([f, f[rng.integers(0, 3000, 200)][:, [1, 2, 0]], f[:40]]).astype(np.int32)
+    packed = topology.drop_repeated_faces(f)
+    monkeypatch.setattr(topology, "group", lambda key: (_ for _ in ()).throw(AssertionError))
+    if top <= 2**21:
+        with pytest.raises(AssertionError):  # the packed path was the one taken
+            topology.drop_repeated_faces(f)
+    monkeypatch.undo()
+    r = np.argmin(f, axis=1)
+    rolled = f[np.arange(len(f))[:, None], (r[:, None] + np.arange(3)) % 3]
+    unique, inverse = topology.unique_rows(rolled.astype(np.float64))
+    first = np.full(len(unique), len(f))
+    np.minimum.at(first, inverse, np.arange(len(f)))
+    assert packed[1] == len(f) - len(unique) > 0
+    assert np.array_equal(packed[0], f[np.sort(first)])

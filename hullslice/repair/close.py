@@ -38,6 +38,7 @@ import numpy as np
 
 from ..constants import TOL
 from ..errors import MeshError
+from ..reduce import bounds, row_max, row_min
 from ..topology import (
     drop_repeated_faces,
     drop_unused_vertices,
@@ -150,11 +151,11 @@ def _stitch(v: np.ndarray, f: np.ndarray) -> tuple[np.ndarray, np.ndarray, int]:
     if n_open == 0:
         return v, f, 0
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    key = directed.min(axis=1) * (int(f.max()) + 1) + directed.max(axis=1)
+    key = row_min(directed) * (int(f.max()) + 1) + row_max(directed)
     _, inverse, counts = np.unique(key, return_inverse=True, return_counts=True)
     rim = np.unique(directed[counts[inverse.reshape(-1)] == 1])  # vertices on open edges
     tree = cKDTree(v[rim])
-    scale = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    scale = float(np.linalg.norm(np.subtract(*bounds(v)[::-1])))
     best = (n_open, f, 0)
     tol = TOL.merge * scale
     while tol <= TOL.merge_max * scale * (1.0 + 1e-9):

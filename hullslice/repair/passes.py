@@ -26,6 +26,7 @@ import numpy as np
 from ..constants import TOL
 from ..errors import MeshError, MeshRepairWarning, OpenMeshError
 from ..integrity import check_sections_match_volume
+from ..reduce import bounds
 from ..topology import (
     check_finite,
     drop_repeated_faces,
@@ -106,7 +107,7 @@ def _check_extent(s: MeshState) -> None:
     """Refuses a mesh at one point, or so far from the origin that its coordinates do not
     resolve it."""
     v, name = s.vertices, s.name
-    size = float(np.linalg.norm(v.max(axis=0) - v.min(axis=0)))
+    size = float(np.linalg.norm(np.subtract(*bounds(v)[::-1])))
     if size == 0.0:
         raise MeshError(f"mesh {name!r}: all vertices are at one point")
     reach = float(np.abs(v).max())

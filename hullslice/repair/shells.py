@@ -20,6 +20,7 @@ import numpy as np
 
 from ..constants import TOL
 from ..parts import face_labels, open_faces
+from ..reduce import bounds, row_max, row_min
 from ..topology import drop_unused_vertices, shell_volumes, unique_rows
 
 __all__ = ["Outcome", "close_each", "edge_shells", "fill"]
@@ -65,7 +66,8 @@ class Outcome:
     def extents(self) -> np.ndarray:
         """(3,) float: the shell's bounding box, mesh units."""
         used = self.vertices[np.unique(self.faces)]
-        return used.max(axis=0) - used.min(axis=0)
+        lo, hi = bounds(used)
+        return hi - lo
 
     @property
     def area_added(self) -> float:
@@ -94,7 +96,7 @@ def fill(pymeshfix, v: np.ndarray, f: np.ndarray, size: float):
     tm.set_quiet(1)
     # MeshFix works about the shell's own centre: its result does not depend on where the
     # shell lies
-    centre = 0.5 * (v.min(axis=0) + v.max(axis=0))
+    centre = 0.5 * np.add(*bounds(v))
     tm.load_array(
         np.array(v - centre, dtype=np.float64, order="C"), np.array(f, dtype=np.int32, order="C")
     )
@@ -126,7 +128,7 @@ def edge_shells(f: np.ndarray) -> tuple[int, np.ndarray]:
     m = len(f)
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
     owner = np.repeat(np.arange(m), 3)
-    key = directed.min(axis=1) * (int(f.max()) + 1) + directed.max(axis=1)
+    key = row_min(directed) * (int(f.max()) + 1) + row_max(directed)
     order = np.argsort(key, kind="stable")
     sk = key[order]
     start = np.ones(len(sk), dtype=bool)
@@ -144,7 +146,7 @@ def _outcome(pymeshfix, v, f, split: bool = False) -> Outcome:
     """One shell closed, or not: its volume is judged against its own size, not against
     the whole mesh's (a part far away does not make a small shell flat)."""
     used = v[np.unique(f)]
-    size = float(np.linalg.norm(used.max(axis=0) - used.min(axis=0)))
+    size = float(np.linalg.norm(np.subtract(*bounds(used)[::-1])))
     n_open = int((np.bincount(_edge_groups(f)) == 1).sum())
     if n_open == 0 and not open_faces(f).any():
         vol = _volume(v, f)
@@ -162,7 +164,7 @@ def _outcome(pymeshfix, v, f, split: bool = False) -> Outcome:
 
 def _edge_groups(f: np.ndarray) -> np.ndarray:
     directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-    key = directed.min(axis=1) * (int(f.max()) + 1) + directed.max(axis=1)
+    key = row_min(directed) * (int(f.max()) + 1) + row_max(directed)
     _, inverse = np.unique(key, return_inverse=True)
     return inverse.reshape(-1)
 
