@@ -39,6 +39,7 @@ import numpy as np
 
 from . import planecut_loops
 from .caching import Entry, Once
+from .reduce import row_max, row_min
 
 __all__ = ["PLANE_INDEX", "PlaneIndex", "plane_index"]
 
@@ -128,8 +129,8 @@ class PlaneIndex:
         m = len(f)
         corner = v[f]  # (m, 3, 3)
         x, z = corner[:, :, 0], corner[:, :, 2]
-        fx0, fx1 = x.min(axis=1), x.max(axis=1)
-        fz0, fz1 = z.min(axis=1), z.max(axis=1)
+        fx0, fx1 = row_min(x), row_max(x)
+        fz0, fz1 = row_min(z), row_max(z)
         nb = int(min(MAX_BINS, max(1, m // FACES_PER_BIN)))
         zc = 0.5 * (fz0 + fz1)
         lo, hi = float(zc.min()), float(zc.max())
@@ -141,7 +142,7 @@ class PlaneIndex:
         f = f[order]
         # the undirected edges: corner k to k + 1, numbered by (low, high) vertex
         directed = f[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2)
-        key = directed.min(axis=1) * len(v) + directed.max(axis=1)
+        key = row_min(directed) * len(v) + row_max(directed)
         _, edge = np.unique(key, return_inverse=True)
         # numbered in order of first use by the faces (bin by bin, along x), so that the
         # edges of a station's faces lie near each other in the loops' scratch
@@ -402,7 +403,8 @@ def _contours(
     # repeated points dropped: a vertex on the plane (reached from several edges), or
     # points closer than ``merge`` along both axes (a plane through a ring of vertices up
     # to rounding; manifold3d's grid joins them too)
-    keep = np.any(np.abs(ordered - ordered[prev]) > merge, axis=1)
+    far = np.abs(ordered - ordered[prev]) > merge
+    keep = far[:, 0] | far[:, 1]
     ordered, ring = ordered[keep], ring[keep]
     length = np.bincount(ring, minlength=len(roots))
     first = np.cumsum(length) - length

@@ -25,6 +25,7 @@ from ..caching import Entry, Once
 from ..geometry import Frame, keel_line_of, silhouette_ends
 from ..kernel.keel import KeelLine
 from ..parts import face_labels
+from ..reduce import row_max, row_min
 
 __all__ = ["Pieces", "own_keels", "pieces", "widest_beam"]
 
@@ -73,8 +74,8 @@ def pieces(hull) -> Pieces:
         vertex[f.ravel()] = np.repeat(labels, 3)
         y = v[:, 1][f]
         y_min, y_max = np.full(n, np.inf), np.full(n, -np.inf)
-        np.minimum.at(y_min, labels, y.min(axis=1))
-        np.maximum.at(y_max, labels, y.max(axis=1))
+        np.minimum.at(y_min, labels, row_min(y))
+        np.maximum.at(y_max, labels, row_max(y))
         label = vertex[silhouette_ends(hull)[:, 0]]
         edges = [np.flatnonzero(label == k) for k in range(n)]
         outlined = np.array([len(e) > 0 for e in edges])
