@@ -314,8 +314,7 @@ def _side_keel(
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
-    compiled = planecut_loops.compiled if keel_loops() else lambda name: None
-    side = compiled("side")
+    side = loops_in_use("side")
     if side is None:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         return lower_envelope(ta, tb, merge=merge), ta[:, 1], tb[:, 1]
@@ -324,6 +323,8 @@ def _side_keel(
     xa, za, xb, zb, seg, xs, mid, z, zm = side(
         a, b, float(g[0]), float(g[2]), float(c), float(s), order
     )
+    # the loops are in use (the side view's are): the others too
+    compiled = planecut_loops.compiled
     refine, runs = compiled("refine"), compiled("runs")
     if refine is not None:  # most pitches: only close break points to merge, by loops
         ok, xr, zr = refine(xs, z, zm, merge)
