@@ -40,7 +40,7 @@ from .caching import LRU, Cache, Entry, Once
 from .constants import TOL
 from .errors import InputError
 from .kernel.envelope import lower_envelope, lowest_segments, refined
-from .kernel.keel import KeelLine
+from .kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine
 from .planecut import plane_index
 from .reduce import row_max, row_min
 
@@ -271,9 +271,7 @@ def _frame(hull, pitch: float) -> Frame:
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
     a, b = silhouette_edges(hull)
-    keel, za, zb = _side_keel(hull, a, b, pitch, _side_order)
-    lowest = float(min(za.min(), zb.min()))
-    highest = float(max(za.max(), zb.max()))
+    keel, lowest, highest = _side_keel(hull, a, b, pitch, _side_order)
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
     bounds = hull.bounds
@@ -307,36 +305,38 @@ def _frame(hull, pitch: float) -> Frame:
 
 def _side_keel(
     hull, a: np.ndarray, b: np.ndarray, pitch: float, order_of: Callable
-) -> tuple[KeelLine, np.ndarray, np.ndarray]:
+) -> tuple[KeelLine, float, float]:
     """The keel line at ``pitch`` of the silhouette edges ``a`` to ``b`` (end points, m),
-    and their ends' heights: by the compiled loops where they are in use (from the order
-    ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower envelope."""
+    and their ends' lowest and highest heights (m): by the compiled loops where they are
+    in use (from the order ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower
+    envelope."""
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
-    side = loops_in_use("side")
-    if side is None:
+    made = loops_in_use("frame_keel")
+    if made is None:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
-        return lower_envelope(ta, tb, merge=merge), ta[:, 1], tb[:, 1]
-    # the turn and the keel line's search in one compiled call
+        za, zb = ta[:, 1], tb[:, 1]
+        keel = lower_envelope(ta, tb, merge=merge)
+        return keel, float(min(za.min(), zb.min())), float(max(za.max(), zb.max()))
+    # the turn, the keel line's search, the merge of its close break points and its runs
+    # in one compiled call (the loops are in use: the others too)
     order = order_of(hull, 2 * len(a))
-    xa, za, xb, zb, seg, xs, mid, z, zm = side(
-        a, b, float(g[0]), float(g[2]), float(c), float(s), order
-    )
-    # the loops are in use (the side view's are): the others too
+    ok, side, low, high, xr, zr, runs = made(
+        a, b, float(g[0]), float(g[2]), float(c), float(s), order, merge, END_FACE_SLOPE,
+        STEEP_SLOPE,
+    )  # fmt: skip
     compiled = planecut_loops.compiled
-    refine, runs = compiled("refine"), compiled("runs")
-    if refine is not None:  # most pitches: only close break points to merge, by loops
-        ok, xr, zr = refine(xs, z, zm, merge)
-        if ok:
-            return KeelLine(xr, zr, runs), za, zb
+    if ok:  # most pitches: only close break points to merge
+        return KeelLine(xr, zr, compiled("runs"), runs), float(low), float(high)
+    xa, za, xb, zb, seg, xs, mid, z, zm = side
     walk, none = compiled("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
         heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731
     else:
         turned = lambda: (_turn(a - g, c, s), _turn(b - g, c, s))  # noqa: E731
         heights = lowest_segments(make=turned)
-    return refined(xs, mid, z, zm, merge, heights, runs), za, zb
+    return refined(xs, mid, z, zm, merge, heights, compiled("runs")), float(low), float(high)
 
 
 def _side_order(hull, n: int, piece: int | None = None) -> np.ndarray:
@@ -358,7 +358,7 @@ def _side_order(hull, n: int, piece: int | None = None) -> np.ndarray:
 
 
 def loops_in_use(name: str) -> Callable | None:
-    """The compiled loops ``name`` of :data:`hullslice.planecut_loops.LOOPS` (``"side"``,
+    """The compiled loops ``name`` of :data:`hullslice.planecut_loops.LOOPS` (``"frame_keel"``,
     ``"walk"`` and ``"runs"`` for the keel line, ``"outline"``, ``"wetted"``) where
     :func:`keel_loops` holds, else None (numpy's path): a new pitch's keel line, outline
     and wetted properties by the compiler once its cut is."""

@@ -7,6 +7,9 @@ over every end abscissa and every interval's middle, as
 pair, and a minimum, which does not depend on the order (but for the sign of a zero where
 two segments tie at one: numpy keeps the last, the loops the first). :func:`envelope_loops`
 does the same on edges already turned, :func:`lowest_loops` over given abscissae.
+:func:`frame_keel_loops` makes a new pitch's keel line in one call: the side view's
+loops, the merge of its close break points (:func:`refine_loops`), its runs
+(:func:`runs_loops`) and the turned ends' lowest and highest heights.
 """
 
 from __future__ import annotations
@@ -18,6 +21,8 @@ import numpy as np
 __all__ = [
     "abscissae_loops",
     "envelope_loops",
+    "extremes_loops",
+    "frame_keel_loops",
     "keel_arrays_loops",
     "lower_loops",
     "lowest_loops",
@@ -392,3 +397,39 @@ def refine_loops(xs, z, zm, merge):
     if g == n:  # none closer than merge: numpy's path keeps the arrays
         return True, xs, z
     return True, out_x[:g], out_z[:g]
+
+
+def extremes_loops(za, zb):
+    """``(min(za.min(), zb.min()), max(za.max(), zb.max()))`` as numpy and Python take
+    them: each array's minimum and maximum with a NaN kept (numpy's), then Python's
+    ``min`` and ``max`` of the two (the first unless the second is lower, or higher).
+    Both arrays have at least one value."""
+    lo_a, hi_a = za[0], za[0]
+    for i in range(1, len(za)):
+        v = za[i]
+        lo_a = lo_a if (lo_a <= v or lo_a != lo_a) else v
+        hi_a = hi_a if (hi_a >= v or hi_a != hi_a) else v
+    lo_b, hi_b = zb[0], zb[0]
+    for i in range(1, len(zb)):
+        v = zb[i]
+        lo_b = lo_b if (lo_b <= v or lo_b != lo_b) else v
+        hi_b = hi_b if (hi_b >= v or hi_b != hi_b) else v
+    return (lo_b if lo_b < lo_a else lo_a), (hi_b if hi_b > hi_a else hi_a)
+
+
+def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
+    """A new pitch's keel line in one call: :func:`side_view_loops` (its arguments the
+    first seven), :func:`refine_loops` of its lower envelope with ``merge`` and
+    :func:`runs_loops` of the refined break points (``end_face`` and ``steep_slope`` as
+    there), with the turned ends' lowest and highest heights (:func:`extremes_loops`).
+
+    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays of
+    :func:`side_view_loops`, ``ok`` and the break points ``x``, ``z`` as
+    :func:`refine_loops` gives them (where ``ok`` is False the refinement has more to do,
+    numpy's, and ``runs`` is not meaningful), ``runs`` the eleven values of
+    :func:`runs_loops`."""
+    side = side_view_loops(a, b, gx, gz, c, s, order)
+    low, high = extremes_loops(side[1], side[3])
+    ok, x, z = refine_loops(side[5], side[7], side[8], merge)
+    runs = runs_loops(x, z, end_face, steep_slope)
+    return ok, side, low, high, x, z, runs

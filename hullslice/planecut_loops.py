@@ -29,6 +29,8 @@ from .held_loops import held_loops, pitch_entries_loops, pitch_loops, table_entr
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
+    extremes_loops,
+    frame_keel_loops,
     keel_arrays_loops,
     lower_loops,
     lowest_loops,
@@ -323,6 +325,8 @@ LOOPS["abscissae"] = abscissae_loops
 LOOPS["keel_arrays"] = keel_arrays_loops
 LOOPS["row"] = row_loops
 LOOPS["refine"] = refine_loops
+LOOPS["extremes"] = extremes_loops
+LOOPS["frame_keel"] = frame_keel_loops
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into their module's namespace and the caller's (numba calls compiled functions
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
@@ -330,6 +334,8 @@ LOOPS["refine"] = refine_loops
 #: What the fused evaluation's loops call, helpers before callers.
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
          "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
+#: What the side view's loops call, helpers before callers.
+_SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 CALLS = {
     "held": (*_HELD, "h_table"),
     "pitch": (*_HELD, "wetted", "h_entries"),
@@ -337,7 +343,8 @@ CALLS = {
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
-    "side": ("search", "lowest", "sorted", "abscissae", "lower", "walk"),
+    "side": _SIDE,
+    "frame_keel": (*_SIDE, "side", "refine", "runs", "extremes"),
     "ranges": ("search", "gallop"),
     "outline": ("order",),
     "keel_arrays": ("row",),

@@ -2,8 +2,8 @@
 is installed) against numpy: its runs (:func:`runs_loops` against :meth:`_Runs.of`, the
 same arrays to the last bit, on every catalogued body's keel line at pitches from -20 to
 40 degrees and on lines made to hold what a keel line can: gaps between parts, steps, end
-faces, a fan of micro-facets, no bottom at all), the ends' sort from an earlier order, and
-the walk along the segments."""
+faces, a fan of micro-facets, no bottom at all), the ends' sort from an earlier order,
+the walk along the segments, and a new pitch's keel line made in one call."""
 
 from __future__ import annotations
 
@@ -13,7 +13,7 @@ import pytest
 from hullslice import planecut_loops
 from hullslice.geometry import _turn, silhouette_edges
 from hullslice.kernel.envelope import lower_envelope
-from hullslice.kernel.keel import _Runs
+from hullslice.kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, _Runs
 
 from .test_planecut import BODIES, _same
 
@@ -132,3 +132,60 @@ def test_the_walk_along_the_segments_equals_the_searches():
     for walk in _keel_loops("walk"):
         z, zm = walk(xs, mid, xa, za, xb, zb, seg)
         assert _same(z, want[0]) and _same(zm, want[1])
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_a_new_pitchs_keel_line_in_one_call_equals_numpys(name):
+    """:func:`frame_keel_loops` (as Python, and compiled where numba is installed), the
+    keel line of a new pitch in one call, gives what numpy's path makes to the last bit,
+    at pitches from -20 to 40 degrees: the keel line's break points (where only close ones
+    merge; elsewhere it says so, and numpy's refinement takes over), its runs, and the
+    body's lowest and highest points in the side view."""
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    merge = 1e-12 * hull.size
+    ok_seen = 0
+    for made in _keel_loops("frame_keel"):
+        order = np.arange(2 * len(a))
+        for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
+            c, s = np.cos(pitch), np.sin(pitch)
+            ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+            args = (float(g[0]), float(g[2]), float(c), float(s))
+            ok, side, low, high, x, z, runs = made(
+                a, b, *args, order, merge, END_FACE_SLOPE, STEEP_SLOPE
+            )
+            assert _same(side[1], ta[:, 1]) and _same(side[3], tb[:, 1])
+            assert low == min(ta[:, 1].min(), tb[:, 1].min())
+            assert high == max(ta[:, 1].max(), tb[:, 1].max())
+            if not ok:
+                continue
+            ok_seen += 1
+            want = lower_envelope(ta, tb, merge=merge)
+            assert _same(x, want.x) and _same(z, want.z)
+            got = _Runs.from_loops(x, runs)
+            assert got is not None
+            for field in FIELDS:
+                assert _same(getattr(got, field), getattr(want._runs, field)), field
+    assert ok_seen > 0  # most pitches only merge
+
+
+def test_the_extremes_by_loops_are_numpys_then_pythons():
+    """:func:`extremes_loops` gives ``min(za.min(), zb.min())`` and ``max(za.max(),
+    zb.max())``: numpy's minimum and maximum of each (a NaN kept), Python's of the two
+    (the first unless the second is lower, or higher; a NaN first stays)."""
+    rng = np.random.default_rng(3)
+    cases = [(rng.normal(size=50), rng.normal(size=40)), (np.array([1.0]), np.array([2.0]))]
+    for where in ("a", "b", "both"):
+        za, zb = rng.normal(size=30), rng.normal(size=30)
+        if where in ("a", "both"):
+            za[7] = np.nan
+        if where in ("b", "both"):
+            zb[0] = np.nan
+        cases.append((za, zb))
+    for fn in _keel_loops("extremes"):
+        for za, zb in cases:
+            lo, hi = fn(za, zb)
+            want_lo, want_hi = min(za.min(), zb.min()), max(za.max(), zb.max())
+            assert _same(np.float64(lo), np.float64(want_lo))
+            assert _same(np.float64(hi), np.float64(want_hi))

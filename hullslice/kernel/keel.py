@@ -47,10 +47,16 @@ class KeelLine:
     #: Finds the runs' arrays instead of numpy, when given: ``loops(x, z, END_FACE_SLOPE,
     #: STEEP_SLOPE)`` as :func:`hullslice.keel_loops.runs_loops` (compiled: the same arrays).
     loops: InitVar[Callable | None] = None
+    #: The runs' arrays already found by those loops for these break points, when given
+    #: (``loops``' eleven values: a new pitch's are found with its keel line, see
+    #: :func:`hullslice.keel_loops.frame_keel_loops`).
+    runs: InitVar[tuple | None] = None
 
-    def __post_init__(self, loops: Callable | None) -> None:
-        runs = _Runs.of(self.x, self.z, loops)
-        object.__setattr__(self, "_runs", runs)  # frozen: set once here
+    def __post_init__(self, loops: Callable | None, runs: tuple | None) -> None:
+        made = None if runs is None else _Runs.from_loops(self.x, runs)
+        if made is None:
+            made = _Runs.of(self.x, self.z, loops)
+        object.__setattr__(self, "_runs", made)  # frozen: set once here
 
     def at(self, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """Keel height and slope ``dZ_k/dX`` at relative stations ``x``.
@@ -259,12 +265,9 @@ class _Runs:
     @classmethod
     def of(cls, x: np.ndarray, z: np.ndarray, loops: Callable | None = None) -> _Runs:
         if loops is not None:
-            ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = loops(
-                x, z, END_FACE_SLOPE, STEEP_SLOPE
-            )
-            if ok:
-                chords = (x, height, lo, hi) if bottom else None
-                return cls(mid, cont, starts, offsets, steep, bend, chords)
+            made = cls.from_loops(x, loops(x, z, END_FACE_SLOPE, STEEP_SLOPE))
+            if made is not None:
+                return made
         n = len(x) - 1
         with np.errstate(invalid="ignore", divide="ignore"):
             mid, slopes = 0.5 * (x[1:] + x[:-1]), np.diff(z) / np.diff(x)
@@ -294,6 +297,17 @@ class _Runs:
         turn = np.where(new[1:] | ~(leaning[1:] | leaning[:-1]), 0.0, np.diff(fslopes))
         bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
         return cls(fmid, cont, starts, offsets, steep, bend, _chords(x, z, finite & ~steep))
+
+    @classmethod
+    def from_loops(cls, x: np.ndarray, out: tuple) -> _Runs | None:
+        """The runs of break points ``x`` from what
+        :func:`~hullslice.keel_loops.runs_loops` gave for them, or None where it could not
+        (no facet with a finite slope: numpy's path)."""
+        ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = out
+        if not ok:
+            return None
+        chords = (x, height, lo, hi) if bottom else None
+        return cls(mid, cont, starts, offsets, steep, bend, chords)
 
     def _offset(self, x: np.ndarray) -> np.ndarray | float:
         if not len(self.starts):
