@@ -17,12 +17,14 @@ wetted) are both shown:
 - ``window, rest``: the kept cut's own bookkeeping around those three;
 - ``evaluation``: the fused evaluation of the stations (the keel line's arrays, the wetted
   properties, the solver's sums; ``FusedEvaluation._pitch`` less the window);
+- ``one call``: a stage whose sums alone are needed (the three later stages of a step),
+  made in one compiled call from the keel line to the sums
+  (``FusedEvaluation.stage_totals``); the parts above are then the first stage's;
 - ``rest``: everything else of the step over its four stages (the first stage's full
   result, the record, the integrator, the calls between the parts).
 
-The compiled kernels' share (ranges, cut, outline and the evaluation's loops) is what a
-stage would still cost with all of the Python between them gone. Each wrapper adds about
-a microsecond to the part it times. It needs the compiled loops (the ``fast`` extra).
+Each wrapper adds about a microsecond to the part it times. It needs the compiled loops
+(the ``fast`` extra).
 """
 
 from __future__ import annotations
@@ -50,7 +52,7 @@ CASE: dict[str, Any] = {
     "slicing": "fixed",
     "stop_on": (),
 }
-PARTS = ("frame", "ranges", "cut", "outline", "window, rest", "evaluation", "rest")
+PARTS = ("frame", "ranges", "cut", "outline", "window, rest", "evaluation", "one call", "rest")
 
 
 class Clock:
@@ -104,6 +106,7 @@ def run(t_end: float, window: int) -> tuple[Clock, int]:
     clock.wrap_classmethod(outline.Outline, "of", "outline")
     clock.wrap(fixed.FixedCut, "window", "window")
     clock.wrap(fused.FusedEvaluation, "_pitch", "pitch")
+    clock.wrap(fused.FusedEvaluation, "stage_totals", "one call")
     last = [time.perf_counter()]
 
     def progress(t: float, _t_end: float) -> None:
@@ -124,7 +127,7 @@ def shares(clock: Clock, w: int) -> dict[str, float]:
     s, n = clock.spent[w], clock.stages[w]
     window = s["window"] - s["ranges"] - s["cut"] - s["outline"]
     evaluation = s["pitch"] - s["window"]
-    rest = clock.wall[w] - s["frame"] - s["pitch"]
+    rest = clock.wall[w] - s["frame"] - s["pitch"] - s["one call"]
     parts = {
         "frame": s["frame"],
         "ranges": s["ranges"],
@@ -132,6 +135,7 @@ def shares(clock: Clock, w: int) -> dict[str, float]:
         "outline": s["outline"],
         "window, rest": window,
         "evaluation": evaluation,
+        "one call": s["one call"],
         "rest": rest,
     }
     return {k: v / n * 1e6 for k, v in parts.items()}
@@ -145,20 +149,20 @@ def main() -> None:
     clock, steps = run(args.t_end, args.window)
     print(f"envelope case: {MESH.name}, free pitch, {steps} steps of 1 ms, 32 fixed slices")
     print("microseconds a stage (4 stages a step), by window of steps; shares of the stage")
-    head = f"{'steps':<10}" + "".join(f"{p:>14}" for p in PARTS) + f"{'stage':>9}"
+    head = f"{'steps':<10}" + "".join(f"{p:>13}" for p in PARTS) + f"{'stage':>9}"
     print(head)
     for w in sorted(clock.stages):
         us = shares(clock, w)
         total = sum(us.values())
         lo, hi = w * args.window, min((w + 1) * args.window, steps) - 1
-        cells = "".join(f"{us[p]:8.0f} {100 * us[p] / total:3.0f}%" for p in PARTS)
+        cells = "".join(f"{us[p]:7.0f} {100 * us[p] / total:3.0f}%" for p in PARTS)
         print(f"{lo:>4}-{hi:<5}" + cells + f"{total:9.0f}")
     spent = {p: sum(shares(clock, w)[p] * clock.stages[w] for w in clock.stages) for p in PARTS}
     stages = sum(clock.stages.values())
     total = sum(spent.values()) / stages
-    kernels = (spent["ranges"] + spent["cut"] + spent["outline"]) / stages
-    print(f"whole case: {total:.0f} us a stage; the cut's ranges, its loops and the outline "
-          f"{kernels:.0f} us ({100 * kernels / total:.0f} %)")  # fmt: skip
+    one = spent["one call"] / stages
+    print(f"whole case: {total:.0f} us a stage; the one-call stages {one:.0f} us of it "
+          f"({100 * one / total:.0f} %)")  # fmt: skip
 
 
 if __name__ == "__main__":

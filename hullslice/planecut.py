@@ -257,7 +257,7 @@ class PlaneIndex:
         c, s = np.cos(pitch), np.sin(pitch)
         loops = _loops(path)
         if loops is not None:
-            compiled = loops is not planecut_loops.cut_loops
+            compiled = loops is not planecut_loops.LOOPS["cut"]
             first, last = self.ranges(x_rel, pitch, cg, compiled=compiled)
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
         station, face = self.candidates(x_rel, pitch, cg)
@@ -350,8 +350,8 @@ def _loops(path: str) -> Callable | None:
     """The loops :meth:`PlaneIndex.cut` runs on a ``path``: None for numpy's."""
     if path == "numpy":
         return None
-    if path == "python":
-        return planecut_loops.cut_loops
+    if path == "python":  # the Python function (once compiled for the stage loops, the
+        return planecut_loops.LOOPS["cut"]  # module's name holds numba's)
     if path not in PATHS:
         raise ValueError(f"path {path!r} is unknown; choose one of {', '.join(PATHS)}")
     fn = planecut_loops.compiled() if path == "numba" or planecut_loops.available() else None

@@ -10,6 +10,9 @@ numba (the ``fast`` extra, ``pip install hullslice[fast]``) it is the kernel's f
 numba is imported only when :func:`compiled` is first called, never by ``import
 hullslice``; ``HULLSLICE_NUMBA=0`` in the environment keeps numpy's path.
 
+:func:`stage_loops` chains these with the keel line's, the outline's and the fused
+evaluation's loops: a free-fall solver's sums at a new pitch in one call.
+
 The keel line's loops (the lowest of the side view's segments over each abscissa) are in
 :mod:`hullslice.keel_loops`, and the outline's of the cut's contours (the same outline as
 :meth:`hullslice.kernel.outline.Outline.of`) in :mod:`hullslice.outline_loops`: compiled
@@ -19,6 +22,7 @@ here by name with the others.
 from __future__ import annotations
 
 import importlib.util
+import math
 import os
 import threading
 from collections.abc import Callable
@@ -69,6 +73,13 @@ __all__ = [
     "outline_loops",
     "side_view_loops",
 ]
+
+#: The digest of the sources of :func:`stage_loops`' helpers in other files
+#: (``keel_loops.py``, ``outline_loops.py``, ``held_loops.py``, which holds its own
+#: helpers' digest). numba's cache of the loops goes stale when this file changes, not when
+#: those do: a change of theirs changes this digest too (``tests/test_stage_loops.py``
+#: checks it), so that the cache of :func:`stage_loops` is made again.
+STAGE_HELPERS_DIGEST = "b455f2b8e8087cce"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -237,6 +248,95 @@ def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s
     return first, last
 
 
+def stage_loops(
+    a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
+    key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot,
+    k_out_of, k_in_of, merge, tol, n, c, s, z_cg, w, u, q, fout, iout, scal, opts, a_c, v_c,
+):  # fmt: skip
+    """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
+    (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line
+    (:func:`~hullslice.keel_loops.frame_keel_loops` of the silhouette edges ``a`` to ``b``
+    about the centre of gravity ``g``, ``order`` their ends' order, ``keel_merge``,
+    ``end_face`` and ``steep_slope`` as there) and its arrays
+    (:func:`~hullslice.keel_loops.keel_arrays_loops`); the draft of the centre of gravity
+    at height ``z_cg`` (m) and the water's level; the wetted slices' window; their fixed
+    stations (``n`` slices over the keel line's length) cut by :func:`cut_loops` over the
+    plane index's ranges (:func:`range_loops`; ``key`` to ``slot`` as there, ``merge`` the
+    contours' merge distance) with the cutter's map of :func:`hullslice.geometry._frame`
+    (the body's ``bounds`` and ``scale``); their outline (``tol``, by
+    :func:`~hullslice.outline_loops.outline_loops`); and
+    :func:`~hullslice.held_loops.pitch_loops` on them with
+    the body's velocities ``w``, ``u`` and ``q`` (``fout`` to ``v_c`` as there). ``c`` and
+    ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
+    steps made one by one: the same sums.
+
+    Returns 0 with the sums in ``scal``, or a status where the steps one by one must
+    serve: :data:`~hullslice.slices_loops.STATUS`'s, or 100 (the keel line needs numpy's
+    refinement), 101 (it has no facet with a finite slope), 102 (a contour does not
+    close) or 103 (a section has a hole)."""
+    gx, gy, gz = g[0], g[1], g[2]
+    ok, _, low, high, kx, kz, runs = frame_keel_loops(
+        a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope
+    )
+    if not ok:
+        return 100
+    r_ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = runs
+    if not r_ok:
+        return 101
+    if not bottom:
+        height, lo, hi = np.empty(0), np.empty(0), np.empty(0)
+    keel, runs_arr, chords = keel_arrays_loops(
+        kx, kz, steep, mid, cont, bend, starts, offsets, height, lo, hi
+    )
+    draft = -(low + z_cg)  # ForceModel.totals_at's max(0.0, ...), _run's clip
+    if not draft > 0.0:
+        draft = 0.0
+    if draft > high - low:
+        draft = high - low
+    level = low + draft
+    status, w0, w1 = window_loops(keel, level, n)
+    if status != 0:
+        return status
+    xa, xb = kx[0], kx[len(kx) - 1]  # the fixed stations (Frame.fixed_stations)
+    d = (xb - xa) / n
+    n_cut = w1 - w0
+    x_rel = np.empty(n_cut)
+    for i in range(n_cut):
+        x_rel[i] = xa + ((w0 + i) + 0.5) * d
+    # the cutter's map and origin (geometry._frame)
+    box0 = (bounds[0, 0] + bounds[1, 0]) * 0.5 - gx
+    box1 = (bounds[0, 1] + bounds[1, 1]) * 0.5 - gy
+    box2 = (bounds[0, 2] + bounds[1, 2]) * 0.5 - gz
+    oz = box0 * s + box2 * c
+    oy = box1 + gy
+    m = np.empty((2, 4))
+    m[0, 0], m[0, 1], m[0, 2], m[0, 3] = scale * 0.0, scale * 1.0, scale * 0.0, scale * -oy
+    m[1, 0], m[1, 1], m[1, 2] = scale * s, scale * 0.0, scale * c
+    m[1, 3] = scale * (-(s * gx + c * gz) - oz)
+    first, last = range_loops(
+        key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s, margin, span, x0
+    )
+    points, ring_start, ring_station, closed = cut_loops(
+        first, last, corners, ends, x_rel, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
+    )
+    if closed != 0:
+        return 102
+    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz)
+    if not out[0]:
+        return 103
+    zmin, z_chine, area = out[15], out[18], out[8]
+    stations = np.empty((3, n_cut))
+    for i in range(n_cut):
+        stations[0, i], stations[1, i], stations[2, i] = zmin[i], z_chine[i], area[i]
+    arrays = (out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8], out[9],
+              out[10], out[11], out[12], out[13], out[14], out[18])  # fmt: skip
+    opts[0], opts[1], opts[2], opts[3] = level, w, u, q  # FusedEvaluation._options
+    opts[5], opts[7], opts[8], opts[10] = gx, w0, n_cut, math.inf
+    opts[23] = 1.0 if bottom else 0.0
+    return pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays, a_c,
+                       v_c)  # fmt: skip
+
+
 def gallop_loops(a, lo, hi, v, right):
     """:func:`~hullslice.keel_loops.search_loops` of ``v`` in the sorted ``a[lo:hi]``
     (every value before ``lo`` below ``v``), probing from ``lo`` in steps of 1, 2, 4, ...
@@ -327,6 +427,7 @@ LOOPS["row"] = row_loops
 LOOPS["refine"] = refine_loops
 LOOPS["extremes"] = extremes_loops
 LOOPS["frame_keel"] = frame_keel_loops
+LOOPS["stage"] = stage_loops
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into their module's namespace and the caller's (numba calls compiled functions
 #: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
@@ -336,6 +437,10 @@ _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs"
          "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
+#: What the stage loops call, helpers before callers.
+_STAGE = (*_SIDE, "side", "refine", "runs", "extremes", "frame_keel", "row", "keel_arrays",
+          "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted", "h_entries",
+          "pitch")  # fmt: skip
 CALLS = {
     "held": (*_HELD, "h_table"),
     "pitch": (*_HELD, "wetted", "h_entries"),
@@ -346,6 +451,7 @@ CALLS = {
     "side": _SIDE,
     "frame_keel": (*_SIDE, "side", "refine", "runs", "extremes"),
     "ranges": ("search", "gallop"),
+    "stage": _STAGE,
     "outline": ("order",),
     "keel_arrays": ("row",),
 }

@@ -256,7 +256,7 @@ def test_the_candidate_ranges_by_the_loops_equal_numpy(name):
         args = (index.key, index.bin_start, index.bin_zlo, index.bin_zhi, index.bin_reach, x,
                 float(g[0]), float(g[2]), float(c), float(s), index.margin, index.key_span,
                 index.key_x0)  # fmt: skip
-        got = [planecut_loops.range_loops(*args)]
+        got = [planecut_loops.LOOPS["ranges"](*args)]
         if planecut_loops.available():
             got.append(index.ranges(x, pitch, g, compiled=True))
         for first, last in got:
@@ -283,7 +283,7 @@ def test_the_candidate_ranges_by_the_loops_break_ties_as_numpy():
     want = index.ranges(x, 0.0, np.zeros(3))
     args = (key, start, index.bin_zlo, index.bin_zhi, index.bin_reach, x, 0.0, 0.0, 1.0, 0.0,
             0.25, span, 0.0)  # fmt: skip
-    got = [planecut_loops.range_loops(*args)]
+    got = [planecut_loops.LOOPS["ranges"](*args)]
     if planecut_loops.available():
         got.append(index.ranges(x, 0.0, np.zeros(3), compiled=True))
     for first, last in got:

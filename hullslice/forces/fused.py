@@ -7,7 +7,9 @@ the ``wedge`` deadrise, a curve solver with the paper's pile-up law and polynomi
 (the default ``extended-von-karman``), and a body of one piece whose mass is spread by
 volume. At a held pitch with its waterline table it reads the table; at a new pitch (every
 stage of a free-pitch run) it evaluates the sections of the stations it cuts, as numpy's
-path does. At any evaluation the loops hand back (the first contact, a section in two
+path does; where only the sums are wanted at a pitch the hull has no frame for (the three
+later stages of a free-pitch step), one compiled call makes the keel line, the cut, the
+outline and the sums (:meth:`FusedEvaluation.stage_totals`), with no frame kept. At any evaluation the loops hand back (the first contact, a section in two
 wetted pieces, the evaluation that makes a pitch's table), numpy's path serves. Both give
 the same numbers (to 1e-12; the tests compare them over whole histories); the fused one
 costs some microseconds an evaluation where numpy's costs some hundreds. It needs numba
@@ -26,9 +28,19 @@ import numpy as np
 
 from .. import planecut_loops
 from ..constants import SOUND_WATER, TOL
-from ..geometry import frame
+from ..geometry import (
+    CUTTER_SIZE,
+    FRAMES,
+    KERNEL_MAX_PITCH,
+    MERGE,
+    _side_order,
+    frame,
+    keel_loops,
+    silhouette_edges,
+)
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
+from ..planecut import plane_index
 from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
@@ -121,6 +133,9 @@ class FusedEvaluation:
         # the keel line's arrays by the compiled loops where these are compiled
         compiled = self.loops is not planecut_loops.LOOPS["held"]
         self.pack = planecut_loops.compiled("keel_arrays") if compiled else None
+        # a new pitch's frame, cut, outline and sums in one call, with the compiled loops
+        self.stage = planecut_loops.compiled("stage") if compiled else None
+        self._stage_args: tuple | None = None
         hull = model.hull
         self.hull = hull
         self.key = (model.slices, float(TOL.coordinate * hull.size), model.cutter)
@@ -284,6 +299,37 @@ class FusedEvaluation:
             kept.tables["wedge"] = new
         return new
 
+    def stage_totals(
+        self, pitch: float, z_cg: float, w: float, u: float, q: float
+    ) -> tuple[float, float, float] | None:
+        """:meth:`totals_at` at a pitch (rad) the hull has no frame for (every stage of a
+        free-pitch run), the centre of gravity at height ``z_cg`` (m), all finite: the
+        keel line, the cut, the outline and the sums in one compiled call
+        (:func:`~hullslice.planecut_loops.stage_loops`), with no frame made or kept; the
+        same sums. None where the steps one by one must serve: numpy's loops, another
+        cutter, a pitch with a frame (its kept cut and tables), or a status of the call."""
+        stage = self.stage
+        pitch = float(pitch)
+        if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
+            return None
+        hull = self.hull
+        if hull.cache[FRAMES].get(pitch) is not None or not keel_loops():
+            return None
+        args = self._stage_args
+        if args is None:
+            args = self._stage_args = _stage_arrays(hull, self.key[1], self.model.slices)
+        opts, scal, fout, iout = self._buffers()
+        index = plane_index(hull)
+        c, s = np.cos(pitch), np.sin(pitch)
+        status = stage(
+            args[0], args[1], _side_order(hull, 2 * len(args[0])), *args[2:18], index.scratch(),
+            *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, opts, self.a_c,
+            self.v_c,
+        )  # fmt: skip
+        if status != 0:
+            return None
+        return float(scal[2]), float(scal[4]), float(scal[3])
+
     def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float] | None:
         """The vertical force (N), the moment about the centre of gravity (N m) and the
         horizontal force (N) at a pose and motion, or None where numpy's path must."""
@@ -376,6 +422,22 @@ def _reason_texts(solver, lo: float, hi: float) -> tuple[str, ...]:
         CHINE_REASON,
         STEEP_REASON,
     )
+
+
+def _stage_arrays(hull, tol: float, n: int) -> tuple:
+    """What :func:`~hullslice.planecut_loops.stage_loops` reads of a hull, in its order:
+    all of its arguments up to ``n`` but the ends' order (the third) and the scratch
+    array (the twentieth), which are each thread's own."""
+    a, b = silhouette_edges(hull)
+    index = plane_index(hull)
+    return (
+        a, b, np.asarray(hull.cg, dtype=np.float64),
+        np.ascontiguousarray(hull.bounds, dtype=np.float64), CUTTER_SIZE / hull.size,
+        TOL.keel_merge * hull.size, END_FACE_SLOPE, STEEP_SLOPE, index.key, index.bin_start,
+        index.bin_zlo, index.bin_zhi, index.bin_reach, index.margin, index.key_span,
+        index.key_x0, index.corners, index.ends, planecut_loops.K_OUT, planecut_loops.K_IN,
+        MERGE * CUTTER_SIZE, tol, n,
+    )  # fmt: skip
 
 
 def _padded(rows, width: int, fill: float = np.nan) -> np.ndarray:

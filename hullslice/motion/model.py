@@ -146,6 +146,9 @@ class ForceModel:
             and math.isfinite(z_cg + pitch_rad + w + u + q)
             and max(abs(w), abs(u)) < SOUND_WATER
         ):
+            out = fused.stage_totals(pitch_rad, z_cg, w, u, q)  # a new pitch: one call
+            if out is not None:
+                return out
             fr = frame(self.hull, pitch_rad)
             out = fused.totals_at(fr, max(0.0, -(fr.lowest + z_cg)), w, u, q)
             if out is not None:

@@ -1,0 +1,115 @@
+"""A new pitch's sums in one compiled call (:func:`hullslice.planecut_loops.stage_loops`,
+served by :meth:`hullslice.forces.fused.FusedEvaluation.stage_totals`) against the same
+steps one by one (a frame made, its stations cut and outlined, the fused evaluation's
+loops): the same sums to the last bit on every catalogued body, at pitches, drafts and
+motions drawn at random; what it leaves to the steps one by one; and the digest that keeps
+numba's cache of it fresh. The call is compiled only: it needs numba."""
+
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import planecut_loops
+from hullslice.forces import fused
+from hullslice.geometry import frame
+from hullslice.motion import ForceModel
+
+from .test_planecut import BODIES
+
+needs_numba = pytest.mark.skipif(not planecut_loops.available(), reason="needs numba")
+
+
+def _massive(hull):
+    return hull if hull.mass is not None else hull.with_mass(1000.0 * hull.volume)
+
+
+def _model(hull, slices: int = 32) -> ForceModel:
+    model = ForceModel(hull, slices=slices, slicing="fixed", cutter="exact")
+    assert model.fused is not None and model.fused.stage is not None
+    return model
+
+
+@needs_numba
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_a_new_pitchs_sums_in_one_call_equal_the_steps_one_by_one(name):
+    """At 30 new pitches from -0.1 to 0.35 rad, each at a draft from a touch to most of
+    the body's height and a motion down (sometimes up: a section leaving), the one call's
+    sums equal those of a frame of the same pitch evaluated by the fused loops, to the
+    bit; most poses are served by the call (the rest are handed back by both)."""
+    hull = _massive(BODIES[name])
+    twin = hull.with_mass(hull.mass)  # the same body, its own frames
+    one, steps = _model(hull), _model(twin)
+    rng = np.random.default_rng(5)
+    served = 0
+    for pitch in rng.uniform(-0.1, 0.35, 30):
+        fr = frame(twin, pitch)
+        depth = fr.highest - fr.lowest
+        draft = float(rng.uniform(0.002, 0.9)) * depth
+        z_cg = -(fr.lowest + draft)
+        w = -float(rng.uniform(0.3, 3.0)) if rng.random() < 0.85 else 0.5
+        u, q = float(rng.uniform(0.0, 20.0)), float(rng.normal(0.0, 0.3))
+        got = one.fused.stage_totals(pitch, z_cg, w, u, q)
+        want = steps.fused.totals_at(fr, max(0.0, -(fr.lowest + z_cg)), w, u, q)
+        if got is None:
+            continue
+        served += 1
+        assert want is not None
+        assert got == want, (pitch, draft, got, want)
+    assert served >= 15, served
+
+
+@needs_numba
+def test_a_framed_pitch_and_a_dry_body_go_the_steps_one_by_one():
+    """A pitch that has a frame keeps its kept cut and waterline tables: the call leaves it
+    to them; so it does a body clear of the water (and the model's sums are numpy's, as
+    before)."""
+    hull = _massive(BODIES["fuselage_model.obj"])
+    model = _model(hull)
+    fr = frame(hull, 0.07)
+    z_cg = -(fr.lowest + 0.2 * (fr.highest - fr.lowest))
+    assert model.fused.stage_totals(0.07, z_cg, -1.0, 10.0, 0.0) is None
+    assert model.fused.stage_totals(0.071, 10.0 * hull.size, -1.0, 10.0, 0.0) is None
+    dry = model.totals_at(10.0 * hull.size, 0.072, -1.0, 10.0, 0.0)
+    assert dry == (0.0, 0.0, 0.0)
+
+
+@needs_numba
+def test_a_free_pitch_run_takes_its_stages_from_the_one_call(monkeypatch):
+    """In a free-pitch run the three later stages of a step are new pitches whose sums
+    alone are needed: the call serves them, and the history is the same to the bit as
+    with the call switched off."""
+    hull = _massive(BODIES["fuselage_model.obj"])
+    run = dict(pitch_deg=6.0, forward_speed=19.0, slices=32, slicing="fixed", stop_on=(),
+               dt=1e-3, free_pitch=True)  # fmt: skip
+    calls = []
+    stage_totals = fused.FusedEvaluation.stage_totals
+
+    def counted(self, *args):
+        out = stage_totals(self, *args)
+        calls.append(out is not None)
+        return out
+
+    monkeypatch.setattr(fused.FusedEvaluation, "stage_totals", counted)
+    got = hs.simulate(hull.with_mass(hull.mass), -1.5, 0.03, **run)
+    assert sum(calls) >= 0.9 * 3 * (len(got) - 1)
+    monkeypatch.setattr(fused.FusedEvaluation, "stage_totals", lambda self, *a: None)
+    want = hs.simulate(hull.with_mass(hull.mass), -1.5, 0.03, **run)
+    for key in ("force", "force_x", "moment", "draft", "pitch", "pitch_rate"):
+        np.testing.assert_array_equal(getattr(got, key), getattr(want, key), err_msg=key)
+
+
+def test_the_one_calls_cache_sees_its_helpers():
+    """numba's cache of :func:`stage_loops` is stale when its own file changes; it calls
+    loops in other files, whose digest its file holds."""
+    root = Path(planecut_loops.__file__).parent
+    names = ("keel_loops.py", "outline_loops.py", "held_loops.py")
+    digest = hashlib.sha256(b"".join((root / n).read_bytes() for n in names)).hexdigest()[:16]
+    assert planecut_loops.STAGE_HELPERS_DIGEST == digest, (
+        f"set STAGE_HELPERS_DIGEST = {digest!r} in hullslice/planecut_loops.py (its helpers "
+        "changed)"
+    )
