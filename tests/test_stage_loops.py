@@ -113,3 +113,32 @@ def test_the_one_calls_cache_sees_its_helpers():
         f"set STAGE_HELPERS_DIGEST = {digest!r} in hullslice/planecut_loops.py (its helpers "
         "changed)"
     )
+
+
+@needs_numba
+def test_one_model_serves_two_threads_in_one_call():
+    """The call releases the GIL; each thread has its own buffers, scratch array and ends'
+    order, so two threads evaluating one model at once get each their own pose's sums."""
+    import threading
+
+    hull = _massive(BODIES["fuselage_model.obj"])
+    model = _model(hull)
+    twin = hull.with_mass(hull.mass)
+    poses = []
+    for pitch in (0.061, 0.093):  # never framed on ``hull``: every call is the one call
+        fr = frame(twin, pitch)
+        poses.append((pitch, -(fr.lowest + 0.3 * (fr.highest - fr.lowest)), -2.0, 10.0, 0.1))
+    want = [model.fused.stage_totals(*pose) for pose in poses]
+    assert all(w is not None for w in want)
+    wrong = [0, 0]
+
+    def work(i: int) -> None:
+        for _ in range(300):
+            wrong[i] += model.fused.stage_totals(*poses[i]) != want[i]
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert wrong == [0, 0]
