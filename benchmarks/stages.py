@@ -17,9 +17,10 @@ wetted) are both shown:
 - ``window, rest``: the kept cut's own bookkeeping around those three;
 - ``evaluation``: the fused evaluation of the stations (the keel line's arrays, the wetted
   properties, the solver's sums; ``FusedEvaluation._pitch`` less the window);
-- ``one call``: a stage whose sums alone are needed (the three later stages of a step),
-  made in one compiled call from the keel line to the sums
-  (``FusedEvaluation.stage_totals``); the parts above are then the first stage's;
+- ``one call``: a stage at a pitch the hull has no frame for (every stage of a step, but
+  at a pitch met again), made in one compiled call from the keel line to the sums
+  (``FusedEvaluation._one_call``; the first stage's result is then built from it); the
+  parts above are then those of the stages that go the steps one by one;
 - ``rest``: everything else of the step over its four stages (the first stage's full
   result, the record, the integrator, the calls between the parts).
 
@@ -106,7 +107,7 @@ def run(t_end: float, window: int) -> tuple[Clock, int]:
     clock.wrap_classmethod(outline.Outline, "of", "outline")
     clock.wrap(fixed.FixedCut, "window", "window")
     clock.wrap(fused.FusedEvaluation, "_pitch", "pitch")
-    clock.wrap(fused.FusedEvaluation, "stage_totals", "one call")
+    clock.wrap(fused.FusedEvaluation, "_one_call", "one call")
     last = [time.perf_counter()]
 
     def progress(t: float, _t_end: float) -> None:

@@ -308,7 +308,7 @@ def runs_loops(x, z, end_face, steep_slope):
 
 def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo, hi):
     """The fused evaluation's arrays of a keel line (see
-    :func:`hullslice.forces.fused._keel_arrays`, which builds the same with numpy): the
+    :func:`hullslice.forces.fused_arrays.keel_arrays`, which builds the same with numpy): the
     break points ``x``, ``z`` with the facets' ``steep`` flags and the lowest height from
     the first point and from the last, ``(5, k)``, zero beyond; the runs' ``mid``,
     ``cont``, ``bend``, ``starts`` and ``offsets``, ``(5, f)``, NaN beyond; the chords'

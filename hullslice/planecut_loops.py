@@ -79,7 +79,7 @@ __all__ = [
 #: helpers' digest). numba's cache of the loops goes stale when this file changes, not when
 #: those do: a change of theirs changes this digest too (``tests/test_stage_loops.py``
 #: checks it), so that the cache of :func:`stage_loops` is made again.
-STAGE_HELPERS_DIGEST = "b455f2b8e8087cce"
+STAGE_HELPERS_DIGEST = "f00388b669be243e"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -251,7 +251,8 @@ def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s
 def stage_loops(
     a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
     key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot,
-    k_out_of, k_in_of, merge, tol, n, c, s, z_cg, w, u, q, fout, iout, scal, opts, a_c, v_c,
+    k_out_of, k_in_of, merge, tol, n, c, s, z_cg, w, u, q, fout, iout, scal, extra, opts, a_c,
+    v_c,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
     (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line
@@ -270,33 +271,39 @@ def stage_loops(
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
     steps made one by one: the same sums.
 
-    Returns 0 with the sums in ``scal``, or a status where the steps one by one must
-    serve: :data:`~hullslice.slices_loops.STATUS`'s, or 100 (the keel line needs numpy's
+    Returns ``(status, points, ring_start, ring_station)``: status 0 with the sums in
+    ``scal`` and the cut's contours as :func:`cut_loops` gives them (their stations from
+    the window's first), or a status where the steps one by one must serve:
+    :data:`~hullslice.slices_loops.STATUS`'s, or 100 (the keel line needs numpy's
     refinement), 101 (it has no facet with a finite slope), 102 (a contour does not
-    close) or 103 (a section has a hole)."""
+    close) or 103 (a section has a hole). ``extra`` receives the window's first station
+    and its station count, the contours' origin ``(y, z)``, the water's level, the draft
+    (clipped to the body's height), the draft unclipped, and the body's lowest point, m."""
     gx, gy, gz = g[0], g[1], g[2]
+    none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
     ok, _, low, high, kx, kz, runs = frame_keel_loops(
         a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope
     )
     if not ok:
-        return 100
+        return 100, none2, none1, none1
     r_ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = runs
     if not r_ok:
-        return 101
+        return 101, none2, none1, none1
     if not bottom:
         height, lo, hi = np.empty(0), np.empty(0), np.empty(0)
     keel, runs_arr, chords = keel_arrays_loops(
         kx, kz, steep, mid, cont, bend, starts, offsets, height, lo, hi
     )
-    draft = -(low + z_cg)  # ForceModel.totals_at's max(0.0, ...), _run's clip
+    draft = -(low + z_cg)  # ForceModel.draft's max(0.0, ...), _run's clip
     if not draft > 0.0:
         draft = 0.0
+    extra[6], extra[7] = draft, low
     if draft > high - low:
         draft = high - low
     level = low + draft
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
-        return status
+        return status, none2, none1, none1
     xa, xb = kx[0], kx[len(kx) - 1]  # the fixed stations (Frame.fixed_stations)
     d = (xb - xa) / n
     n_cut = w1 - w0
@@ -320,10 +327,11 @@ def stage_loops(
         first, last, corners, ends, x_rel, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
     )
     if closed != 0:
-        return 102
+        return 102, none2, none1, none1
     out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz)
     if not out[0]:
-        return 103
+        return 103, none2, none1, none1
+    extra[0], extra[1], extra[2], extra[3], extra[4], extra[5] = w0, n_cut, oy, oz, level, draft
     zmin, z_chine, area = out[15], out[18], out[8]
     stations = np.empty((3, n_cut))
     for i in range(n_cut):
@@ -333,8 +341,9 @@ def stage_loops(
     opts[0], opts[1], opts[2], opts[3] = level, w, u, q  # FusedEvaluation._options
     opts[5], opts[7], opts[8], opts[10] = gx, w0, n_cut, math.inf
     opts[23] = 1.0 if bottom else 0.0
-    return pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays, a_c,
-                       v_c)  # fmt: skip
+    status = pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays,
+                         a_c, v_c)  # fmt: skip
+    return status, points, ring_start, ring_station
 
 
 def gallop_loops(a, lo, hi, v, right):

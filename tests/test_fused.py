@@ -13,7 +13,7 @@ import pytest
 import hullslice as hs
 from hullslice import planecut_loops
 from hullslice.errors import UnitsWarning
-from hullslice.forces import fused
+from hullslice.forces import fused, fused_arrays
 from hullslice.motion import ForceModel
 from hullslice.slicing.fixed import TABLE_AFTER
 from hullslice.solvers.karman import ExtendedVonKarman
@@ -263,9 +263,9 @@ def test_the_keel_arrays_by_the_loops_equal_numpy(name):
         packs.append(planecut_loops.compiled("keel_arrays"))
     for pitch in (-0.2, 0.0, 0.08, 0.3, 0.6):
         fr = hs.geometry.frame(hull, pitch)
-        want = fused._keel_arrays(fr)
+        want = fused_arrays.keel_arrays(fr)
         for pack in packs:
-            got = fused._keel_arrays(fr, pack)
+            got = fused_arrays.keel_arrays(fr, pack)
             assert got["has_chords"] == want["has_chords"]
             for key in ("keel", "runs", "chords"):
                 assert got[key].shape == want[key].shape, (key, pitch)

@@ -16,8 +16,9 @@ import pytest
 import hullslice as hs
 from hullslice import planecut_loops
 from hullslice.forces import fused
-from hullslice.geometry import frame
+from hullslice.geometry import FRAMES, frame
 from hullslice.motion import ForceModel
+from hullslice.state import Motion, Pose
 
 from .test_planecut import BODIES
 
@@ -117,24 +118,25 @@ def test_the_one_calls_cache_sees_its_helpers():
 
 @needs_numba
 def test_one_model_serves_two_threads_in_one_call():
-    """The call releases the GIL; each thread has its own buffers, scratch array and ends'
-    order, so two threads evaluating one model at once get each their own pose's sums."""
+    """The call releases the GIL; each thread has its own buffers, scratch array, ends'
+    order and pitches met, so two threads evaluating one model at once, each at its own
+    new pitches, get the sums the same model gives one call at a time."""
     import threading
 
-    hull = _massive(BODIES["fuselage_model.obj"])
+    body = _massive(BODIES["fuselage_model.obj"])
+    hull, twin = body.with_mass(body.mass), body.with_mass(body.mass)  # frames of their own
+    fr = frame(body.with_mass(body.mass), 0.08)
+    z_cg = -(fr.lowest + 0.3 * (fr.highest - fr.lowest))
+    pitches = [np.linspace(0.06, 0.07, 60), np.linspace(0.09, 0.1, 60)]
+    alone = _model(twin)
+    want = [[alone.fused.stage_totals(p, z_cg, -2.0, 10.0, 0.1) for p in ps] for ps in pitches]
+    assert all(w is not None for ws in want for w in ws)
     model = _model(hull)
-    twin = hull.with_mass(hull.mass)
-    poses = []
-    for pitch in (0.061, 0.093):  # never framed on ``hull``: every call is the one call
-        fr = frame(twin, pitch)
-        poses.append((pitch, -(fr.lowest + 0.3 * (fr.highest - fr.lowest)), -2.0, 10.0, 0.1))
-    want = [model.fused.stage_totals(*pose) for pose in poses]
-    assert all(w is not None for w in want)
     wrong = [0, 0]
 
     def work(i: int) -> None:
-        for _ in range(300):
-            wrong[i] += model.fused.stage_totals(*poses[i]) != want[i]
+        for p, w in zip(pitches[i], want[i], strict=True):
+            wrong[i] += model.fused.stage_totals(p, z_cg, -2.0, 10.0, 0.1) != w
 
     threads = [threading.Thread(target=work, args=(i,)) for i in range(2)]
     for t in threads:
@@ -142,3 +144,54 @@ def test_one_model_serves_two_threads_in_one_call():
     for t in threads:
         t.join()
     assert wrong == [0, 0]
+
+
+@needs_numba
+def test_a_pitch_met_again_goes_the_steps_one_by_one():
+    """A pitch a thread has cut in one call and meets again (a pitch held still in a
+    free-pitch run) goes the steps one by one, which make and keep its frame: its kept
+    cut and waterline tables serve it from there on, as at a held pitch."""
+    body = _massive(BODIES["fuselage_model.obj"])
+    hull = body.with_mass(body.mass)
+    model = _model(hull)
+    fr = frame(body.with_mass(body.mass), 0.05)
+    z_cg = -(fr.lowest + 0.3 * (fr.highest - fr.lowest))
+    assert model.fused.stage_totals(0.05, z_cg, -2.0, 10.0, 0.0) is not None
+    assert model.fused.stage_totals(0.05, z_cg, -2.0, 10.0, 0.0) is None
+    total = model.totals_at(z_cg, 0.05, -2.0, 10.0, 0.0)
+    assert hull.cache[FRAMES].get(0.05) is not None  # made by the steps one by one
+    steps = _model(hull.with_mass(hull.mass))
+    assert total == steps.totals_at(z_cg, 0.05, -2.0, 10.0, 0.0)
+
+
+@needs_numba
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "cylinder", "wedge"])
+def test_a_new_pitchs_result_in_one_call_equals_the_steps_one_by_one(name):
+    """The first stage of a free-pitch step wants the whole result: made in the one call,
+    it is the result of a frame of the same pitch evaluated by the fused loops (every
+    section array, the loads, the contours, the sums, to the bit), and its pose is the
+    model's (the draft :meth:`ForceModel.draft` gives that state)."""
+    from .test_fused import assert_same_result
+
+    hull = _massive(BODIES[name])
+    twin = hull.with_mass(hull.mass)
+    one, steps = _model(hull), _model(twin)
+    rng = np.random.default_rng(9)
+    served = 0
+    for pitch in rng.uniform(-0.05, 0.3, 12):
+        fr = frame(twin, pitch)
+        z_cg = -(fr.lowest + float(rng.uniform(0.01, 0.7)) * (fr.highest - fr.lowest))
+        motion = Motion(-float(rng.uniform(0.5, 3.0)), 15.0, float(rng.normal(0.0, 0.3)))
+        got = one.fused.stage_result(z_cg, pitch, motion)
+        if got is None:
+            continue
+        served += 1
+        r, pose = got
+        assert pose == Pose(steps.draft(z_cg, pitch), pitch)
+        want = steps.fused.force(pose, motion)
+        assert want is not None
+        assert_same_result(r, want)
+        assert (r.total, r.moment, r.total_x) == (want.total, want.moment, want.total_x)
+        for a, b in zip(r.sections.polygons, want.sections.polygons, strict=True):
+            assert all(np.array_equal(p, q) for p, q in zip(a, b, strict=True))
+    assert served >= 6, served

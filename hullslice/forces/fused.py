@@ -7,10 +7,12 @@ the ``wedge`` deadrise, a curve solver with the paper's pile-up law and polynomi
 (the default ``extended-von-karman``), and a body of one piece whose mass is spread by
 volume. At a held pitch with its waterline table it reads the table; at a new pitch (every
 stage of a free-pitch run) it evaluates the sections of the stations it cuts, as numpy's
-path does; where only the sums are wanted at a pitch the hull has no frame for (the three
-later stages of a free-pitch step), one compiled call makes the keel line, the cut, the
-outline and the sums (:meth:`FusedEvaluation.stage_totals`), with no frame kept. At any evaluation the loops hand back (the first contact, a section in two
-wetted pieces, the evaluation that makes a pitch's table), numpy's path serves. Both give
+path does; at a pitch the hull has no frame for (every stage of a free-pitch step), one
+compiled call makes the keel line, the cut, the outline and the sums
+(:meth:`FusedEvaluation.stage_totals`, and :meth:`FusedEvaluation.stage_result` with the
+result), with no frame kept. At any evaluation the loops hand back (the first contact, a
+section in two wetted pieces, the evaluation that makes a pitch's table), numpy's path
+serves. Both give
 the same numbers (to 1e-12; the tests compare them over whole histories); the fused one
 costs some microseconds an evaluation where numpy's costs some hundreds. It needs numba
 (the ``fast`` extra) and is switched off with ``HULLSLICE_NUMBA=0``, as the other
@@ -21,23 +23,14 @@ from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Callable
+from collections import deque
 from typing import Any
 
 import numpy as np
 
 from .. import planecut_loops
 from ..constants import SOUND_WATER, TOL
-from ..geometry import (
-    CUTTER_SIZE,
-    FRAMES,
-    KERNEL_MAX_PITCH,
-    MERGE,
-    _side_order,
-    frame,
-    keel_loops,
-    silhouette_edges,
-)
+from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame, keel_loops
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
 from ..planecut import plane_index
@@ -57,9 +50,15 @@ from .evaluate import (
     MIN_DEADRISE,
     STEEP_REASON,
 )
+from .fused_arrays import keel_arrays, stage_arrays, table_arrays
 from .result import ForceResult
 
 __all__ = ["FusedEvaluation", "fused_for"]
+
+#: How many of its last pitches a thread remembers having cut in one call: one met again
+#: goes the steps one by one, which make and keep its frame (a pitch held still, whose
+#: kept cut and waterline tables then serve).
+SEEN_PITCHES = 8
 
 _COL = {name: i for i, name in enumerate(COLUMNS)}
 _OPT = {name: i for i, name in enumerate(OPTIONS)}
@@ -188,7 +187,7 @@ class FusedEvaluation:
         the same arrays)."""
         arrays = kept.plans.get("keel")
         if arrays is None:
-            arrays = kept.plans["keel"] = _keel_arrays(fr, self.pack)
+            arrays = kept.plans["keel"] = keel_arrays(fr, self.pack)
         return arrays
 
     def _run(self, fr, draft: float, w: float, u: float, q: float, fout, iout):
@@ -239,7 +238,7 @@ class FusedEvaluation:
             return None
         plan = kept.plans.get("wedge")
         if plan is None or plan[0] is not table:
-            plan = kept.plans["wedge"] = (table, _table_arrays(table))
+            plan = kept.plans["wedge"] = (table, table_arrays(table))
         keel = self._keel(fr, kept)
         arrays = plan[1]
         self._options(opts, level, w, u, q, fr, c0, arrays["n_cut"], table.top, keel)
@@ -299,15 +298,15 @@ class FusedEvaluation:
             kept.tables["wedge"] = new
         return new
 
-    def stage_totals(
-        self, pitch: float, z_cg: float, w: float, u: float, q: float
-    ) -> tuple[float, float, float] | None:
-        """:meth:`totals_at` at a pitch (rad) the hull has no frame for (every stage of a
-        free-pitch run), the centre of gravity at height ``z_cg`` (m), all finite: the
-        keel line, the cut, the outline and the sums in one compiled call
-        (:func:`~hullslice.planecut_loops.stage_loops`), with no frame made or kept; the
-        same sums. None where the steps one by one must serve: numpy's loops, another
-        cutter, a pitch with a frame (its kept cut and tables), or a status of the call."""
+    def _one_call(self, pitch: float, z_cg: float, w: float, u: float, q: float, fout, iout):
+        """:func:`~hullslice.planecut_loops.stage_loops` at a pitch (rad) the hull has no
+        frame for and this thread has not cut in one call lately, the centre of gravity at
+        height ``z_cg`` (m), the body's velocities ``w``, ``u``, ``q``, all finite:
+        ``(points, ring_start, ring_station, extra, scal)`` (see there; ``scal`` this
+        thread's sums), or None where the steps one by one must serve: numpy's loops,
+        another cutter, a pitch with a frame (its kept cut and tables), a pitch met again
+        (its frame is made then, and its kept cut and tables serve it from there on), or
+        a status of the call."""
         stage = self.stage
         pitch = float(pitch)
         if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
@@ -315,20 +314,67 @@ class FusedEvaluation:
         hull = self.hull
         if hull.cache[FRAMES].get(pitch) is not None or not keel_loops():
             return None
+        local = self._local
+        seen = getattr(local, "seen", None)
+        if seen is None:
+            seen = local.seen = deque(maxlen=SEEN_PITCHES)
+        if pitch in seen:
+            return None
+        seen.append(pitch)
         args = self._stage_args
         if args is None:
-            args = self._stage_args = _stage_arrays(hull, self.key[1], self.model.slices)
-        opts, scal, fout, iout = self._buffers()
+            args = self._stage_args = stage_arrays(hull, self.key[1], self.model.slices)
+        opts, scal, _, _ = self._buffers()
+        extra = np.empty(8)
         index = plane_index(hull)
         c, s = np.cos(pitch), np.sin(pitch)
-        status = stage(
+        status, points, ring_start, ring_station = stage(
             args[0], args[1], _side_order(hull, 2 * len(args[0])), *args[2:18], index.scratch(),
-            *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, opts, self.a_c,
-            self.v_c,
+            *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, extra, opts,
+            self.a_c, self.v_c,
         )  # fmt: skip
         if status != 0:
             return None
+        return points, ring_start, ring_station, extra, scal
+
+    def stage_totals(
+        self, pitch: float, z_cg: float, w: float, u: float, q: float
+    ) -> tuple[float, float, float] | None:
+        """:meth:`totals_at` at a new pitch (rad; every later stage of a free-pitch step),
+        the centre of gravity at height ``z_cg`` (m), all finite: the keel line, the cut,
+        the outline and the sums in one compiled call, with no frame made or kept; the
+        same sums. None where the steps one by one must serve (see :meth:`_one_call`)."""
+        _, _, fout, iout = self._buffers()
+        done = self._one_call(pitch, z_cg, w, u, q, fout, iout)
+        if done is None:
+            return None
+        scal = done[-1]
         return float(scal[2]), float(scal[4]), float(scal[3])
+
+    def stage_result(
+        self, z_cg: float, pitch: float, motion: Motion
+    ) -> tuple[ForceResult, Pose] | None:
+        """:meth:`force` at a new pitch (rad; the first stage of a free-pitch step), the
+        centre of gravity at height ``z_cg`` (m), all finite, in one compiled call (as
+        :meth:`stage_totals`), with the pose the model gives that state
+        (:meth:`~hullslice.motion.model.ForceModel.draft`): the same result and pose.
+        None where the steps one by one must serve (see :meth:`_one_call`)."""
+        n = self.model.slices
+        fout, iout = np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64)
+        done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
+                              motion.pitch_rate, fout, iout)  # fmt: skip
+        if done is None:
+            return None
+        points, ring_start, ring_station, extra, scal = done
+        rows: list[list[np.ndarray]] = [[] for _ in range(int(extra[1]))]
+        for i, st in enumerate(ring_station.tolist()):  # as PlaneIndex._cut_by_loops
+            rows[st].append(points[ring_start[i] : ring_start[i + 1]])
+        pose = Pose(float(extra[6]), pitch)
+        scale = CUTTER_SIZE / self.hull.size  # the frame's (geometry._frame)
+        r = self._result([tuple(ring) for ring in rows], float(extra[4]), float(extra[5]),
+                         scal, fout, iout, pose, motion, (float(extra[2]), float(extra[3])),
+                         scale)  # fmt: skip
+        return r, pose
 
     def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float] | None:
         """The vertical force (N), the moment about the centre of gravity (N m) and the
@@ -359,6 +405,17 @@ class FusedEvaluation:
         if done is None:
             return None
         rows, _, level, draft, scal = done
+        return self._result(rows, level, draft, scal, fout, iout, pose, motion, fr.origin,
+                            fr.scale)  # fmt: skip
+
+    def _result(
+        self, rows, level: float, draft: float, scal, fout, iout, pose: Pose, motion: Motion,
+        origin: tuple[float, float], scale: float,
+    ) -> ForceResult:  # fmt: skip
+        """The :class:`ForceResult` of the loops' columns ``fout`` and ``iout`` and sums
+        ``scal``, its sections' contours from the cut's ``rows`` (by the window's stations)
+        in the cutter's coordinates (``origin``, ``scale``), at the water's ``level``
+        (m) and the clipped ``draft`` (m)."""
         m = int(scal[0])
         cols = {name: fout[i, :m] for name, i in _USED}
         source = iout[I_SOURCE, :m]
@@ -370,8 +427,8 @@ class FusedEvaluation:
             chine_wetted=iout[I_CHINE, :m] > 0,
             polygons=ShiftedPolygons(
                 [rows[k] for k in source.tolist()],
-                (fr.origin[0], fr.origin[1] + z_cg),
-                fr.scale,
+                (origin[0], origin[1] + z_cg),
+                scale,
                 cols["lift"],
             ),
             deadrise_method="wedge",
@@ -422,75 +479,3 @@ def _reason_texts(solver, lo: float, hi: float) -> tuple[str, ...]:
         CHINE_REASON,
         STEEP_REASON,
     )
-
-
-def _stage_arrays(hull, tol: float, n: int) -> tuple:
-    """What :func:`~hullslice.planecut_loops.stage_loops` reads of a hull, in its order:
-    all of its arguments up to ``n`` but the ends' order (the third) and the scratch
-    array (the twentieth), which are each thread's own."""
-    a, b = silhouette_edges(hull)
-    index = plane_index(hull)
-    return (
-        a, b, np.asarray(hull.cg, dtype=np.float64),
-        np.ascontiguousarray(hull.bounds, dtype=np.float64), CUTTER_SIZE / hull.size,
-        TOL.keel_merge * hull.size, END_FACE_SLOPE, STEEP_SLOPE, index.key, index.bin_start,
-        index.bin_zlo, index.bin_zhi, index.bin_reach, index.margin, index.key_span,
-        index.key_x0, index.corners, index.ends, planecut_loops.K_OUT, planecut_loops.K_IN,
-        MERGE * CUTTER_SIZE, tol, n,
-    )  # fmt: skip
-
-
-def _padded(rows, width: int, fill: float = np.nan) -> np.ndarray:
-    out = np.full((len(rows), max(width, 1)), fill)
-    for i, row in enumerate(rows):
-        out[i, : len(row)] = row
-    return out
-
-
-def _keel_arrays(fr, pack: Callable | None = None) -> dict[str, Any]:
-    """The loops' arrays of a frame's keel line; by ``pack``
-    (:func:`~hullslice.keel_loops.keel_arrays_loops`, compiled) where given."""
-    keel = fr.keel
-    runs = keel._runs
-    k = len(keel.x)
-    if pack is not None:
-        chords, none = runs.chords, np.empty(0)
-        h, lo, hi = (none, none, none) if chords is None else chords[1:]
-        arrays = pack(keel.x, keel.z, runs.steep, runs.mid, runs.cont, runs.bend, runs.starts,
-                      runs.offsets, h, lo, hi)  # fmt: skip
-        return {"keel": arrays[0], "runs": arrays[1], "chords": arrays[2],
-                "has_chords": 0.0 if chords is None else 1.0}  # fmt: skip
-    steep = np.asarray(runs.steep, dtype=np.float64)[: k - 1]
-    chords = runs.chords
-    f = max(len(runs.mid), len(runs.offsets))
-    low_from_first = np.minimum.accumulate(keel.z)
-    low_from_last = np.minimum.accumulate(keel.z[::-1])[::-1]
-    return {
-        "keel": _padded([keel.x, keel.z, steep, low_from_first, low_from_last], k, 0.0),
-        "runs": _padded([runs.mid, runs.cont, runs.bend, runs.starts, runs.offsets], f),
-        "has_chords": 0.0 if chords is None else 1.0,
-        "chords": (
-            np.zeros((3, k)) if chords is None else _padded([chords[1], chords[2], chords[3]], k)
-        ),
-    }
-
-
-def _table_arrays(table) -> dict[str, Any]:
-    """The loops' arrays of a kept cut's waterline table and its outline's stations."""
-    t = table
-    ints = [t.bp_key, t.bp_start, t.v_start, t.e_start]
-    width = max(len(a) for a in ints)
-    tkey = np.zeros((4, width), dtype=np.int64)
-    for i, a in enumerate(ints):
-        tkey[i, : len(a)] = a
-    e_v = np.repeat(np.arange(len(t.exact)), np.diff(t.e_start))  # each entry's interval
-    columns = [t.wet.astype(np.float64), t.keel, t.intercept, t.slope, t.const]
-    columns.append(t.exact[e_v].astype(np.float64))
-    o = t.outline
-    return {
-        "tkey": tkey,
-        "heights": np.ascontiguousarray(t.heights, dtype=np.float64),
-        "tvals": np.ascontiguousarray(np.column_stack(columns)),
-        "stations": np.ascontiguousarray(np.stack([o.zmin, o.z_chine, o.area])),
-        "n_cut": o.n_stations,
-    }

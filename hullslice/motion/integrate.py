@@ -246,8 +246,9 @@ def simulate(
         return Pose(model.draft(z, th), th), Motion(w, u, q)
 
     def rate(y, record: bool = True):
-        """The state's rate, and the force result and outside forces when ``record``
-        (else only what the rate needs: a free-fall solver's sums)."""
+        """The state's rate, and the force result, outside forces and the model's draft of
+        the state (None where the model was not asked for it) when ``record`` (else only
+        what the rate needs: a free-fall solver's sums)."""
         w, q = y[3], y[4]
         if not (record or friction or model.momentum):  # the sums alone
             z, th, u = y[0], y[1], y[2]
@@ -257,23 +258,31 @@ def simulate(
             ext, parts = outside(y, None, None)
             dq = (moment + ext[1]) / inertia if free_pitch else 0.0
             du = (total_x + ext[2]) / m if free_surge else 0.0
-            return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (None, parts)
-        pose, motion = state_pose(y)
-        if model.momentum:  # the added mass on the left, solved at this stage
-            terms = model.terms(pose, motion)
-            ext, parts = outside(y, terms.sections, calm_girth(terms.sections))
-            terms, acc = solve_bounded(
-                terms, cast(float, m), inertia, g, free, when=f"at t = {clock[0]:.6g} s",
-                external=(float(ext[0]), float(ext[1]), float(ext[2])),
-            )  # fmt: skip
-            r = terms.result(acc, model.solver, model.fluid, motion, x_cg)
-            return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), (r, parts)
-        r = model(pose, motion)
+            return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (None, parts, None)
+        r, draft = None, None
+        if not model.momentum:  # a new pitch's result in one call where it serves
+            if abs(y[1]) >= MAX_PITCH:
+                raise _PitchLimit
+            got = model.result_at(y[0], y[1], w, y[2], q)
+            if got is not None:
+                r, draft = got[0], got[1].draft
+        if r is None:
+            pose, motion = state_pose(y)
+            if model.momentum:  # the added mass on the left, solved at this stage
+                terms = model.terms(pose, motion)
+                ext, parts = outside(y, terms.sections, calm_girth(terms.sections))
+                terms, acc = solve_bounded(
+                    terms, cast(float, m), inertia, g, free, when=f"at t = {clock[0]:.6g} s",
+                    external=(float(ext[0]), float(ext[1]), float(ext[2])),
+                )  # fmt: skip
+                r = terms.result(acc, model.solver, model.fluid, motion, x_cg)
+                return np.array([w, q, acc.forward, acc.vertical, acc.pitch]), (r, parts, None)
+            r = model(pose, motion)
         total, moment, total_x = r.total, r.moment, r.total_x
         ext, parts = outside(y, r.sections, calm_girth(r.sections) if friction else None)
         dq = (moment + ext[1]) / inertia if free_pitch else 0.0
         du = (total_x + ext[2]) / m if free_surge else 0.0
-        return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (r, parts)
+        return np.array([w, q, du, (total + ext[0]) / m - g, dq]), (r, parts, draft)
 
     y = np.array([frame(hull, pose0.pitch).z_cg(pose0.draft), pose0.pitch, forward_speed, w0, q0])
     rec = Recorder(stop_on, max_flagged_share, sections_every)
@@ -282,11 +291,13 @@ def simulate(
     for k in range(steps + 1):
         clock[0] = t
         try:
-            k1, (r, parts) = rate(y)
+            k1, (r, parts, draft) = rate(y)
         except _PitchLimit:  # past what the model describes: the run ends, whatever stop_on
             rec.end("pitch", t)
             break
-        if rec.add(t, r, k1[3], model.draft(y[0], y[1]), parts) or k == steps:
+        if draft is None:  # the model's draft of the state (given with a one-call result)
+            draft = model.draft(y[0], y[1])
+        if rec.add(t, r, k1[3], draft, parts) or k == steps:
             break
         h = min(dt, t_end - t)
         try:

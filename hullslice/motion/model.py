@@ -156,6 +156,22 @@ class ForceModel:
         r = self._numpy(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
         return r.total, r.moment, r.total_x
 
+    def result_at(
+        self, z_cg: float, pitch_rad: float, w: float, u: float, q: float
+    ) -> tuple[ForceResult, Pose] | None:
+        """:meth:`__call__` at the state of an equation of motion (as :meth:`totals_at`)
+        with the pose of that state (its draft :meth:`draft`), where the fused evaluation
+        makes it in one call at a new pitch (see
+        :meth:`~hullslice.forces.fused.FusedEvaluation.stage_result`), or None."""
+        fused = self.fused
+        if (
+            fused is None
+            or not math.isfinite(z_cg + pitch_rad + w + u + q)
+            or not max(abs(w), abs(u)) < SOUND_WATER
+        ):
+            return None
+        return fused.stage_result(z_cg, pitch_rad, Motion(w, u, q))
+
     def terms(self, pose: Pose, motion: Motion) -> MomentumTerms:
         """A momentum-form solver's terms before the body's accelerations are known."""
         solver = cast(MomentumFormSolver, self.solver)
