@@ -318,10 +318,7 @@ class PlaneIndex:
         )  # fmt: skip
         if status:
             raise ValueError("the mesh is not closed along a cut: a contour does not close")
-        out: list[list[np.ndarray]] = [[] for _ in range(len(x_rel))]
-        for i, st in enumerate(ring_station.tolist()):
-            out[st].append(points[start[i] : start[i + 1]])
-        return Rings([tuple(ring) for ring in out], (points, start, ring_station))
+        return Rings.of(points, start, ring_station, len(x_rel))
 
 
 class Rings(list):
@@ -334,6 +331,15 @@ class Rings(list):
     def __init__(self, sections: list, flat: tuple[np.ndarray, np.ndarray, np.ndarray]):
         super().__init__(sections)
         self.flat = flat
+
+    @classmethod
+    def of(cls, points: np.ndarray, start: np.ndarray, ring_station: np.ndarray, n: int) -> Rings:
+        """The sections of ``n`` stations from the loops' contours (``points``, each ring's
+        first point ``start`` and its ``ring_station``)."""
+        out: list[list[np.ndarray]] = [[] for _ in range(n)]
+        for i, st in enumerate(ring_station.tolist()):
+            out[st].append(points[start[i] : start[i + 1]])
+        return cls([tuple(ring) for ring in out], (points, start, ring_station))
 
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the

@@ -33,7 +33,7 @@ from ..constants import SOUND_WATER, TOL
 from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame, keel_loops
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
-from ..planecut import plane_index
+from ..planecut import Rings, plane_index
 from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
@@ -346,10 +346,7 @@ class FusedEvaluation:
         same sums. None where the steps one by one must serve (see :meth:`_one_call`)."""
         _, _, fout, iout = self._buffers()
         done = self._one_call(pitch, z_cg, w, u, q, fout, iout)
-        if done is None:
-            return None
-        scal = done[-1]
-        return float(scal[2]), float(scal[4]), float(scal[3])
+        return None if done is None else _sums(done[-1])
 
     def stage_result(
         self, z_cg: float, pitch: float, motion: Motion
@@ -366,14 +363,11 @@ class FusedEvaluation:
         if done is None:
             return None
         points, ring_start, ring_station, extra, scal = done
-        rows: list[list[np.ndarray]] = [[] for _ in range(int(extra[1]))]
-        for i, st in enumerate(ring_station.tolist()):  # as PlaneIndex._cut_by_loops
-            rows[st].append(points[ring_start[i] : ring_start[i + 1]])
+        rows = Rings.of(points, ring_start, ring_station, int(extra[1]))
         pose = Pose(float(extra[6]), pitch)
         scale = CUTTER_SIZE / self.hull.size  # the frame's (geometry._frame)
-        r = self._result([tuple(ring) for ring in rows], float(extra[4]), float(extra[5]),
-                         scal, fout, iout, pose, motion, (float(extra[2]), float(extra[3])),
-                         scale)  # fmt: skip
+        r = self._result(rows, float(extra[4]), float(extra[5]), scal, fout, iout, pose,
+                         motion, (float(extra[2]), float(extra[3])), scale)  # fmt: skip
         return r, pose
 
     def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float] | None:
@@ -390,10 +384,7 @@ class FusedEvaluation:
         velocity, forward speed (m/s) and pitch rate (rad/s), all finite."""
         _, _, fout, iout = self._buffers()
         done = self._run(fr, draft, w, u, q, fout, iout)
-        if done is None:
-            return None
-        s = done[-1]
-        return float(s[2]), float(s[4]), float(s[3])
+        return None if done is None else _sums(done[-1])
 
     def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
         """The :class:`ForceResult` at a pose and motion, or None where numpy's path must."""
@@ -462,6 +453,12 @@ class FusedEvaluation:
         """The reasons of code ``c`` joined, as the solver and the checks join them."""
         text = self._texts[c] = "; ".join(t for bit, t in enumerate(self.reasons) if c >> bit & 1)
         return text
+
+
+def _sums(scal: np.ndarray) -> tuple[float, float, float]:
+    """The vertical force (N), the moment (N m) and the horizontal force (N) of the loops'
+    sums."""
+    return float(scal[2]), float(scal[4]), float(scal[3])
 
 
 def _reason_texts(solver, lo: float, hi: float) -> tuple[str, ...]:
