@@ -36,6 +36,8 @@ from .slices_loops import (
     I_CHINE,
     I_CODE,
     I_MOVED,
+    I_ROWS,
+    I_SLICE,
     I_SOURCE,
     OPTIONS,
     REASON_BITS,
@@ -52,7 +54,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "28f55818143b369c"
+HELPERS_DIGEST = "3a9db434ccd8ec2c"
 
 __all__ = [
     "COLUMNS",
@@ -60,6 +62,8 @@ __all__ = [
     "I_CHINE",
     "I_CODE",
     "I_MOVED",
+    "I_ROWS",
+    "I_SLICE",
     "I_SOURCE",
     "OPTIONS",
     "REASON_BITS",
@@ -68,35 +72,64 @@ __all__ = [
     "pitch_entries_loops",
     "pitch_loops",
     "table_entry_loops",
+    "table_interval_loops",
 ]
 
 
-def table_entry_loops(row, at, s, heights, tkey, tvals, station_vals, tol):
-    """The waterline table's entry of kept station ``s`` with the water at ``at``, in the
-    columns of :data:`ENTRY` (``WaterlineTable._evaluate``, one entry per interval)."""
+def table_interval_loops(at, s, heights, tkey):
+    """The waterline table's interval of kept station ``s`` with the water at ``at``:
+    ``(first, count)``, its first entry and how many it has (``WaterlineTable._evaluate``)."""
     n_h = len(heights)
     bp_key, bp_start, v_start, e_start = tkey[0], tkey[1], tkey[2], tkey[3]
     key = s * (n_h + 1) + left_loops(heights, at, 0, n_h)
     jv = left_loops(bp_key, key, bp_start[s], bp_start[s + 1]) - bp_start[s]
-    e = e_start[v_start[s] + jv]
-    pen = max(-(tvals[e, 1] - at), 0.0)
-    hbp = tvals[e, 3] + tvals[e, 6] * at
-    hbs = tvals[e, 4] + tvals[e, 7] * at
-    t_port = div_loops(pen, hbp)
-    t_stbd = div_loops(pen, hbs)
-    row[0] = tvals[e, 11]
-    row[1] = tvals[e, 0]
-    row[2] = pen
-    row[3] = tvals[e, 2] + tvals[e, 5] * at
-    row[4] = hbp
-    row[5] = hbs
-    row[6] = math.atan(div_loops(2.0, div_loops(1.0, t_port) + div_loops(1.0, t_stbd)))
-    row[7] = math.atan(t_port)
-    row[8] = math.atan(t_stbd)
-    row[9] = tvals[e, 8]
-    row[10] = tvals[e, 9]
-    row[11] = tvals[e, 10]
-    row[12] = 1.0 if (station_vals[1, s] - at <= tol and tvals[e, 0] > 0.0) else 0.0
+    v = v_start[s] + jv
+    return e_start[v], e_start[v + 1] - e_start[v]
+
+
+def table_entry_loops(e, k, at, s, heights, tkey, tvals, station_vals, tol):
+    """The waterline table's entries of kept station ``s`` with the water at ``at``, in the
+    columns of :data:`ENTRY`, into the rows of ``e`` from ``k`` (``WaterlineTable._evaluate``:
+    its interval's entries, those of a section in several wetted pieces in order along the
+    waterline, stably, as a fresh evaluation orders them). Returns their number."""
+    first, count = table_interval_loops(at, s, heights, tkey)
+    order = np.empty(count)  # the entries' keys along the waterline (0 for a dry one)
+    for j in range(count):
+        ent = first + j
+        row = e[k + j]
+        pen = max(-(tvals[ent, 1] - at), 0.0)
+        hbp = tvals[ent, 3] + tvals[ent, 6] * at
+        hbs = tvals[ent, 4] + tvals[ent, 7] * at
+        t_port = div_loops(pen, hbp)
+        t_stbd = div_loops(pen, hbs)
+        row[0] = tvals[ent, 11]
+        row[1] = tvals[ent, 0]
+        row[2] = pen
+        row[3] = tvals[ent, 2] + tvals[ent, 5] * at
+        row[4] = hbp
+        row[5] = hbs
+        row[6] = math.atan(div_loops(2.0, div_loops(1.0, t_port) + div_loops(1.0, t_stbd)))
+        row[7] = math.atan(t_port)
+        row[8] = math.atan(t_stbd)
+        row[9] = tvals[ent, 8]
+        row[10] = tvals[ent, 9]
+        row[11] = tvals[ent, 10]
+        row[12] = 1.0 if (station_vals[1, s] - at <= tol and tvals[ent, 0] > 0.0) else 0.0
+        order[j] = row[9] - hbs if tvals[ent, 0] > 0.0 else 0.0
+    for j in range(1, count):  # numpy's lexsort of the rows by their keys: stable, NaN last
+        key_j = order[j]
+        row_j = e[k + j].copy()
+        i = j
+        while i > 0:
+            prev = order[i - 1]
+            if not (key_j < prev or (prev != prev and key_j == key_j)):
+                break
+            order[i] = prev
+            e[k + i] = e[k + i - 1]
+            i -= 1
+        order[i] = key_j
+        e[k + i] = row_j
+    return count
 
 
 def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights, tkey,
@@ -134,38 +167,54 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
     if level > top:
         scal[7] = level
         return 3
-    e0 = np.empty((n_cut, len(ENTRY)))
-    for k in range(w0, w1):  # each window station's table entry at this level
-        table_entry_loops(e0[k - c0], level, k - c0, heights, tkey, tvals, station_vals, tol)
-        if e0[k - c0, 0] <= 0.0:
+    # each window station's table entries at this level
+    f0 = np.zeros(n_cut + 1, dtype=np.int64)
+    for k in range(n_cut):
+        f0[k + 1] = f0[k]
+        if w0 - c0 <= k < w1 - c0:
+            f0[k + 1] += table_interval_loops(level, k, heights, tkey)[1]
+    e0 = np.empty((f0[n_cut], len(ENTRY)))
+    for k in range(w0 - c0, w1 - c0):
+        table_entry_loops(e0, f0[k], level, k, heights, tkey, tvals, station_vals, tol)
+    for j in range(f0[n_cut]):
+        if e0[j, 0] <= 0.0:
             return 4
-    status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0)
+    status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0)
     if status != 0:
         return status
-    e1 = np.empty((m, len(ENTRY)))
+    # each moved slice's entries at its own depth
     need = -math.inf  # the highest water a moved slice needs above the table's top
+    g1 = np.zeros(m + 1, dtype=np.int64)
     for i in range(m):
+        g1[i + 1] = g1[i]
         if iout[I_MOVED, i] > 0:
             at = level - fout[_LIFT, i]
             if at > top:
                 need = max(need, at)
                 continue
-            s = iout[I_SOURCE, i] - c0
-            table_entry_loops(e1[i], at, s, heights, tkey, tvals, station_vals, tol)
-            if e1[i, 0] <= 0.0:
+            first, count = table_interval_loops(at, iout[I_SOURCE, i] - c0, heights, tkey)
+            if tvals[first, 11] <= 0.0:  # an inexact interval (its entries' "ok")
                 return 4
+            g1[i + 1] += count
     if need > top:
         scal[7] = need
         return 3
-    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e1, m,
-                        a_c, v_c)  # fmt: skip
+    e1 = np.empty((g1[m], len(ENTRY)))
+    for i in range(m):
+        if iout[I_MOVED, i] > 0:
+            at = level - fout[_LIFT, i]
+            s = iout[I_SOURCE, i] - c0
+            table_entry_loops(e1, g1[i], at, s, heights, tkey, tvals, station_vals, tol)
+    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
+                        g1, m, a_c, v_c)  # fmt: skip
 
 
-def pitch_entries_loops(e, outline_arrays, levels, tol, stations):
-    """The wetted properties (:func:`hullslice.wetted_loops.wetted_loops`, the
-    ``wedge`` estimator) of the kept cut's ``stations`` with the water at their
-    ``levels`` (the others dry), into the rows of ``e`` in the columns of :data:`ENTRY`;
-    False where a station has other than one entry (a section in two wetted pieces)."""
+def pitch_entries_loops(outline_arrays, levels, tol):
+    """The wetted properties (:func:`hullslice.wetted_loops.wetted_loops`, the ``wedge``
+    estimator) of the kept cut's stations with the water at their ``levels`` (``-inf``:
+    dry), in the columns of :data:`ENTRY`: ``(entries, first)``, station ``s``'s from row
+    ``first[s]`` (one per wetted piece of its section, in order along the waterline, or
+    its one dry entry)."""
     (station, ya, za, yb, zb, zlo, start, area, contour, part_area, part_station, part_zmax,
      part_ymin, part_ymax, z_chine) = outline_arrays  # fmt: skip
     st, wet, p, hb, port, stbd, tm, tp, ts, yk, phb, share, chine = wetted_loops(
@@ -178,11 +227,9 @@ def pitch_entries_loops(e, outline_arrays, levels, tol, stations):
         first[st[j] + 1] += 1
     for s in range(len(area)):
         first[s + 1] += first[s]
-    for s in stations:
-        if first[s + 1] - first[s] != 1:
-            return False
-        j = first[s]
-        row = e[s]
+    e = np.empty((n_e, len(ENTRY)))
+    for j in range(n_e):  # the entries come by station
+        row = e[j]
         row[0] = 1.0
         row[1] = 1.0 if wet[j] else 0.0
         row[2] = p[j]
@@ -196,7 +243,7 @@ def pitch_entries_loops(e, outline_arrays, levels, tol, stations):
         row[10] = phb[j]
         row[11] = share[j]
         row[12] = 1.0 if chine[j] else 0.0
-    return True
+    return e, first
 
 
 def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outline_arrays,
@@ -206,8 +253,8 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     :func:`hullslice.wetted_loops.wetted_loops`, as numpy's path computes them, from
     ``outline_arrays``, the kept cut's outline (its arrays as
     :class:`~hullslice.kernel.outline.Outline` holds them, to ``z_chine``). Returns 0, or
-    a status of :data:`STATUS` (4: a section in two wetted pieces, or two slices taking
-    one station's section at two heights)."""
+    a status of :data:`STATUS` (4: two slices taking one station's section at two
+    heights)."""
     level, n, c0, n_cut = opts[0], int(opts[6]), int(opts[7]), int(opts[8])
     tol = opts[9]
     status, w0, w1 = window_loops(keel, level, n)
@@ -215,38 +262,39 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
         return status
     if w0 < c0 or w1 > c0 + n_cut:
         return 2
-    e0 = np.empty((n_cut, len(ENTRY)))
     levels = np.full(n_cut, -math.inf)
-    stations = np.arange(w0 - c0, w1 - c0)
-    for s in stations:
+    for s in range(w0 - c0, w1 - c0):
         levels[s] = level
-    if not pitch_entries_loops(e0, outline_arrays, levels, tol, stations):
-        return 4
-    status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0)
+    e0, f0 = pitch_entries_loops(outline_arrays, levels, tol)
+    status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0)
     if status != 0:
         return status
     n_moved = 0
     for i in range(m):
         n_moved += iout[I_MOVED, i]
-    e1 = np.empty((m, len(ENTRY)))
-    if n_moved:
-        levels[:] = -math.inf
-        moved = np.empty(n_moved, dtype=np.int64)
-        j = 0
-        for i in range(m):
-            if iout[I_MOVED, i] > 0:
-                s = iout[I_SOURCE, i] - c0
-                at = level - fout[_LIFT, i]
-                if levels[s] != -math.inf and levels[s] != at:
-                    return 4
-                levels[s] = at
-                moved[j] = s
-                j += 1
-        e_moved = np.empty((n_cut, len(ENTRY)))
-        if not pitch_entries_loops(e_moved, outline_arrays, levels, tol, moved):
-            return 4
-        for i in range(m):
-            if iout[I_MOVED, i] > 0:
-                e1[i] = e_moved[iout[I_SOURCE, i] - c0]
-    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e1, m,
-                        a_c, v_c)  # fmt: skip
+    g1 = np.zeros(m + 1, dtype=np.int64)
+    if n_moved == 0:
+        return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0,
+                            e0[:0], g1, m, a_c, v_c)  # fmt: skip
+    levels[:] = -math.inf
+    for i in range(m):
+        if iout[I_MOVED, i] > 0:
+            s = iout[I_SOURCE, i] - c0
+            at = level - fout[_LIFT, i]
+            if levels[s] != -math.inf and levels[s] != at:
+                return 4
+            levels[s] = at
+    e_moved, f_moved = pitch_entries_loops(outline_arrays, levels, tol)
+    for i in range(m):
+        g1[i + 1] = g1[i]
+        if iout[I_MOVED, i] > 0:
+            s = iout[I_SOURCE, i] - c0
+            g1[i + 1] += f_moved[s + 1] - f_moved[s]
+    e1 = np.empty((g1[m], len(ENTRY)))
+    for i in range(m):
+        if iout[I_MOVED, i] > 0:
+            s = iout[I_SOURCE, i] - c0
+            for j in range(f_moved[s + 1] - f_moved[s]):
+                e1[g1[i] + j] = e_moved[f_moved[s] + j]
+    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
+                        g1, m, a_c, v_c)  # fmt: skip

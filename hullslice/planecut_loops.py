@@ -29,7 +29,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .held_loops import held_loops, pitch_entries_loops, pitch_loops, table_entry_loops
+from .held_loops import (
+    held_loops,
+    pitch_entries_loops,
+    pitch_loops,
+    table_entry_loops,
+    table_interval_loops,
+)
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
@@ -59,6 +65,7 @@ from .slices_loops import (
     right_loops,
     runs_of_loops,
     slope_loops,
+    wet_loops,
     window_loops,
 )
 from .wetted_loops import wetted_loops
@@ -79,7 +86,7 @@ __all__ = [
 #: helpers' digest). numba's cache of the loops goes stale when this file changes, not when
 #: those do: a change of theirs changes this digest too (``tests/test_stage_loops.py``
 #: checks it), so that the cache of :func:`stage_loops` is made again.
-STAGE_HELPERS_DIGEST = "f00388b669be243e"
+STAGE_HELPERS_DIGEST = "0b0a4e54bbae11f6"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -443,7 +450,7 @@ LOOPS["stage"] = stage_loops
 #: namespaces are numba's).
 #: What the fused evaluation's loops call, helpers before callers.
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
-         "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
+         "h_extent", "h_window", "h_wet", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the stage loops call, helpers before callers.
@@ -451,7 +458,7 @@ _STAGE = (*_SIDE, "side", "refine", "runs", "extremes", "frame_keel", "row", "ke
           "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted", "h_entries",
           "pitch")  # fmt: skip
 CALLS = {
-    "held": (*_HELD, "h_table"),
+    "held": (*_HELD, "h_interval", "h_table"),
     "pitch": (*_HELD, "wetted", "h_entries"),
     "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent"),
     "lowest": ("search",),
@@ -476,7 +483,9 @@ LOOPS["h_runs"] = runs_of_loops
 LOOPS["h_extent"] = extent_loops
 LOOPS["h_window"] = window_loops
 LOOPS["h_layout"] = layout_loops
+LOOPS["h_wet"] = wet_loops
 LOOPS["h_finish"] = finish_loops
+LOOPS["h_interval"] = table_interval_loops
 LOOPS["h_table"] = table_entry_loops
 LOOPS["h_entries"] = pitch_entries_loops
 LOOPS["pitch"] = pitch_loops

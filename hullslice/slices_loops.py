@@ -1,8 +1,7 @@
 """The fused evaluation's slices, written for a compiler (see :mod:`hullslice.held_loops`):
 the keel line's wetted range, the fixed slices over it and their sections (which station's,
 moved how far), then each section's keel, velocity, the curve solver's force, its flags and
-the sums, with numpy's arithmetic in numpy's order. Plain Python too (slowly: the tests
-run it so)."""
+the sums, with numpy's arithmetic in numpy's order. Plain Python too (the tests run it)."""
 
 from __future__ import annotations
 
@@ -21,10 +20,12 @@ COLUMNS = (
     "y_keel", "part_half_beam", "keel_curvature", "velocity", "force_per_metre", "gamma",
     "z_tilde", "v_tilde", "a_tilde", "v_z0", "acceleration", "froude", "lift",
 )  # fmt: skip
-#: The integer columns of ``iout``: each slice's source station (of the kept cut), its
-#: chine flag (0 or 1), its reason code (bits of :data:`REASON_BITS`) and whether it takes
-#: its source's section moved to its own depth (0 or 1).
-I_SOURCE, I_CHINE, I_CODE, I_MOVED = 0, 1, 2, 3
+#: The integer rows of ``iout`` (``I_ROWS`` of them), by column: its source station (of
+#: the kept cut), chine flag (0 or 1), reason code (bits of :data:`REASON_BITS`), whether
+#: it takes its source's section moved to its depth (0 or 1), and its slice. A column is
+#: an entry of a slice (a wetted piece of its section, or its dry entry), as numpy's path
+#: lists them: a section in two wetted pieces (two nacelles) gives its slice two.
+I_SOURCE, I_CHINE, I_CODE, I_MOVED, I_SLICE, I_ROWS = 0, 1, 2, 3, 4, 5
 #: The columns of a station's entry (its wetted properties at one height of the water):
 #: whether the table serves it (1 or 0), the table's wet flag, then the properties.
 ENTRY = ("ok", "wet", "penetration", "half_beam", "half_beam_port", "half_beam_stbd",
@@ -51,6 +52,7 @@ STATUS = {
     5: "a slice cut afresh (the first contact)",
     6: "a keel point faster than sound, or a non-finite mass or force",
     7: "the keel line's end faces walk out of its range",
+    8: "more entries than the columns hold (sections in many wetted pieces)",
 }
 
 _X, _DX, _PEN, _HB, _HBP, _HBS, _DR, _DRP, _DRS, _AREA, _MPM, _SLOPE, _KZ, _YK, _PHB = range(15)
@@ -212,10 +214,11 @@ def window_loops(keel, level, n):
     return 0, max(k_first - 1, 0), min(k_last + 2, n)
 
 
-def layout_loops(fout, iout, opts, keel, runs, station_vals, e0):
+def layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0):
     """The slices of the wetted range (``fixed_sections``): each one's thickness, place,
     source station (of the kept cut) and lift, and whether it takes its source moved to
-    its depth (``iout[I_MOVED]``); ``e0`` holds the window's entries at the water's height.
+    its depth (``iout[I_MOVED]``); ``e0`` holds the window's entries at the water's height,
+    station ``s``'s from row ``f0[s]`` (see :func:`finish_loops`).
     Returns ``(status, m)``: 0 and the slice count, or a status of :data:`STATUS`."""
     level = opts[0]
     n, c0 = int(opts[6]), int(opts[7])
@@ -261,7 +264,7 @@ def layout_loops(fout, iout, opts, keel, runs, station_vals, e0):
         depth = interp_loops(x, kx, kz) - station_vals[0, source - c0]
         # fresh: neither the slice's station nor its neighbour wetted at this level, or
         # moved more steeply than 45 deg
-        fresh = not e0[k - c0, 2] > 0.0 and not e0[neighbour - c0, 2] > 0.0
+        fresh = not wet_loops(e0, f0, k - c0) and not wet_loops(e0, f0, neighbour - c0)
         if abs(depth) > steep_slope * abs(x - (xa + (source + 0.5) * d)):
             fresh = True
         if fresh:
@@ -274,13 +277,25 @@ def layout_loops(fout, iout, opts, keel, runs, station_vals, e0):
     return 0, m
 
 
-def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e1, m,
+def wet_loops(e0, f0, s):
+    """Whether station ``s`` has a wetted entry (a penetration above zero)."""
+    for j in range(f0[s], f0[s + 1]):
+        if e0[j, 2] > 0.0:
+            return True
+    return False
+
+
+def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1, g1, m,
                  a_c, v_c):  # fmt: skip
-    """From the slices' entries (``e0`` by kept station at the water's height, ``e1`` by
-    slice for the moved ones) to the sections (``assemble``), their velocities, the curve
-    solver's force, the flags and the sums (``evaluate``, ``ForceResult``). Returns 0, or
-    6 (a keel point faster than sound, a non-finite mass, a non-finite force or sum of
-    forces: numpy's path names them in its errors)."""
+    """From the slices' entries to the sections (``assemble``), their velocities, the curve
+    solver's force, the flags and the sums (``evaluate``, ``ForceResult``): a slice's
+    entries are its kept station's at the water's height, ``e0[f0[s]:f0[s + 1]]`` for
+    station ``s`` (from the window's first), or, for a moved slice ``i``, its own,
+    ``e1[g1[i]:g1[i + 1]]``; one row each (a wetted piece of the section, or its dry
+    entry), the rows of a slice one after another, the slices in order, as numpy's path
+    lists them. Returns 0, 6 (a keel point faster than sound, a non-finite mass, a
+    non-finite force or sum of forces: numpy's path names them in its errors) or 8 (more
+    rows than ``fout`` has columns)."""
     level, w, u, q = opts[0], opts[1], opts[2], opts[3]
     x_cg, frame_x_cg = opts[4], opts[5]
     n, c0 = int(opts[6]), int(opts[7])
@@ -294,20 +309,31 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
     mid, cont, bend, starts, offsets = runs_of_loops(runs)
     n_mid = len(mid)
     d = (kx[nk - 1] - kx[0]) / n
+    # the slices as layout_loops left them (their rows are written over below)
+    s_x, s_dx, s_lift = np.empty(m), np.empty(m), np.empty(m)
+    s_src, s_moved = np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64)
+    n_rows = 0
+    for i in range(m):
+        s_x[i], s_dx[i], s_lift[i] = fout[_X, i], fout[_DX, i], fout[_LIFT, i]
+        s_src[i], s_moved[i] = iout[I_SOURCE, i] - c0, iout[I_MOVED, i]
+        if s_moved[i] > 0:
+            n_rows += g1[i + 1] - g1[i]
+        else:
+            n_rows += f0[s_src[i] + 1] - f0[s_src[i]]
+    if n_rows > fout.shape[1] or n_rows > iout.shape[1]:
+        return 8
     total = 0.0
     total_x = 0.0
     moment = 0.0
     size = 0.0
     z_cg = -level
+    r = 0
     for i in range(m):
-        s = iout[I_SOURCE, i] - c0
-        ent = e1[i] if iout[I_MOVED, i] > 0 else e0[s]
-        width = fout[_DX, i]
-        x = fout[_X, i]
+        s = s_src[i]
+        moved = s_moved[i] > 0
+        width = s_dx[i]
+        x = s_x[i]
         keel_z = interp_loops(x, kx, kz)
-        pen = ent[2]
-        deadrise = ent[6]
-        chine = ent[12] > 0.0
         # assemble: the keel's chord and curvature, the mass per metre
         chord_w = max(width, 0.5 * d)
         slope = slope_loops(x, mid, cont, starts, offsets)
@@ -327,7 +353,6 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
         if not math.isfinite(keel_z):
             keel_z = level
         area = station_vals[2, s]
-        mpm = density * area * ent[11]
         keel_at = keel_z + z_cg
         x_earth = x + frame_x_cg
         # the section's penetration velocity (forces.kinematics.section_velocity)
@@ -338,90 +363,105 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
         vel = up - forward * slope
         if not math.hypot(up, forward) < sound:
             return 6
-        fout[_X, i] = x_earth
-        fout[_PEN, i] = pen
-        fout[_HB, i] = ent[3]
-        fout[_HBP, i] = ent[4]
-        fout[_HBS, i] = ent[5]
-        fout[_DR, i] = deadrise
-        fout[_DRP, i] = ent[7]
-        fout[_DRS, i] = ent[8]
-        fout[_AREA, i] = area
-        fout[_MPM, i] = mpm
-        fout[_SLOPE, i] = slope
-        fout[_KZ, i] = keel_at
-        fout[_YK, i] = ent[9]
-        fout[_PHB, i] = ent[10]
-        fout[_CURV, i] = curv
-        fout[_VEL, i] = vel
-        iout[I_SOURCE, i] = s
-        iout[I_CHINE, i] = 1 if chine else 0
-        # evaluate(): which sections the solver is given, and the flags
-        code = 0
-        wet = pen > 0.0
-        if wet and not math.isfinite(mpm):
-            return 6
-        massless = wet and mpm <= 0.0
-        face = wet and abs(slope) > end_face
-        solved = wet and not massless and not face
-        flat = solved and not (deadrise >= min_deadrise)
-        force = 0.0
-        for c in range(_GAM, _FR + 1):
-            fout[c, i] = np.nan
-        if solved:
-            beta = min_deadrise if flat else deadrise
-            tb = math.tan(beta)
-            gam = -0.0114 * (beta * (180.0 / math.pi)) + 1.5669
-            m_eq = mpm * rho_ratio
-            root_m = math.sqrt(m_eq)
-            zt = div_loops(-pen * gam, root_m * tb)
-            vt = v_c[len(v_c) - 1] + zt * 0.0
-            for kc in range(len(v_c) - 2, -1, -1):
-                vt = v_c[kc] + vt * zt
-            at_ = a_c[len(a_c) - 1] + zt * 0.0
-            for kc in range(len(a_c) - 2, -1, -1):
-                at_ = a_c[kc] + at_ * zt
-            v0 = div_loops(vel, vt)
-            acc = div_loops(div_loops(at_ * (v0 * v0), root_m) * gam, tb)
-            force = mpm * (acc + g) if vel < 0.0 else 0.0
-            z_star = math.sqrt(2.0 * m_eq / (5.0 * math.pi * rho_curves * (gam * gam))) * tb
-            froude = div_loops(abs(5.0 / 6.0 * v0), math.sqrt(g * z_star))
-            fout[_GAM, i] = gam
-            fout[_ZT, i] = zt
-            fout[_VT, i] = vt
-            fout[_AT, i] = at_
-            fout[_V0, i] = v0
-            fout[_ACC, i] = acc
-            fout[_FR, i] = froude
-            if zt < z_lo or zt > z_hi:
-                code |= 1
-            if vt <= 0.0:
-                code |= 2
-            if vel >= 0.0:
-                code |= 4
-            if froude <= froude_min:
-                code |= 8
-        if massless:
-            code |= 16
-        if face:
-            code |= 32
-        if flat:
-            code |= 64
-        if chine and not face:
-            code |= 128
-        if solved and abs(slope) > steep_slope:
-            code |= 256
-        iout[I_CODE, i] = code
-        fout[_FPM, i] = force
-        if not math.isfinite(force):  # numpy's path refuses the solver's output
-            return 6
-        # the sums of forces.result.ForceResult
-        f = force * width
-        size += abs(f)
-        fx = -f * slope
-        total += f
-        total_x += fx
-        moment += arm_x * f - (0.5 * keel_at - z_cg) * fx
+        if moved:
+            entries, j0, j1 = e1, g1[i], g1[i + 1]
+        else:
+            entries, j0, j1 = e0, f0[s], f0[s + 1]
+        for j in range(j0, j1):
+            ent = entries[j]
+            pen = ent[2]
+            deadrise = ent[6]
+            chine = ent[12] > 0.0
+            mpm = density * area * ent[11]
+            fout[_X, r] = x_earth
+            fout[_DX, r] = width
+            fout[_LIFT, r] = s_lift[i]
+            fout[_PEN, r] = pen
+            fout[_HB, r] = ent[3]
+            fout[_HBP, r] = ent[4]
+            fout[_HBS, r] = ent[5]
+            fout[_DR, r] = deadrise
+            fout[_DRP, r] = ent[7]
+            fout[_DRS, r] = ent[8]
+            fout[_AREA, r] = area
+            fout[_MPM, r] = mpm
+            fout[_SLOPE, r] = slope
+            fout[_KZ, r] = keel_at
+            fout[_YK, r] = ent[9]
+            fout[_PHB, r] = ent[10]
+            fout[_CURV, r] = curv
+            fout[_VEL, r] = vel
+            iout[I_SOURCE, r] = s
+            iout[I_MOVED, r] = s_moved[i]
+            iout[I_SLICE, r] = i
+            iout[I_CHINE, r] = 1 if chine else 0
+            # evaluate(): which sections the solver is given, and the flags
+            code = 0
+            wet = pen > 0.0
+            if wet and not math.isfinite(mpm):
+                return 6
+            massless = wet and mpm <= 0.0
+            face = wet and abs(slope) > end_face
+            solved = wet and not massless and not face
+            flat = solved and not (deadrise >= min_deadrise)
+            force = 0.0
+            for c in range(_GAM, _FR + 1):
+                fout[c, r] = np.nan
+            if solved:
+                beta = min_deadrise if flat else deadrise
+                tb = math.tan(beta)
+                gam = -0.0114 * (beta * (180.0 / math.pi)) + 1.5669
+                m_eq = mpm * rho_ratio
+                root_m = math.sqrt(m_eq)
+                zt = div_loops(-pen * gam, root_m * tb)
+                vt = v_c[len(v_c) - 1] + zt * 0.0
+                for kc in range(len(v_c) - 2, -1, -1):
+                    vt = v_c[kc] + vt * zt
+                at_ = a_c[len(a_c) - 1] + zt * 0.0
+                for kc in range(len(a_c) - 2, -1, -1):
+                    at_ = a_c[kc] + at_ * zt
+                v0 = div_loops(vel, vt)
+                acc = div_loops(div_loops(at_ * (v0 * v0), root_m) * gam, tb)
+                force = mpm * (acc + g) if vel < 0.0 else 0.0
+                z_star = math.sqrt(2.0 * m_eq / (5.0 * math.pi * rho_curves * (gam * gam))) * tb
+                froude = div_loops(abs(5.0 / 6.0 * v0), math.sqrt(g * z_star))
+                fout[_GAM, r] = gam
+                fout[_ZT, r] = zt
+                fout[_VT, r] = vt
+                fout[_AT, r] = at_
+                fout[_V0, r] = v0
+                fout[_ACC, r] = acc
+                fout[_FR, r] = froude
+                if zt < z_lo or zt > z_hi:
+                    code |= 1
+                if vt <= 0.0:
+                    code |= 2
+                if vel >= 0.0:
+                    code |= 4
+                if froude <= froude_min:
+                    code |= 8
+            if massless:
+                code |= 16
+            if face:
+                code |= 32
+            if flat:
+                code |= 64
+            if chine and not face:
+                code |= 128
+            if solved and abs(slope) > steep_slope:
+                code |= 256
+            iout[I_CODE, r] = code
+            fout[_FPM, r] = force
+            if not math.isfinite(force):  # numpy's path refuses the solver's output
+                return 6
+            # the sums of forces.result.ForceResult
+            f = force * width
+            size += abs(f)
+            fx = -f * slope
+            total += f
+            total_x += fx
+            moment += arm_x * f - (0.5 * keel_at - z_cg) * fx
+            r += 1
     if not (math.isfinite(total) and math.isfinite(size)):  # numpy's path refuses them
         return 6
     # KeelLine.wet_length(level, x0, x1)
@@ -450,7 +490,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, e
         else:
             wl = 0.0
         length += min(max(wl, 0.0), span)
-    scal[0] = m
+    scal[0] = n_rows
     scal[1] = length
     scal[2] = total
     scal[3] = total_x

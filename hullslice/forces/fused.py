@@ -34,7 +34,7 @@ from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
 from ..planecut import Rings, plane_index
-from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_SOURCE, OPTIONS
+from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_ROWS, I_SLICE, I_SOURCE, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
 from ..slicing.own_keel import pieces
@@ -59,6 +59,9 @@ __all__ = ["FusedEvaluation", "fused_for"]
 #: goes the steps one by one, which make and keep its frame (a pitch held still, whose
 #: kept cut and waterline tables then serve).
 SEEN_PITCHES = 8
+#: The loops' columns per slice: room for the entries of sections in several wetted
+#: pieces (a fuselage and its two nacelles); beyond it numpy's path serves.
+ROWS_PER_SLICE = 4
 
 _COL = {name: i for i, name in enumerate(COLUMNS)}
 _OPT = {name: i for i, name in enumerate(OPTIONS)}
@@ -176,8 +179,7 @@ class FusedEvaluation:
         if buffers is None:
             n = self.model.slices
             buffers = self._local.buffers = (
-                self._opts.copy(), np.empty(8), np.empty((len(COLUMNS), n)),
-                np.empty((4, n), dtype=np.int64),
+                self._opts.copy(), np.empty(8), *_columns(n),
             )  # fmt: skip
         return buffers
 
@@ -234,8 +236,6 @@ class FusedEvaluation:
     def _held(self, fr, kept, table, rows, c0, level, w, u, q, fout, iout, opts, scal):
         """The loops with the kept cut's waterline table (``rows`` from station ``c0``:
         its outline's contours)."""
-        if not table.one_each:
-            return None
         plan = kept.plans.get("wedge")
         if plan is None or plan[0] is not table:
             plan = kept.plans["wedge"] = (table, table_arrays(table))
@@ -289,7 +289,7 @@ class FusedEvaluation:
         if too_high is not None and too_high[0] is outline and need >= too_high[1]:
             return None
         new = WaterlineTable.of(outline, need, table.tol, "wedge")
-        if new is None or not new.one_each or new.top < need:
+        if new is None or new.top < need:
             kept.plans["too_high"] = (outline, need)
             return None
         with kept._lock:
@@ -356,8 +356,7 @@ class FusedEvaluation:
         :meth:`stage_totals`), with the pose the model gives that state
         (:meth:`~hullslice.motion.model.ForceModel.draft`): the same result and pose.
         None where the steps one by one must serve (see :meth:`_one_call`)."""
-        n = self.model.slices
-        fout, iout = np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64)
+        fout, iout = _columns(self.model.slices)
         done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
                               motion.pitch_rate, fout, iout)  # fmt: skip
         if done is None:
@@ -388,8 +387,7 @@ class FusedEvaluation:
 
     def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
         """The :class:`ForceResult` at a pose and motion, or None where numpy's path must."""
-        n = self.model.slices
-        fout, iout = np.empty((len(COLUMNS), n)), np.empty((4, n), dtype=np.int64)
+        fout, iout = _columns(self.model.slices)
         fr = frame(self.hull, pose.pitch)
         done = self._run(fr, pose.draft, motion.velocity, motion.forward_speed,
                          motion.pitch_rate, fout, iout)  # fmt: skip
@@ -407,20 +405,21 @@ class FusedEvaluation:
         ``scal``, its sections' contours from the cut's ``rows`` (by the window's stations)
         in the cutter's coordinates (``origin``, ``scale``), at the water's ``level``
         (m) and the clipped ``draft`` (m)."""
-        m = int(scal[0])
+        m = int(scal[0])  # the rows: one per entry, a slice's one after another
         cols = {name: fout[i, :m] for name, i in _USED}
-        source = iout[I_SOURCE, :m]
         code = iout[I_CODE, :m]
         z_cg = -level
+        slot = iout[I_SLICE, :m]
+        first = np.flatnonzero(np.diff(slot, prepend=-1))  # each slice's first row
         sections = Sections(
-            station=np.arange(m),
+            station=slot.copy(),
             **{name: cols[name] for name in _SECTION_COLUMNS},
             chine_wetted=iout[I_CHINE, :m] > 0,
             polygons=ShiftedPolygons(
-                [rows[k] for k in source.tolist()],
+                [rows[k] for k in iout[I_SOURCE, first].tolist()],
                 (origin[0], origin[1] + z_cg),
                 scale,
-                cols["lift"],
+                cols["lift"][first],
             ),
             deadrise_method="wedge",
             draft=draft,
@@ -453,6 +452,13 @@ class FusedEvaluation:
         """The reasons of code ``c`` joined, as the solver and the checks join them."""
         text = self._texts[c] = "; ".join(t for bit, t in enumerate(self.reasons) if c >> bit & 1)
         return text
+
+
+def _columns(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The loops' float and integer columns for ``n`` slices (see
+    :data:`~hullslice.slices_loops.COLUMNS`, :data:`~hullslice.slices_loops.I_ROWS`)."""
+    size = ROWS_PER_SLICE * n
+    return np.empty((len(COLUMNS), size)), np.empty((I_ROWS, size), dtype=np.int64)
 
 
 def _sums(scal: np.ndarray) -> tuple[float, float, float]:
