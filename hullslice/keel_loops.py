@@ -7,9 +7,9 @@ over every end abscissa and every interval's middle, as
 pair, and a minimum, which does not depend on the order (but for the sign of a zero where
 two segments tie at one: numpy keeps the last, the loops the first). :func:`envelope_loops`
 does the same on edges already turned, :func:`lowest_loops` over given abscissae.
-:func:`frame_keel_loops` makes a new pitch's keel line in one call: the side view's
-loops, the merge of its close break points (:func:`refine_loops`), its runs
-(:func:`runs_loops`) and the turned ends' lowest and highest heights.
+:func:`runs_loops` finds a keel line's runs. A new pitch's keel line in one call (the side
+view's loops, the refinement of its lowest points, its runs) is
+:func:`hullslice.frame_loops.frame_keel_loops`.
 """
 
 from __future__ import annotations
@@ -21,13 +21,10 @@ import numpy as np
 __all__ = [
     "abscissae_loops",
     "envelope_loops",
-    "extremes_loops",
-    "frame_keel_loops",
     "keel_arrays_loops",
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
-    "refine_loops",
     "row_loops",
     "runs_loops",
     "search_loops",
@@ -355,81 +352,3 @@ def row_loops(out, row, values):
     """``values`` into the start of ``out``'s row ``row``."""
     for i in range(len(values)):
         out[row, i] = values[i]
-
-
-def refine_loops(xs, z, zm, merge):
-    """:func:`hullslice.kernel.envelope.refined` where it only merges: where no interval's
-    middle lies off its chord (no gap, ``zm`` infinite; no jump or crossing, ``zm`` above
-    the chord) the break points closer together than ``merge`` become one, at their mean
-    abscissa (numpy's ``add.reduceat``: the first plus the running sum of the others) and
-    their lowest height. Returns ``(ok, xs, z)``; ``ok`` False where the refinement has
-    more to do, or a group of points is longer than 8 (numpy sums those pairwise): then
-    numpy's path."""
-    n = len(xs)
-    for i in range(n - 1):
-        if math.isinf(zm[i]):
-            return False, xs, z
-        chord = 0.5 * (z[i + 1] + z[i])
-        if math.isfinite(zm[i]) and math.isfinite(chord):
-            if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
-                return False, xs, z
-    if not (merge > 0.0 and n > 1):
-        return True, xs, z
-    out_x = np.empty(n)
-    out_z = np.empty(n)
-    g = 0
-    i = 0
-    while i < n:
-        j = i + 1
-        while j < n and xs[j] - xs[j - 1] <= merge:
-            j += 1
-        if j - i > 8:
-            return False, xs, z
-        rest = 0.0
-        low = z[i]
-        for k in range(i + 1, j):
-            rest += xs[k]
-            low = low if (low < z[k] or low != low) else z[k]
-        out_x[g] = (xs[i] + rest) / (j - i) if j - i > 1 else xs[i]  # numpy's: x / 1
-        out_z[g] = low
-        g += 1
-        i = j
-    if g == n:  # none closer than merge: numpy's path keeps the arrays
-        return True, xs, z
-    return True, out_x[:g], out_z[:g]
-
-
-def extremes_loops(za, zb):
-    """``(min(za.min(), zb.min()), max(za.max(), zb.max()))`` as numpy and Python take
-    them: each array's minimum and maximum with a NaN kept (numpy's), then Python's
-    ``min`` and ``max`` of the two (the first unless the second is lower, or higher).
-    Both arrays have at least one value."""
-    lo_a, hi_a = za[0], za[0]
-    for i in range(1, len(za)):
-        v = za[i]
-        lo_a = lo_a if (lo_a <= v or lo_a != lo_a) else v
-        hi_a = hi_a if (hi_a >= v or hi_a != hi_a) else v
-    lo_b, hi_b = zb[0], zb[0]
-    for i in range(1, len(zb)):
-        v = zb[i]
-        lo_b = lo_b if (lo_b <= v or lo_b != lo_b) else v
-        hi_b = hi_b if (hi_b >= v or hi_b != hi_b) else v
-    return (lo_b if lo_b < lo_a else lo_a), (hi_b if hi_b > hi_a else hi_a)
-
-
-def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
-    """A new pitch's keel line in one call: :func:`side_view_loops` (its arguments the
-    first seven), :func:`refine_loops` of its lower envelope with ``merge`` and
-    :func:`runs_loops` of the refined break points (``end_face`` and ``steep_slope`` as
-    there), with the turned ends' lowest and highest heights (:func:`extremes_loops`).
-
-    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays of
-    :func:`side_view_loops`, ``ok`` and the break points ``x``, ``z`` as
-    :func:`refine_loops` gives them (where ``ok`` is False the refinement has more to do,
-    numpy's, and ``runs`` is not meaningful), ``runs`` the eleven values of
-    :func:`runs_loops`."""
-    side = side_view_loops(a, b, gx, gz, c, s, order)
-    low, high = extremes_loops(side[1], side[3])
-    ok, x, z = refine_loops(side[5], side[7], side[8], merge)
-    runs = runs_loops(x, z, end_face, steep_slope)
-    return ok, side, low, high, x, z, runs

@@ -29,6 +29,13 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .frame_loops import (
+    crossings_loops,
+    extremes_loops,
+    frame_keel_loops,
+    lowest_at_loops,
+    refine_loops,
+)
 from .held_loops import (
     held_loops,
     pitch_entries_loops,
@@ -39,13 +46,10 @@ from .held_loops import (
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
-    extremes_loops,
-    frame_keel_loops,
     keel_arrays_loops,
     lower_loops,
     lowest_loops,
     lowest_walk_loops,
-    refine_loops,
     row_loops,
     runs_loops,
     search_loops,
@@ -82,11 +86,12 @@ __all__ = [
 ]
 
 #: The digest of the sources of :func:`stage_loops`' helpers in other files
-#: (``keel_loops.py``, ``outline_loops.py``, ``held_loops.py``, which holds its own
-#: helpers' digest). numba's cache of the loops goes stale when this file changes, not when
-#: those do: a change of theirs changes this digest too (``tests/test_stage_loops.py``
-#: checks it), so that the cache of :func:`stage_loops` is made again.
-STAGE_HELPERS_DIGEST = "0b0a4e54bbae11f6"
+#: (``keel_loops.py``, ``frame_loops.py``, ``outline_loops.py``, ``held_loops.py``, which
+#: holds its own helpers' digest). numba's cache of the loops goes stale when this file
+#: changes, not when those do: a change of theirs changes this digest too
+#: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
+#: made again.
+STAGE_HELPERS_DIGEST = "928d291603200f1a"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -263,7 +268,7 @@ def stage_loops(
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
     (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line
-    (:func:`~hullslice.keel_loops.frame_keel_loops` of the silhouette edges ``a`` to ``b``
+    (:func:`~hullslice.frame_loops.frame_keel_loops` of the silhouette edges ``a`` to ``b``
     about the centre of gravity ``g``, ``order`` their ends' order, ``keel_merge``,
     ``end_face`` and ``steep_slope`` as there) and its arrays
     (:func:`~hullslice.keel_loops.keel_arrays_loops`); the draft of the centre of gravity
@@ -440,6 +445,8 @@ LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
 LOOPS["keel_arrays"] = keel_arrays_loops
 LOOPS["row"] = row_loops
+LOOPS["lowest_at"] = lowest_at_loops
+LOOPS["crossings"] = crossings_loops
 LOOPS["refine"] = refine_loops
 LOOPS["extremes"] = extremes_loops
 LOOPS["frame_keel"] = frame_keel_loops
@@ -453,10 +460,12 @@ _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs"
          "h_extent", "h_window", "h_wet", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
+#: What the keel line's refinement calls, helpers before callers.
+_REFINE = ("lower", "walk", "lowest_at", "crossings")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_SIDE, "side", "refine", "runs", "extremes", "frame_keel", "row", "keel_arrays",
-          "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted", "h_entries",
-          "pitch")  # fmt: skip
+_STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
+          "keel_arrays", "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted",
+          "h_entries", "pitch")  # fmt: skip
 CALLS = {
     "held": (*_HELD, "h_interval", "h_table"),
     "pitch": (*_HELD, "wetted", "h_entries"),
@@ -465,29 +474,20 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": _SIDE,
-    "frame_keel": (*_SIDE, "side", "refine", "runs", "extremes"),
+    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes"),
+    "refine": _REFINE,
+    "crossings": ("lower", "walk", "lowest_at"),
+    "lowest_at": ("lower", "walk"),
     "ranges": ("search", "gallop"),
     "stage": _STAGE,
     "outline": ("order",),
     "keel_arrays": ("row",),
 }
-LOOPS["wetted"] = wetted_loops
-LOOPS["held"] = held_loops
-LOOPS["h_interp"] = interp_loops
-LOOPS["h_right"] = right_loops
-LOOPS["h_left"] = left_loops
-LOOPS["h_div"] = div_loops
-LOOPS["h_desc"] = left_loops_desc
-LOOPS["h_cross"] = crossing_loops
-LOOPS["h_runs"] = runs_of_loops
-LOOPS["h_extent"] = extent_loops
-LOOPS["h_window"] = window_loops
-LOOPS["h_layout"] = layout_loops
-LOOPS["h_wet"] = wet_loops
-LOOPS["h_finish"] = finish_loops
-LOOPS["h_interval"] = table_interval_loops
-LOOPS["h_table"] = table_entry_loops
-LOOPS["h_entries"] = pitch_entries_loops
-LOOPS["pitch"] = pitch_loops
-LOOPS["window"] = window_loops
-LOOPS["h_slope"] = slope_loops
+LOOPS.update(
+    wetted=wetted_loops, held=held_loops, h_interp=interp_loops, h_right=right_loops,
+    h_left=left_loops, h_div=div_loops, h_desc=left_loops_desc, h_cross=crossing_loops,
+    h_runs=runs_of_loops, h_extent=extent_loops, h_window=window_loops, h_layout=layout_loops,
+    h_wet=wet_loops, h_finish=finish_loops, h_interval=table_interval_loops,
+    h_table=table_entry_loops, h_entries=pitch_entries_loops, pitch=pitch_loops,
+    window=window_loops, h_slope=slope_loops
+)  # fmt: skip

@@ -57,6 +57,7 @@ LAYERS: dict[str, int] = {
     "hullslice.planecut_loops": 3,
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
+    "hullslice.frame_loops": 3,
     "hullslice.outline_loops": 3,
     "hullslice.held_loops": 3,
     "hullslice.slices_loops": 3,

@@ -462,45 +462,13 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
                 assert _same(got.x, want.x) and _same(got.z, want.z)
 
 
-@pytest.mark.parametrize("name", sorted(BODIES))
-def test_the_keel_lines_merge_by_the_loops_equals_numpy(name):
-    """Where the refinement of the side view's lowest points only merges close break
-    points, :func:`~hullslice.keel_loops.refine_loops` (as Python, and compiled where numba
-    is installed) gives numpy's keel line to the last bit, at pitches from -20 to 40
-    degrees and merge distances from the body's own to a thousand times it; where it has
-    more to do, it says so."""
-    from hullslice.constants import TOL
-    from hullslice.geometry import _turn, silhouette_edges
-    from hullslice.kernel.envelope import lowest_segments, refined
-
-    hull = BODIES[name]
-    a, b = silhouette_edges(hull)
-    g = np.asarray(hull.cg)
-    side = planecut_loops.side_view_loops
-    refines = [planecut_loops.LOOPS["refine"]]
-    if planecut_loops.available():
-        refines.append(planecut_loops.compiled("refine"))
-    served = tried = 0
-    for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
-        c, s = np.cos(pitch), np.sin(pitch)
-        args = (float(g[0]), float(g[2]), float(c), float(s))
-        _, _, _, _, _, xs, mid, z, zm = side(a, b, *args, np.arange(2 * len(a)))
-        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
-        for merge in TOL.keel_merge * hull.size * np.array([0.0, 1.0, 1e3]):
-            want = refined(xs, mid, z, zm, merge, lowest_segments(ta, tb))
-            for refine in refines:
-                ok, got_x, got_z = refine(xs, z, zm, merge)
-                tried += 1
-                if ok:
-                    served += 1
-                    assert _same(got_x, want.x) and _same(got_z, want.z), (pitch, merge)
-    assert served >= tried // 2, (served, tried)
-
-
 def test_the_keel_lines_merge_by_the_loops_in_groups():
     """Break points closer than the merge distance, in groups of one to eight: each group's
     mean abscissa and lowest height as numpy's ``reduceat`` gives them; a group of nine
-    (numpy sums it pairwise) and a gap between parts (infinite middle) left to numpy."""
+    (numpy sums it pairwise) left to numpy; a gap between parts (infinite middle) as
+    numpy's refinement adds it (tests/test_frame_loops.py: the rest of the refinement)."""
+    from hullslice.kernel.envelope import refined
+
     rng = np.random.default_rng(3)
     sizes = [1, 2, 3, 8, 5, 1, 4]
     xs, x = [], 0.0
@@ -518,15 +486,21 @@ def test_the_keel_lines_merge_by_the_loops_in_groups():
     refines = [planecut_loops.LOOPS["refine"]]
     if planecut_loops.available():
         refines.append(planecut_loops.compiled("refine"))
+    mid = 0.5 * (xs[1:] + xs[:-1])
+    none, seg = np.empty(0), np.empty(0, dtype=np.int64)  # no segments: none is asked for
     for refine in refines:
-        ok, got_x, got_z = refine(xs, z, zm, 1e-6)
+        ok, got_x, got_z = refine(xs, mid, z, zm, 1e-6, none, none, none, none, seg)
         assert ok and _same(got_x, want_x) and _same(got_z, want_z)
         nine = np.concatenate([xs, xs[-1] + 0.1 + 1e-7 * np.arange(9)])
-        ok, _, _ = refine(nine, np.zeros(len(nine)), np.full(len(nine) - 1, -1.0), 1e-6)
+        flat = np.full(len(nine) - 1, -1.0)
+        ok, _, _ = refine(nine, nine[1:], np.zeros(len(nine)), flat, 1e-6, none, none, none,
+                          none, seg)  # fmt: skip
         assert not ok
         gap = zm.copy()
         gap[3] = np.inf
-        assert not refine(xs, z, gap, 1e-6)[0]
+        want = refined(xs, mid, z, gap, 1e-6)
+        ok, got_x, got_z = refine(xs, mid, z, gap, 1e-6, none, none, none, none, seg)
+        assert ok and _same(got_x, want.x) and _same(got_z, want.z)
 
 
 @pytest.mark.parametrize("name", sorted(BODIES))

@@ -49,7 +49,7 @@ class KeelLine:
     loops: InitVar[Callable | None] = None
     #: The runs' arrays already found by those loops for these break points, when given
     #: (``loops``' eleven values: a new pitch's are found with its keel line, see
-    #: :func:`hullslice.keel_loops.frame_keel_loops`).
+    #: :func:`hullslice.frame_loops.frame_keel_loops`).
     runs: InitVar[tuple | None] = None
 
     def __post_init__(self, loops: Callable | None, runs: tuple | None) -> None:

@@ -1,0 +1,213 @@
+"""A new pitch's keel line by loops, written for a compiler: numba's, when installed
+(compiled by :func:`hullslice.planecut_loops.compiled`, which holds them by name).
+
+:func:`frame_keel_loops` makes it in one call: the side view's loops
+(:func:`~hullslice.keel_loops.side_view_loops`), the refinement of their lowest points
+(:func:`refine_loops`: :func:`hullslice.kernel.envelope.refined`, its gaps, jumps and
+crossings, then the merge of close break points), the line's runs
+(:func:`~hullslice.keel_loops.runs_loops`) and the turned ends' lowest and highest heights
+(:func:`extremes_loops`), with numpy's arithmetic in numpy's order: the same keel line.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .keel_loops import lowest_walk_loops, runs_loops, side_view_loops
+
+__all__ = [
+    "FRAME_HELPERS_DIGEST",
+    "crossings_loops",
+    "extremes_loops",
+    "frame_keel_loops",
+    "lowest_at_loops",
+    "refine_loops",
+]
+
+#: The digest of the source of the helpers these loops call (``keel_loops.py``). numba's
+#: cache of these loops goes stale when this file changes, not when that one does: a
+#: change of it changes this digest too (``tests/test_keel_runs_loops.py`` checks it), so
+#: that their cache is made again.
+FRAME_HELPERS_DIGEST = "e6f702a2608b5d27"
+
+#: How many times the refinement halves an interval where two segments cross (as
+#: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
+CROSSING_PASSES = 8
+
+
+def lowest_at_loops(q, xa, za, xb, zb, seg):
+    """The lowest height of the turned silhouette segments (``xa`` to ``xb``, taken in the
+    order ``seg``, as :func:`~hullslice.keel_loops.side_view_loops` gives them) at each of
+    the finite abscissae ``q``, in any order: numpy's ``lowest(np.sort(q))`` put back in
+    ``q``'s order (a minimum over the segments spanning each abscissa, whatever the
+    order)."""
+    order = np.argsort(q)
+    z_sorted = lowest_walk_loops(q[order], np.empty(0), xa, za, xb, zb, seg)[0]
+    out = np.empty(len(q))
+    for i in range(len(q)):
+        out[order[i]] = z_sorted[i]
+    return out
+
+
+def crossings_loops(xa_c, za_c, xb_c, zb_c, xm, zm, xa, za, xb, zb, seg):
+    """:func:`hullslice.kernel.envelope._crossings` by loops: the points of the lowest of
+    segments crossing inside the intervals ``xa_c`` to ``xb_c`` (heights ``za_c``, ``zb_c``
+    at their ends, ``zm`` at their middles ``xm``): the middles, then the middles of the
+    halves that peak above their chords, :data:`CROSSING_PASSES` times. Returns ``(x,
+    z)``, in numpy's order."""
+    out_x, out_z = xm.copy(), zm.copy()
+    lx, lz = np.concatenate((xa_c, xm)), np.concatenate((za_c, zm))
+    rx, rz = np.concatenate((xm, xb_c)), np.concatenate((zm, zb_c))
+    for _ in range(CROSSING_PASSES):
+        m = 0.5 * (lx + rx)
+        z_mid = lowest_at_loops(m, xa, za, xb, zb, seg)
+        above = np.zeros(len(m), dtype=np.bool_)
+        k = 0
+        for i in range(len(m)):
+            v = z_mid[i]
+            if math.isfinite(v) and v > 0.5 * (lz[i] + rz[i]) + 1e-12 * (1.0 + abs(v)):
+                above[i] = True
+                k += 1
+        if k == 0:
+            break
+        m, z_mid = m[above], z_mid[above]
+        out_x, out_z = np.concatenate((out_x, m)), np.concatenate((out_z, z_mid))
+        lx, lz = np.concatenate((lx[above], m)), np.concatenate((lz[above], z_mid))
+        rx, rz = np.concatenate((m, rx[above])), np.concatenate((z_mid, rz[above]))
+    return out_x, out_z
+
+
+def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
+    """:func:`hullslice.kernel.envelope.refined` of the lowest heights ``z`` over the
+    sorted abscissae ``xs`` and ``zm`` over their middles ``mid`` (those of
+    :func:`~hullslice.keel_loops.side_view_loops`, whose turned segments ``xa`` to ``zb``
+    in the order ``seg`` give the heights it asks for), with numpy's arithmetic in numpy's
+    order: the points of its gaps (``zm`` infinite), jumps and crossings (``zm`` above the
+    chord) added, then the break points closer together than ``merge`` made one, at their
+    mean abscissa (numpy's ``add.reduceat``: the first plus the running sum of the others)
+    and their lowest height. Returns ``(ok, xs, z)``; ``ok`` False where an abscissa is not
+    finite, or a group of points to merge is longer than 8 (numpy sums those pairwise):
+    then numpy's path."""
+    n = len(xs)
+    if n and not math.isfinite(xs[n - 1]):  # NaNs sort last
+        return False, xs, z
+    n_gap = 0
+    n_jump = 0
+    for i in range(n - 1):
+        if math.isinf(zm[i]):
+            n_gap += 1
+        chord = 0.5 * (z[i + 1] + z[i])
+        if math.isfinite(zm[i]) and math.isfinite(chord):
+            if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
+                n_jump += 1
+    if n_gap or n_jump:
+        gap = np.empty(n_gap, dtype=np.int64)
+        jump = np.empty(n_jump, dtype=np.int64)
+        g = j = 0
+        for i in range(n - 1):
+            if math.isinf(zm[i]):
+                gap[g] = i
+                g += 1
+            chord = 0.5 * (z[i + 1] + z[i])
+            if math.isfinite(zm[i]) and math.isfinite(chord):
+                if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
+                    jump[j] = i
+                    j += 1
+        # a jump: the heights a millionth of the interval inside its ends, added where one
+        # differs from its end's by more than a thousandth of the interval; else a crossing
+        inside = np.empty(2 * n_jump)
+        width = np.empty(n_jump)
+        for t in range(n_jump):
+            i = jump[t]
+            width[t] = xs[i + 1] - xs[i]
+            inside[t] = xs[i] + 1e-6 * width[t]
+            inside[n_jump + t] = xs[i + 1] - 1e-6 * width[t]
+        z_in = lowest_at_loops(inside, xa, za, xb, zb, seg) if n_jump else np.empty(0)
+        steps = np.empty(2 * n_jump, dtype=np.bool_)
+        for t in range(n_jump):
+            i = jump[t]
+            steps[t] = abs(z_in[t] - z[i]) > 1e-3 * width[t]
+            steps[n_jump + t] = abs(z_in[n_jump + t] - z[i + 1]) > 1e-3 * width[t]
+        n_cross = 0
+        for t in range(n_jump):
+            if not (steps[t] or steps[n_jump + t]):
+                n_cross += 1
+        cross = np.empty(n_cross, dtype=np.int64)
+        c = 0
+        for t in range(n_jump):
+            if not (steps[t] or steps[n_jump + t]):
+                cross[c] = jump[t]
+                c += 1
+        cx, cz = crossings_loops(
+            xs[cross], z[cross], xs[cross + 1], z[cross + 1], mid[cross], zm[cross], xa, za,
+            xb, zb, seg,
+        )  # fmt: skip
+        all_x = np.concatenate((xs, mid[gap], inside[steps], cx))
+        all_z = np.concatenate((z, zm[gap], z_in[steps], cz))
+        order = np.argsort(all_x, kind="mergesort")  # stable, as numpy's
+        xs, z = all_x[order], all_z[order]
+        n = len(xs)
+    if not (merge > 0.0 and n > 1):
+        return True, xs, z
+    out_x = np.empty(n)
+    out_z = np.empty(n)
+    g = 0
+    i = 0
+    while i < n:
+        j = i + 1
+        while j < n and xs[j] - xs[j - 1] <= merge:
+            j += 1
+        if j - i > 8:
+            return False, xs, z
+        rest = 0.0
+        low = z[i]
+        for k in range(i + 1, j):
+            rest += xs[k]
+            low = low if (low < z[k] or low != low) else z[k]
+        out_x[g] = (xs[i] + rest) / (j - i) if j - i > 1 else xs[i]  # numpy's: x / 1
+        out_z[g] = low
+        g += 1
+        i = j
+    if g == n:  # none closer than merge: numpy's path keeps the arrays
+        return True, xs, z
+    return True, out_x[:g], out_z[:g]
+
+
+def extremes_loops(za, zb):
+    """``(min(za.min(), zb.min()), max(za.max(), zb.max()))`` as numpy and Python take
+    them: each array's minimum and maximum with a NaN kept (numpy's), then Python's
+    ``min`` and ``max`` of the two (the first unless the second is lower, or higher).
+    Both arrays have at least one value."""
+    lo_a, hi_a = za[0], za[0]
+    for i in range(1, len(za)):
+        v = za[i]
+        lo_a = lo_a if (lo_a <= v or lo_a != lo_a) else v
+        hi_a = hi_a if (hi_a >= v or hi_a != hi_a) else v
+    lo_b, hi_b = zb[0], zb[0]
+    for i in range(1, len(zb)):
+        v = zb[i]
+        lo_b = lo_b if (lo_b <= v or lo_b != lo_b) else v
+        hi_b = hi_b if (hi_b >= v or hi_b != hi_b) else v
+    return (lo_b if lo_b < lo_a else lo_a), (hi_b if hi_b > hi_a else hi_a)
+
+
+def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
+    """A new pitch's keel line in one call: :func:`~hullslice.keel_loops.side_view_loops`
+    (its arguments the first seven), :func:`refine_loops` of its lower envelope with
+    ``merge`` and :func:`~hullslice.keel_loops.runs_loops` of the refined break points
+    (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
+    heights (:func:`extremes_loops`).
+
+    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays of
+    :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points ``x``, ``z``
+    as :func:`refine_loops` gives them (where ``ok`` is False numpy's refinement must
+    serve, and ``runs`` is not meaningful), ``runs`` the eleven values of
+    :func:`~hullslice.keel_loops.runs_loops`."""
+    side = side_view_loops(a, b, gx, gz, c, s, order)
+    low, high = extremes_loops(side[1], side[3])
+    xa, za, xb, zb, seg, xs, mid, z, zm = side
+    ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
+    runs = runs_loops(x, z, end_face, steep_slope)
+    return ok, side, low, high, x, z, runs
