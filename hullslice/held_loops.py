@@ -54,7 +54,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "3a9db434ccd8ec2c"
+HELPERS_DIGEST = "d1ab67fd1b3f5ac4"
 
 __all__ = [
     "COLUMNS",
@@ -87,13 +87,13 @@ def table_interval_loops(at, s, heights, tkey):
     return e_start[v], e_start[v + 1] - e_start[v]
 
 
-def table_entry_loops(e, k, at, s, heights, tkey, tvals, station_vals, tol):
-    """The waterline table's entries of kept station ``s`` with the water at ``at``, in the
-    columns of :data:`ENTRY`, into the rows of ``e`` from ``k`` (``WaterlineTable._evaluate``:
-    its interval's entries, those of a section in several wetted pieces in order along the
-    waterline, stably, as a fresh evaluation orders them). Returns their number."""
-    first, count = table_interval_loops(at, s, heights, tkey)
-    order = np.empty(count)  # the entries' keys along the waterline (0 for a dry one)
+def table_entry_loops(e, k, first, count, at, s, tvals, station_vals, tol):
+    """The waterline table's entries ``first`` to ``first + count - 1`` (kept station
+    ``s``'s interval with the water at ``at``, :func:`table_interval_loops`) in the columns
+    of :data:`ENTRY`, into the rows of ``e`` from ``k`` (``WaterlineTable._evaluate``: those
+    of a section in several wetted pieces in order along the waterline, stably, as a fresh
+    evaluation orders them)."""
+    order = np.empty(count if count > 1 else 0)  # the keys along the waterline (0: dry)
     for j in range(count):
         ent = first + j
         row = e[k + j]
@@ -115,7 +115,8 @@ def table_entry_loops(e, k, at, s, heights, tkey, tvals, station_vals, tol):
         row[10] = tvals[ent, 9]
         row[11] = tvals[ent, 10]
         row[12] = 1.0 if (station_vals[1, s] - at <= tol and tvals[ent, 0] > 0.0) else 0.0
-        order[j] = row[9] - hbs if tvals[ent, 0] > 0.0 else 0.0
+        if count > 1:
+            order[j] = row[9] - hbs if tvals[ent, 0] > 0.0 else 0.0
     for j in range(1, count):  # numpy's lexsort of the rows by their keys: stable, NaN last
         key_j = order[j]
         row_j = e[k + j].copy()
@@ -129,7 +130,6 @@ def table_entry_loops(e, k, at, s, heights, tkey, tvals, station_vals, tol):
             i -= 1
         order[i] = key_j
         e[k + i] = row_j
-    return count
 
 
 def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights, tkey,
@@ -169,13 +169,16 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         return 3
     # each window station's table entries at this level
     f0 = np.zeros(n_cut + 1, dtype=np.int64)
+    at0 = np.zeros(n_cut, dtype=np.int64)  # each one's first entry in the table
     for k in range(n_cut):
         f0[k + 1] = f0[k]
         if w0 - c0 <= k < w1 - c0:
-            f0[k + 1] += table_interval_loops(level, k, heights, tkey)[1]
+            at0[k], count = table_interval_loops(level, k, heights, tkey)
+            f0[k + 1] += count
     e0 = np.empty((f0[n_cut], len(ENTRY)))
     for k in range(w0 - c0, w1 - c0):
-        table_entry_loops(e0, f0[k], level, k, heights, tkey, tvals, station_vals, tol)
+        table_entry_loops(e0, f0[k], at0[k], f0[k + 1] - f0[k], level, k, tvals, station_vals,
+                          tol)  # fmt: skip
     for j in range(f0[n_cut]):
         if e0[j, 0] <= 0.0:
             return 4
@@ -185,6 +188,7 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
     # each moved slice's entries at its own depth
     need = -math.inf  # the highest water a moved slice needs above the table's top
     g1 = np.zeros(m + 1, dtype=np.int64)
+    at1 = np.zeros(m, dtype=np.int64)
     for i in range(m):
         g1[i + 1] = g1[i]
         if iout[I_MOVED, i] > 0:
@@ -192,8 +196,8 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
             if at > top:
                 need = max(need, at)
                 continue
-            first, count = table_interval_loops(at, iout[I_SOURCE, i] - c0, heights, tkey)
-            if tvals[first, 11] <= 0.0:  # an inexact interval (its entries' "ok")
+            at1[i], count = table_interval_loops(at, iout[I_SOURCE, i] - c0, heights, tkey)
+            if tvals[at1[i], 11] <= 0.0:  # an inexact interval (its entries' "ok")
                 return 4
             g1[i + 1] += count
     if need > top:
@@ -204,7 +208,8 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         if iout[I_MOVED, i] > 0:
             at = level - fout[_LIFT, i]
             s = iout[I_SOURCE, i] - c0
-            table_entry_loops(e1, g1[i], at, s, heights, tkey, tvals, station_vals, tol)
+            table_entry_loops(e1, g1[i], at1[i], g1[i + 1] - g1[i], at, s, tvals, station_vals,
+                              tol)  # fmt: skip
     return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
                         g1, m, a_c, v_c)  # fmt: skip
 

@@ -309,19 +309,18 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     mid, cont, bend, starts, offsets = runs_of_loops(runs)
     n_mid = len(mid)
     d = (kx[nk - 1] - kx[0]) / n
-    # the slices as layout_loops left them (their rows are written over below)
-    s_x, s_dx, s_lift = np.empty(m), np.empty(m), np.empty(m)
-    s_src, s_moved = np.empty(m, dtype=np.int64), np.empty(m, dtype=np.int64)
     n_rows = 0
     for i in range(m):
-        s_x[i], s_dx[i], s_lift[i] = fout[_X, i], fout[_DX, i], fout[_LIFT, i]
-        s_src[i], s_moved[i] = iout[I_SOURCE, i] - c0, iout[I_MOVED, i]
-        if s_moved[i] > 0:
-            n_rows += g1[i + 1] - g1[i]
-        else:
-            n_rows += f0[s_src[i] + 1] - f0[s_src[i]]
+        s = iout[I_SOURCE, i] - c0
+        n_rows += g1[i + 1] - g1[i] if iout[I_MOVED, i] > 0 else f0[s + 1] - f0[s]
     if n_rows > fout.shape[1] or n_rows > iout.shape[1]:
         return 8
+    # the slices as layout_loops left them (one entry each: row i read before it is written)
+    s_x, s_dx, s_lift = fout[_X, :m], fout[_DX, :m], fout[_LIFT, :m]
+    s_src, s_moved = iout[I_SOURCE, :m], iout[I_MOVED, :m]
+    if n_rows > m:
+        s_x, s_dx, s_lift = s_x.copy(), s_dx.copy(), s_lift.copy()
+        s_src, s_moved = s_src.copy(), s_moved.copy()
     total = 0.0
     total_x = 0.0
     moment = 0.0
@@ -329,10 +328,11 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     z_cg = -level
     r = 0
     for i in range(m):
-        s = s_src[i]
+        s = s_src[i] - c0
         moved = s_moved[i] > 0
         width = s_dx[i]
         x = s_x[i]
+        lift = s_lift[i]
         keel_z = interp_loops(x, kx, kz)
         # assemble: the keel's chord and curvature, the mass per metre
         chord_w = max(width, 0.5 * d)
@@ -375,7 +375,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
             mpm = density * area * ent[11]
             fout[_X, r] = x_earth
             fout[_DX, r] = width
-            fout[_LIFT, r] = s_lift[i]
+            fout[_LIFT, r] = lift
             fout[_PEN, r] = pen
             fout[_HB, r] = ent[3]
             fout[_HBP, r] = ent[4]
@@ -392,7 +392,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
             fout[_CURV, r] = curv
             fout[_VEL, r] = vel
             iout[I_SOURCE, r] = s
-            iout[I_MOVED, r] = s_moved[i]
+            iout[I_MOVED, r] = 1 if moved else 0
             iout[I_SLICE, r] = i
             iout[I_CHINE, r] = 1 if chine else 0
             # evaluate(): which sections the solver is given, and the flags

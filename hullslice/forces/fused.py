@@ -356,7 +356,7 @@ class FusedEvaluation:
         :meth:`stage_totals`), with the pose the model gives that state
         (:meth:`~hullslice.motion.model.ForceModel.draft`): the same result and pose.
         None where the steps one by one must serve (see :meth:`_one_call`)."""
-        fout, iout = _columns(self.model.slices)
+        _, _, fout, iout = self._buffers()  # the result takes copies of what it needs
         done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
                               motion.pitch_rate, fout, iout)  # fmt: skip
         if done is None:
@@ -387,7 +387,7 @@ class FusedEvaluation:
 
     def force(self, pose: Pose, motion: Motion) -> ForceResult | None:
         """The :class:`ForceResult` at a pose and motion, or None where numpy's path must."""
-        fout, iout = _columns(self.model.slices)
+        _, _, fout, iout = self._buffers()  # the result takes copies of what it needs
         fr = frame(self.hull, pose.pitch)
         done = self._run(fr, pose.draft, motion.velocity, motion.forward_speed,
                          motion.pitch_rate, fout, iout)  # fmt: skip
@@ -406,17 +406,22 @@ class FusedEvaluation:
         in the cutter's coordinates (``origin``, ``scale``), at the water's ``level``
         (m) and the clipped ``draft`` (m)."""
         m = int(scal[0])  # the rows: one per entry, a slice's one after another
-        cols = {name: fout[i, :m] for name, i in _USED}
-        code = iout[I_CODE, :m]
+        block, ints = fout[:, :m].copy(), iout[:, :m].copy()  # the thread's to reuse
+        cols = {name: block[i] for name, i in _USED}
+        code = ints[I_CODE]
         z_cg = -level
-        slot = iout[I_SLICE, :m]
-        first = np.flatnonzero(np.diff(slot, prepend=-1))  # each slice's first row
+        slot = ints[I_SLICE]
+        first: slice | np.ndarray = slice(None)  # each slice's first row (all: one entry each)
+        if m and slot[m - 1] != m - 1:  # sections in several wetted pieces
+            starts = np.ones(m, dtype=bool)
+            np.not_equal(slot[1:], slot[:-1], out=starts[1:])
+            first = np.flatnonzero(starts)
         sections = Sections(
-            station=slot.copy(),
+            station=slot,
             **{name: cols[name] for name in _SECTION_COLUMNS},
-            chine_wetted=iout[I_CHINE, :m] > 0,
+            chine_wetted=ints[I_CHINE] > 0,
             polygons=ShiftedPolygons(
-                [rows[k] for k in iout[I_SOURCE, first].tolist()],
+                [rows[k] for k in ints[I_SOURCE, first].tolist()],
                 (origin[0], origin[1] + z_cg),
                 scale,
                 cols["lift"][first],
