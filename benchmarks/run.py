@@ -37,7 +37,9 @@ the moment / body size, relative to the force); free pitch has none (every stage
 afresh), and the fresh cut's own resolution is shown: the largest relative change of the
 force from one pitch to the next, 1e-10 rad apart, over 10 such steps (the 1:10 model
 ``meshes/fuselage_model.obj``, 32 fixed slices, draft 0.012 m, pitch 6 deg, 19 m/s
-forward, 1 m/s down), next to the force's own change over that step. Unless ``--quick``
+forward, 1 m/s down), next to the force's own change over that step. A real airliner's
+ditching with its nacelles wet (``meshes/airliner``): its time step at a held and a free
+pitch, compiled and by numpy's path, interleaved. Unless ``--quick``
 or ``--no-sweep``: the 64-case free-pitch sweep of ``benchmarks/sweep.py`` (cases of
 0.03 s at 1 ms, 2 to 3 minutes) in this process and on 1 and 2 Dask workers, cases per
 second, target 2 / 1 workers >= 1.7 (it needs the ``sweep`` extra); and the envelope
@@ -67,7 +69,7 @@ from pathlib import Path
 import numpy as np
 
 import hullslice as hs
-from hullslice import shapes
+from hullslice import planecut_loops, shapes
 from hullslice.forces import solve_accelerations
 from hullslice.geometry import REGIONS, frame
 from hullslice.motion import ForceModel
@@ -379,6 +381,48 @@ def bench_steps(table: Table, repeat: int) -> None:
             1 if steps > 1000 else repeat,
         )
         table.add(f"paper prism free fall, {steps} steps, fixed 64 slices", fmt(t))
+
+
+def bench_airliner(table: Table, repeat: int) -> None:
+    """A real airliner's ditching (``meshes/airliner``, 17k faces, 37.6 m, 60 t) from 0.3 m
+    at 6 deg, 60 m/s forward and 1.5 m/s down, 32 fixed slices, 0.1 s at 1 ms: its nacelles
+    wet with its fuselage (slices of two and three entries), its keel line crossed by its
+    wings and fairings in the side view at every pitch. The time per step at a held and a
+    free pitch, compiled and by numpy's path (the median of ``repeat`` interleaved rounds:
+    A B C D A B C D)."""
+    hull = hs.load_hull(ROOT / "meshes" / "airliner" / "airliner.obj", length=37.6, mass=60000.0)
+    runs = {(free, numba): hull.with_mass(hull.mass) for free in (False, True)
+            for numba in (True, False)}  # fmt: skip
+
+    def run(free: bool, numba: bool, t_end: float):
+        os.environ["HULLSLICE_NUMBA"] = "1" if numba else "0"
+        try:
+            return hs.simulate(runs[free, numba], -1.5, t_end, dt=1e-3, draft=0.3, pitch_deg=6.0,
+                               forward_speed=60.0, slices=32, slicing="fixed", stop_on=(),
+                               free_pitch=free)  # fmt: skip
+        finally:
+            os.environ.pop("HULLSLICE_NUMBA", None)
+
+    for free, numba in runs:  # warm-up: the held pitch's cut and table, the compilation
+        run(free, numba, 0.1 if not free else 0.005)
+    times: dict[tuple[bool, bool], list[float]] = {key: [] for key in runs}
+    for _ in range(max(1, repeat)):
+        for free, numba in runs:
+            t0 = time.perf_counter()
+            history = run(free, numba, 0.1)
+            times[free, numba].append((time.perf_counter() - t0) / (len(history) - 1))
+    med = {key: statistics.median(ts) for key, ts in times.items()}
+    what = "airliner ditching (17k faces, nacelles wet), time step"
+    for free in (False, True):
+        pitch = "free pitch" if free else "held pitch"
+        if planecut_loops.available():
+            table.add(f"{what}, {pitch}, compiled / numpy's path",
+                      f"{fmt(med[free, True])} / {fmt(med[free, False])}")  # fmt: skip
+        else:
+            table.add(f"{what}, {pitch}, numpy's path", fmt(med[free, False]))
+    if planecut_loops.available():
+        ratio = med[True, True] / med[False, True]
+        table.add(f"{what}: ratio free / held, compiled", f"{ratio:.1f}")
 
 
 CHILD = textwrap.dedent(
@@ -779,6 +823,8 @@ def main() -> None:
         bench_pitch_steps(table, Path(tmp), results, args.repeat)
         bench_fresh_cuts(table, results["128k"]["path"])
         bench_kernel_cut(table, results["128k"]["path"])
+        print("an airliner's ditching ...")
+        bench_airliner(table, args.repeat)
         print("face pressures ...")
         bench_face_loads(table, results, args.repeat)
         if not args.quick:
