@@ -69,7 +69,6 @@ from .slices_loops import (
     right_loops,
     runs_of_loops,
     slope_loops,
-    wet_loops,
     window_loops,
 )
 from .wetted_loops import wetted_loops
@@ -91,7 +90,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "880502c92d602479"
+STAGE_HELPERS_DIGEST = "b5d9e495cfa2bea3"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -457,7 +456,7 @@ LOOPS["stage"] = stage_loops
 #: namespaces are numba's).
 #: What the fused evaluation's loops call, helpers before callers.
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
-         "h_extent", "h_window", "h_wet", "h_layout", "h_finish")  # fmt: skip
+         "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
@@ -487,7 +486,7 @@ LOOPS.update(
     wetted=wetted_loops, held=held_loops, h_interp=interp_loops, h_right=right_loops,
     h_left=left_loops, h_div=div_loops, h_desc=left_loops_desc, h_cross=crossing_loops,
     h_runs=runs_of_loops, h_extent=extent_loops, h_window=window_loops, h_layout=layout_loops,
-    h_wet=wet_loops, h_finish=finish_loops, h_interval=table_interval_loops,
+    h_finish=finish_loops, h_interval=table_interval_loops,
     h_table=table_entry_loops, h_entries=pitch_entries_loops, pitch=pitch_loops,
     window=window_loops, h_slope=slope_loops
 )  # fmt: skip

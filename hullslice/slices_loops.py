@@ -262,9 +262,12 @@ def layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0):
             own = abs(slope_loops(mid_k, mid, cont, starts, offsets)) <= end_face
         source = k if own else neighbour
         depth = interp_loops(x, kx, kz) - station_vals[0, source - c0]
-        # fresh: neither the slice's station nor its neighbour wetted at this level, or
-        # moved more steeply than 45 deg
-        fresh = not wet_loops(e0, f0, k - c0) and not wet_loops(e0, f0, neighbour - c0)
+        # fresh: neither the slice's station nor its neighbour wetted at this level (no
+        # entry of either with a penetration), or moved more steeply than 45 deg
+        fresh = True
+        for t in (k - c0, neighbour - c0):
+            for j in range(f0[t], f0[t + 1]):
+                fresh = fresh and not e0[j, 2] > 0.0
         if abs(depth) > steep_slope * abs(x - (xa + (source + 0.5) * d)):
             fresh = True
         if fresh:
@@ -275,14 +278,6 @@ def layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0):
         iout[I_MOVED, i] = 1
         fout[_LIFT, i] = depth
     return 0, m
-
-
-def wet_loops(e0, f0, s):
-    """Whether station ``s`` has a wetted entry (a penetration above zero)."""
-    for j in range(f0[s], f0[s + 1]):
-        if e0[j, 2] > 0.0:
-            return True
-    return False
 
 
 def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1, g1, m,
@@ -310,15 +305,18 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     n_mid = len(mid)
     d = (kx[nk - 1] - kx[0]) / n
     n_rows = 0
+    single = True  # one entry each slice: row i is slice i's
     for i in range(m):
         s = iout[I_SOURCE, i] - c0
-        n_rows += g1[i + 1] - g1[i] if iout[I_MOVED, i] > 0 else f0[s + 1] - f0[s]
+        count = g1[i + 1] - g1[i] if iout[I_MOVED, i] > 0 else f0[s + 1] - f0[s]
+        n_rows += count
+        single = single and count == 1
     if n_rows > fout.shape[1] or n_rows > iout.shape[1]:
         return 8
     # the slices as layout_loops left them (one entry each: row i read before it is written)
     s_x, s_dx, s_lift = fout[_X, :m], fout[_DX, :m], fout[_LIFT, :m]
     s_src, s_moved = iout[I_SOURCE, :m], iout[I_MOVED, :m]
-    if n_rows > m:
+    if not single:
         s_x, s_dx, s_lift = s_x.copy(), s_dx.copy(), s_lift.copy()
         s_src, s_moved = s_src.copy(), s_moved.copy()
     total = 0.0
