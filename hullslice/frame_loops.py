@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .keel_loops import lowest_walk_loops, runs_loops, side_view_loops
+from .keel_loops import runs_loops, search_loops, side_view_loops
 
 __all__ = [
     "FRAME_HELPERS_DIGEST",
@@ -24,6 +24,7 @@ __all__ = [
     "frame_keel_loops",
     "lowest_at_loops",
     "refine_loops",
+    "segment_reach_loops",
 ]
 
 #: The digest of the source of the helpers these loops call (``keel_loops.py``). numba's
@@ -37,32 +38,59 @@ FRAME_HELPERS_DIGEST = "e6f702a2608b5d27"
 CROSSING_PASSES = 8
 
 
-def lowest_at_loops(q, xa, za, xb, zb, seg):
-    """The lowest height of the turned silhouette segments (``xa`` to ``xb``, taken in the
-    order ``seg``, as :func:`~hullslice.keel_loops.side_view_loops` gives them) at each of
-    the finite abscissae ``q``, in any order: numpy's ``lowest(np.sort(q))`` put back in
-    ``q``'s order (a minimum over the segments spanning each abscissa, whatever the
-    order)."""
-    order = np.argsort(q)
-    z_sorted = lowest_walk_loops(q[order], np.empty(0), xa, za, xb, zb, seg)[0]
+def lowest_at_loops(q, lo, reach, xa, za, xb, zb, seg):
+    """The lowest height of the turned silhouette segments (``xa`` to ``xb``; ``seg`` their
+    order by lower end abscissa, ``lo`` those abscissae in that order and ``reach`` the
+    running highest of their upper ends, as :func:`segment_reach_loops` gives them) at
+    each of the finite abscissae ``q``: among the segments whose lower end is not past an
+    abscissa, back from the last until none before reaches it, each one spanning it, as
+    :func:`~hullslice.keel_loops.lower_loops` takes it (a vertical segment's lower end,
+    else its height there; the lowest kept), so the heights numpy's ``lowest`` gives
+    (a minimum over the segments spanning each abscissa, whatever their order)."""
     out = np.empty(len(q))
-    for i in range(len(q)):
-        out[order[i]] = z_sorted[i]
+    for t in range(len(q)):
+        x = q[t]
+        z = np.inf
+        j = search_loops(lo, 0, len(lo), x, True) - 1
+        while j >= 0 and reach[j] >= x:
+            k = seg[j]
+            x0, z0 = xa[k], za[k]
+            if x <= max(x0, xb[k]):
+                dx = xb[k] - x0
+                zi = min(z0, zb[k]) if dx == 0.0 else z0 + (x - x0) / dx * (zb[k] - z0)
+                if zi < z:
+                    z = zi
+            j -= 1
+        out[t] = z
     return out
 
 
-def crossings_loops(xa_c, za_c, xb_c, zb_c, xm, zm, xa, za, xb, zb, seg):
+def segment_reach_loops(xa, xb, seg):
+    """The segments' lower end abscissae in the order ``seg`` (ascending) and the running
+    highest of their upper ends: ``(lo, reach)``, for :func:`lowest_at_loops`."""
+    lo, reach = np.empty(len(seg)), np.empty(len(seg))
+    top = -np.inf
+    for j in range(len(seg)):
+        k = seg[j]
+        lo[j] = min(xa[k], xb[k])
+        top = max(top, max(xa[k], xb[k]))
+        reach[j] = top
+    return lo, reach
+
+
+def crossings_loops(xa_c, za_c, xb_c, zb_c, xm, zm, lo, reach, xa, za, xb, zb, seg):
     """:func:`hullslice.kernel.envelope._crossings` by loops: the points of the lowest of
     segments crossing inside the intervals ``xa_c`` to ``xb_c`` (heights ``za_c``, ``zb_c``
-    at their ends, ``zm`` at their middles ``xm``): the middles, then the middles of the
-    halves that peak above their chords, :data:`CROSSING_PASSES` times. Returns ``(x,
-    z)``, in numpy's order."""
+    at their ends, ``zm`` at their middles ``xm``; the segments as
+    :func:`lowest_at_loops` takes them): the middles, then the middles of the halves that
+    peak above their chords, :data:`CROSSING_PASSES` times. Returns ``(x, z)``, in numpy's
+    order."""
     out_x, out_z = xm.copy(), zm.copy()
     lx, lz = np.concatenate((xa_c, xm)), np.concatenate((za_c, zm))
     rx, rz = np.concatenate((xm, xb_c)), np.concatenate((zm, zb_c))
     for _ in range(CROSSING_PASSES):
         m = 0.5 * (lx + rx)
-        z_mid = lowest_at_loops(m, xa, za, xb, zb, seg)
+        z_mid = lowest_at_loops(m, lo, reach, xa, za, xb, zb, seg)
         above = np.zeros(len(m), dtype=np.bool_)
         k = 0
         for i in range(len(m)):
@@ -124,7 +152,8 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
             width[t] = xs[i + 1] - xs[i]
             inside[t] = xs[i] + 1e-6 * width[t]
             inside[n_jump + t] = xs[i + 1] - 1e-6 * width[t]
-        z_in = lowest_at_loops(inside, xa, za, xb, zb, seg) if n_jump else np.empty(0)
+        lo, reach = segment_reach_loops(xa, xb, seg)
+        z_in = lowest_at_loops(inside, lo, reach, xa, za, xb, zb, seg)
         steps = np.empty(2 * n_jump, dtype=np.bool_)
         for t in range(n_jump):
             i = jump[t]
@@ -141,13 +170,25 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
                 cross[c] = jump[t]
                 c += 1
         cx, cz = crossings_loops(
-            xs[cross], z[cross], xs[cross + 1], z[cross + 1], mid[cross], zm[cross], xa, za,
-            xb, zb, seg,
+            xs[cross], z[cross], xs[cross + 1], z[cross + 1], mid[cross], zm[cross], lo,
+            reach, xa, za, xb, zb, seg,
         )  # fmt: skip
-        all_x = np.concatenate((xs, mid[gap], inside[steps], cx))
-        all_z = np.concatenate((z, zm[gap], z_in[steps], cz))
-        order = np.argsort(all_x, kind="mergesort")  # stable, as numpy's
-        xs, z = all_x[order], all_z[order]
+        # numpy's stable sort of the points after the break points, which are sorted: the
+        # added points sorted stably, then merged in after any break point they tie with
+        add_x = np.concatenate((mid[gap], inside[steps], cx))
+        add_z = np.concatenate((zm[gap], z_in[steps], cz))
+        order = np.argsort(add_x, kind="mergesort")
+        n_add = len(add_x)
+        all_x, all_z = np.empty(n + n_add), np.empty(n + n_add)
+        i = j = 0
+        for k in range(n + n_add):
+            if j < n_add and (i >= n or add_x[order[j]] < xs[i]):
+                all_x[k], all_z[k] = add_x[order[j]], add_z[order[j]]
+                j += 1
+            else:
+                all_x[k], all_z[k] = xs[i], z[i]
+                i += 1
+        xs, z = all_x, all_z
         n = len(xs)
     if not (merge > 0.0 and n > 1):
         return True, xs, z

@@ -35,6 +35,7 @@ from .frame_loops import (
     frame_keel_loops,
     lowest_at_loops,
     refine_loops,
+    segment_reach_loops,
 )
 from .held_loops import (
     held_loops,
@@ -90,7 +91,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "b5d9e495cfa2bea3"
+STAGE_HELPERS_DIGEST = "69752af7d26b4cf3"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -444,6 +445,7 @@ LOOPS["runs"] = runs_loops
 LOOPS["abscissae"] = abscissae_loops
 LOOPS["keel_arrays"] = keel_arrays_loops
 LOOPS["row"] = row_loops
+LOOPS["reach"] = segment_reach_loops
 LOOPS["lowest_at"] = lowest_at_loops
 LOOPS["crossings"] = crossings_loops
 LOOPS["refine"] = refine_loops
@@ -460,7 +462,7 @@ _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs"
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
-_REFINE = ("lower", "walk", "lowest_at", "crossings")
+_REFINE = ("search", "reach", "lowest_at", "crossings")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
           "keel_arrays", "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted",
@@ -475,8 +477,8 @@ CALLS = {
     "side": _SIDE,
     "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes"),
     "refine": _REFINE,
-    "crossings": ("lower", "walk", "lowest_at"),
-    "lowest_at": ("lower", "walk"),
+    "crossings": ("search", "lowest_at"),
+    "lowest_at": ("search",),
     "ranges": ("search", "gallop"),
     "stage": _STAGE,
     "outline": ("order",),
