@@ -19,6 +19,7 @@ from .keel_loops import runs_loops, search_loops, side_view_loops
 
 __all__ = [
     "FRAME_HELPERS_DIGEST",
+    "above_chord_loops",
     "crossings_loops",
     "extremes_loops",
     "frame_keel_loops",
@@ -107,6 +108,15 @@ def crossings_loops(xa_c, za_c, xb_c, zb_c, xm, zm, lo, reach, xa, za, xb, zb, s
     return out_x, out_z
 
 
+def above_chord_loops(z, zm, i):
+    """Whether the lowest height ``zm[i]`` over interval ``i``'s middle lies above the chord
+    of its ends' ``z`` (``refined``'s test: a jump at an end, or two segments crossing)."""
+    chord = 0.5 * (z[i + 1] + z[i])
+    if not (math.isfinite(zm[i]) and math.isfinite(chord)):
+        return False
+    return zm[i] > chord + 1e-12 * (1.0 + abs(zm[i]))
+
+
 def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
     """:func:`hullslice.kernel.envelope.refined` of the lowest heights ``z`` over the
     sorted abscissae ``xs`` and ``zm`` over their middles ``mid`` (those of
@@ -124,12 +134,8 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
     n_gap = 0
     n_jump = 0
     for i in range(n - 1):
-        if math.isinf(zm[i]):
-            n_gap += 1
-        chord = 0.5 * (z[i + 1] + z[i])
-        if math.isfinite(zm[i]) and math.isfinite(chord):
-            if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
-                n_jump += 1
+        n_gap += math.isinf(zm[i])
+        n_jump += above_chord_loops(z, zm, i)
     if n_gap or n_jump:
         gap = np.empty(n_gap, dtype=np.int64)
         jump = np.empty(n_jump, dtype=np.int64)
@@ -138,11 +144,9 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
             if math.isinf(zm[i]):
                 gap[g] = i
                 g += 1
-            chord = 0.5 * (z[i + 1] + z[i])
-            if math.isfinite(zm[i]) and math.isfinite(chord):
-                if zm[i] > chord + 1e-12 * (1.0 + abs(zm[i])):
-                    jump[j] = i
-                    j += 1
+            if above_chord_loops(z, zm, i):
+                jump[j] = i
+                j += 1
         # a jump: the heights a millionth of the interval inside its ends, added where one
         # differs from its end's by more than a thousandth of the interval; else a crossing
         inside = np.empty(2 * n_jump)
@@ -159,16 +163,7 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
             i = jump[t]
             steps[t] = abs(z_in[t] - z[i]) > 1e-3 * width[t]
             steps[n_jump + t] = abs(z_in[n_jump + t] - z[i + 1]) > 1e-3 * width[t]
-        n_cross = 0
-        for t in range(n_jump):
-            if not (steps[t] or steps[n_jump + t]):
-                n_cross += 1
-        cross = np.empty(n_cross, dtype=np.int64)
-        c = 0
-        for t in range(n_jump):
-            if not (steps[t] or steps[n_jump + t]):
-                cross[c] = jump[t]
-                c += 1
+        cross = jump[~(steps[:n_jump] | steps[n_jump:])]  # neither end jumps: a crossing
         cx, cz = crossings_loops(
             xs[cross], z[cross], xs[cross + 1], z[cross + 1], mid[cross], zm[cross], lo,
             reach, xa, za, xb, zb, seg,

@@ -54,7 +54,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "58c3a0e8be1436e3"
+HELPERS_DIGEST = "e051dcaedcbcebff"
 
 __all__ = [
     "COLUMNS",
@@ -169,15 +169,15 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         return 3
     # each window station's table entries at this level
     f0 = np.zeros(n_cut + 1, dtype=np.int64)
-    at0 = np.zeros(n_cut, dtype=np.int64)  # each one's first entry in the table
+    first0 = np.zeros(n_cut, dtype=np.int64)  # each one's first entry in the table
     for k in range(n_cut):
         f0[k + 1] = f0[k]
         if w0 - c0 <= k < w1 - c0:
-            at0[k], count = table_interval_loops(level, k, heights, tkey)
+            first0[k], count = table_interval_loops(level, k, heights, tkey)
             f0[k + 1] += count
     e0 = np.empty((f0[n_cut], len(ENTRY)))
     for k in range(w0 - c0, w1 - c0):
-        table_entry_loops(e0, f0[k], at0[k], f0[k + 1] - f0[k], level, k, tvals, station_vals,
+        table_entry_loops(e0, f0[k], first0[k], f0[k + 1] - f0[k], level, k, tvals, station_vals,
                           tol)  # fmt: skip
     for j in range(f0[n_cut]):
         if e0[j, 0] <= 0.0:
@@ -188,7 +188,7 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
     # each moved slice's entries at its own depth
     need = -math.inf  # the highest water a moved slice needs above the table's top
     g1 = np.zeros(m + 1, dtype=np.int64)
-    at1 = np.zeros(m, dtype=np.int64)
+    first1 = np.zeros(m, dtype=np.int64)
     for i in range(m):
         g1[i + 1] = g1[i]
         if iout[I_MOVED, i] > 0:
@@ -196,8 +196,8 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
             if at > top:
                 need = max(need, at)
                 continue
-            at1[i], count = table_interval_loops(at, iout[I_SOURCE, i] - c0, heights, tkey)
-            if tvals[at1[i], 11] <= 0.0:  # an inexact interval (its entries' "ok")
+            first1[i], count = table_interval_loops(at, iout[I_SOURCE, i] - c0, heights, tkey)
+            if tvals[first1[i], 11] <= 0.0:  # an inexact interval (its entries' "ok")
                 return 4
             g1[i + 1] += count
     if need > top:
@@ -208,7 +208,7 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         if iout[I_MOVED, i] > 0:
             at = level - fout[_LIFT, i]
             s = iout[I_SOURCE, i] - c0
-            table_entry_loops(e1, g1[i], at1[i], g1[i + 1] - g1[i], at, s, tvals, station_vals,
+            table_entry_loops(e1, g1[i], first1[i], g1[i + 1] - g1[i], at, s, tvals, station_vals,
                               tol)  # fmt: skip
     return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
                         g1, m, a_c, v_c)  # fmt: skip

@@ -30,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 
 from .frame_loops import (
+    above_chord_loops,
     crossings_loops,
     extremes_loops,
     frame_keel_loops,
@@ -91,7 +92,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "69752af7d26b4cf3"
+STAGE_HELPERS_DIGEST = "b55513f8f5843a5b"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -446,6 +447,7 @@ LOOPS["abscissae"] = abscissae_loops
 LOOPS["keel_arrays"] = keel_arrays_loops
 LOOPS["row"] = row_loops
 LOOPS["reach"] = segment_reach_loops
+LOOPS["above_chord"] = above_chord_loops
 LOOPS["lowest_at"] = lowest_at_loops
 LOOPS["crossings"] = crossings_loops
 LOOPS["refine"] = refine_loops
@@ -462,7 +464,7 @@ _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs"
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
-_REFINE = ("search", "reach", "lowest_at", "crossings")
+_REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
           "keel_arrays", "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted",
@@ -476,7 +478,7 @@ CALLS = {
     "walk": ("lower",),
     "side": _SIDE,
     "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes"),
-    "refine": _REFINE,
+    "refine": ("search", *_REFINE),
     "crossings": ("search", "lowest_at"),
     "lowest_at": ("search",),
     "ranges": ("search", "gallop"),

@@ -305,20 +305,14 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     n_mid = len(mid)
     d = (kx[nk - 1] - kx[0]) / n
     n_rows = 0
-    single = True  # one entry each slice: row i is slice i's
     for i in range(m):
         s = iout[I_SOURCE, i] - c0
-        count = g1[i + 1] - g1[i] if iout[I_MOVED, i] > 0 else f0[s + 1] - f0[s]
-        n_rows += count
-        single = single and count == 1
+        n_rows += g1[i + 1] - g1[i] if iout[I_MOVED, i] > 0 else f0[s + 1] - f0[s]
     if n_rows > fout.shape[1] or n_rows > iout.shape[1]:
         return 8
-    # the slices as layout_loops left them (one entry each: row i read before it is written)
-    s_x, s_dx, s_lift = fout[_X, :m], fout[_DX, :m], fout[_LIFT, :m]
-    s_src, s_moved = iout[I_SOURCE, :m], iout[I_MOVED, :m]
-    if not single:
-        s_x, s_dx, s_lift = s_x.copy(), s_dx.copy(), s_lift.copy()
-        s_src, s_moved = s_src.copy(), s_moved.copy()
+    # the slices as layout_loops left them (their columns are written over by the rows)
+    s_x, s_dx, s_lift = fout[_X, :m].copy(), fout[_DX, :m].copy(), fout[_LIFT, :m].copy()
+    s_src, s_moved = iout[I_SOURCE, :m].copy(), iout[I_MOVED, :m].copy()
     total = 0.0
     total_x = 0.0
     moment = 0.0
