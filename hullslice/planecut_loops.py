@@ -420,44 +420,39 @@ def compiled(name: str = "cut") -> Callable | None:
 
                 # IEEE division (an infinity or NaN by zero, as numpy's), no exception
                 jit = numba.njit(cache=True, nogil=True, error_model="numpy")
-                for callee in CALLS.get(name, ()):  # what the loops call: compiled first,
-                    helper = LOOPS[callee].__name__  # in their module's namespace and the
-                    if callee not in _HELPERS:  # caller's (numba reads the globals there)
-                        _HELPERS[callee] = jit(LOOPS[callee])
-                    for space in (LOOPS[callee].__globals__, LOOPS[name].__globals__):
-                        space[helper] = _HELPERS[callee]
+                for callee in CALLS.get(name, ()):  # what the loops call: compiled first
+                    _inject(callee, jit)
                 fn = jit(LOOPS[name])
                 _IN_USE.append(True)
             _COMPILED[name] = fn
         return _COMPILED[name]
 
 
-LOOPS["outline"] = outline_loops
-LOOPS["order"] = stable_order_loops
-LOOPS["envelope"] = envelope_loops
-LOOPS["side"] = side_view_loops
-LOOPS["ranges"] = range_loops
-LOOPS["search"] = search_loops
-LOOPS["gallop"] = gallop_loops
-LOOPS["sorted"] = sorted_loops
-LOOPS["walk"] = lowest_walk_loops
-LOOPS["lower"] = lower_loops
-LOOPS["runs"] = runs_loops
-LOOPS["abscissae"] = abscissae_loops
-LOOPS["keel_arrays"] = keel_arrays_loops
-LOOPS["row"] = row_loops
-LOOPS["reach"] = segment_reach_loops
-LOOPS["above_chord"] = above_chord_loops
-LOOPS["lowest_at"] = lowest_at_loops
-LOOPS["crossings"] = crossings_loops
-LOOPS["refine"] = refine_loops
-LOOPS["extremes"] = extremes_loops
-LOOPS["frame_keel"] = frame_keel_loops
-LOOPS["stage"] = stage_loops
+def _inject(callee: str, jit: Callable) -> None:
+    """The loops ``callee`` compiled (once), put in place of its Python function in every
+    module of :data:`LOOPS` that holds it: numba reads a callee from its caller's globals,
+    and a helper's callers may be in several modules (``side_view_loops``'s are)."""
+    py = LOOPS[callee]
+    if callee not in _HELPERS:
+        _HELPERS[callee] = jit(py)
+    spaces = {id(fn.__globals__): fn.__globals__ for fn in LOOPS.values()}
+    for space in spaces.values():
+        if space.get(py.__name__) is py:
+            space[py.__name__] = _HELPERS[callee]
+
+
+LOOPS.update(outline=outline_loops, order=stable_order_loops, envelope=envelope_loops,
+    side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
+    sorted=sorted_loops, walk=lowest_walk_loops, lower=lower_loops, runs=runs_loops,
+    abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
+    reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
+    crossings=crossings_loops, refine=refine_loops, extremes=extremes_loops,
+    frame_keel=frame_keel_loops, stage=stage_loops
+)  # fmt: skip
 #: The loops that others call, by caller, their own helpers before them: compiled before
-#: it, into their module's namespace and the caller's (numba calls compiled functions
-#: only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers in those
-#: namespaces are numba's).
+#: it, into every module's namespace that holds them (:func:`_inject`; numba calls compiled
+#: functions only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers
+#: in those namespaces are numba's).
 #: What the fused evaluation's loops call, helpers before callers.
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
          "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip

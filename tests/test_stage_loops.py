@@ -8,6 +8,8 @@ numba's cache of it fresh. The call is compiled only: it needs numba."""
 from __future__ import annotations
 
 import hashlib
+import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -65,18 +67,25 @@ def test_a_new_pitchs_sums_in_one_call_equal_the_steps_one_by_one(name):
 
 
 @needs_numba
-def test_a_framed_pitch_and_a_dry_body_go_the_steps_one_by_one():
+def test_a_framed_pitch_goes_the_steps_one_by_one_and_a_dry_body_sums_nothing():
     """A pitch that has a frame keeps its kept cut and waterline tables: the call leaves it
-    to them; so it does a body clear of the water (and the model's sums are numpy's, as
-    before)."""
+    to them. A body clear of the water (a ditching's skip) has no slice: the call's sums
+    are zero, numpy's path's (no section summed), and no frame is made for its pitch."""
     hull = _massive(BODIES["fuselage_model.obj"])
     model = _model(hull)
     fr = frame(hull, 0.07)
     z_cg = -(fr.lowest + 0.2 * (fr.highest - fr.lowest))
     assert model.fused.stage_totals(0.07, z_cg, -1.0, 10.0, 0.0) is None
-    assert model.fused.stage_totals(0.071, 10.0 * hull.size, -1.0, 10.0, 0.0) is None
-    dry = model.totals_at(10.0 * hull.size, 0.072, -1.0, 10.0, 0.0)
-    assert dry == (0.0, 0.0, 0.0)
+    high = 10.0 * hull.size
+    assert model.fused.stage_totals(0.071, high, -1.0, 10.0, 0.0) == (0.0, 0.0, 0.0)
+    assert hull.cache[FRAMES].get(0.071) is None
+    twin = _model(hull.with_mass(hull.mass))
+    r = twin._numpy(Pose(twin.draft(high, 0.071), 0.071), Motion(-1.0, 10.0, 0.0))
+    want = (r.total, r.moment, r.total_x)
+    assert want == (0.0, 0.0, 0.0)
+    assert [np.copysign(1.0, v) for v in want] == [1.0, 1.0, 1.0]  # +0.0, as the call's
+    # the first stage's result (the record's) is numpy's path's: the call leaves it
+    assert model.fused.stage_result(high, 0.073, Motion(-1.0, 10.0, 0.0)) is None
 
 
 @needs_numba
@@ -195,3 +204,59 @@ def test_a_new_pitchs_result_in_one_call_equals_the_steps_one_by_one(name):
         for a, b in zip(r.sections.polygons, want.sections.polygons, strict=True):
             assert all(np.array_equal(p, q) for p, q in zip(a, b, strict=True))
     assert served >= 6, served
+
+
+#: Run in a process of its own: for each of the loops compiled by name (those with their
+#: helpers in ``CALLS``, and those calling no other loops), from a fresh start (every
+#: module's loops its Python functions, none compiled), ``compiled(name)``, then every
+#: loops function it reaches through the compiled callees is checked: each loops function
+#: it calls by name must be numba's in its module's namespace (numba types a callee from
+#: its caller's globals when it first compiles the caller; a Python function there fails
+#: that compile, on a machine whose numba cache is empty). Prints the failures.
+_REACH = """
+import sys
+from numba.core.registry import CPUDispatcher
+from hullslice import planecut_loops as pl
+
+python = {id(f): f for f in pl.LOOPS.values()}
+spaces = {id(f.__globals__): f.__globals__ for f in pl.LOOPS.values()}.values()
+fresh = [(space, k, v) for space in spaces for k, v in space.items() if id(v) in python]
+
+def calls_loops(f):
+    return any(id(f.__globals__.get(g)) in python for g in f.__code__.co_names)
+
+
+bad = []
+# the loops compiled by name: those with helpers listed in CALLS, and those without any
+for name in sorted(k for k, f in pl.LOOPS.items() if k in pl.CALLS or not calls_loops(f)):
+    for space, k, v in fresh:
+        space[k] = v
+    pl._HELPERS.clear()
+    pl._COMPILED.clear()
+    pl.compiled(name)
+    todo, seen = [pl.LOOPS[name]], set()
+    while todo:
+        f = todo.pop()
+        if id(f) in seen:
+            continue
+        seen.add(id(f))
+        for g in f.__code__.co_names:
+            v = f.__globals__.get(g)
+            if id(v) in python:
+                bad.append(f"{name}: {f.__name__} calls {g} uncompiled")
+            elif isinstance(v, CPUDispatcher):
+                todo.append(v.py_func)
+print("\\n".join(bad))
+"""
+
+
+@needs_numba
+def test_each_of_the_loops_compiles_first_in_a_fresh_process():
+    """Whichever of the loops a process compiles first (a free-pitch run's first compiled
+    call is the one-call stage, whose keel line's loops call the side view's from another
+    module), every loops function it reaches finds its callees compiled: a first free-pitch
+    run on a machine with an empty numba cache once failed to compile for this."""
+    out = subprocess.run(
+        [sys.executable, "-c", _REACH], capture_output=True, text=True, check=True, timeout=300
+    )
+    assert out.stdout.strip() == "", out.stdout
