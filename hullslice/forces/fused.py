@@ -59,6 +59,11 @@ __all__ = ["FusedEvaluation", "fused_for"]
 #: goes the steps one by one, which make and keep its frame (a pitch held still, whose
 #: kept cut and waterline tables then serve).
 SEEN_PITCHES = 8
+#: The one call's status where the keel line is nowhere under the water
+#: (:data:`~hullslice.slices_loops.STATUS`), and what :meth:`FusedEvaluation._one_call`
+#: returns then: numpy's path gives such a pose no section, so zero sums.
+DRY_STATUS = 1
+DRY = "dry"
 #: The loops' columns per slice: room for the entries of sections in several wetted
 #: pieces (a fuselage and its two nacelles); beyond it numpy's path serves.
 ROWS_PER_SLICE = 4
@@ -306,7 +311,7 @@ class FusedEvaluation:
         thread's sums), or None where the steps one by one must serve: numpy's loops,
         another cutter, a pitch with a frame (its kept cut and tables), a pitch met again
         (its frame is made then, and its kept cut and tables serve it from there on), or
-        a status of the call."""
+        a status of the call; :data:`DRY` where the keel line is nowhere under the water."""
         stage = self.stage
         pitch = float(pitch)
         if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
@@ -333,6 +338,8 @@ class FusedEvaluation:
             *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, extra, opts,
             self.a_c, self.v_c,
         )  # fmt: skip
+        if status == DRY_STATUS:
+            return DRY
         if status != 0:
             return None
         return points, ring_start, ring_station, extra, scal
@@ -346,6 +353,8 @@ class FusedEvaluation:
         same sums. None where the steps one by one must serve (see :meth:`_one_call`)."""
         _, _, fout, iout = self._buffers()
         done = self._one_call(pitch, z_cg, w, u, q, fout, iout)
+        if done is DRY:  # no slice: numpy's path sums no sections
+            return 0.0, 0.0, 0.0
         return None if done is None else _sums(done[-1])
 
     def stage_result(
@@ -359,7 +368,7 @@ class FusedEvaluation:
         _, _, fout, iout = self._buffers()  # the result takes copies of what it needs
         done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
                               motion.pitch_rate, fout, iout)  # fmt: skip
-        if done is None:
+        if done is None or done is DRY:  # a dry result: the steps one by one make it
             return None
         points, ring_start, ring_station, extra, scal = done
         rows = Rings.of(points, ring_start, ring_station, int(extra[1]))
