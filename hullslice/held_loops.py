@@ -46,6 +46,7 @@ from .slices_loops import (
     finish_loops,
     layout_loops,
     left_loops,
+    wet_slices_loops,
     window_loops,
 )
 from .wetted_loops import wetted_loops
@@ -54,7 +55,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "e051dcaedcbcebff"
+HELPERS_DIGEST = "bc09a8fd23b9cb69"
 
 __all__ = [
     "COLUMNS",
@@ -259,16 +260,18 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     ``outline_arrays``, the kept cut's outline (its arrays as
     :class:`~hullslice.kernel.outline.Outline` holds them, to ``z_chine``). Returns 0, or
     a status of :data:`STATUS` (4: two slices taking one station's section at two
-    heights)."""
+    heights). The stations may start at the first wetted slice's: no slice takes the
+    section of the window's station before it."""
     level, n, c0, n_cut = opts[0], int(opts[6]), int(opts[7]), int(opts[8])
     tol = opts[9]
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
         return status
-    if w0 < c0 or w1 > c0 + n_cut:
+    k0 = wet_slices_loops(keel, level, n)[1]
+    if (k0 if k0 >= 0 else w0) < c0 or w1 > c0 + n_cut:
         return 2
     levels = np.full(n_cut, -math.inf)
-    for s in range(w0 - c0, w1 - c0):
+    for s in range(max(w0, c0) - c0, w1 - c0):
         levels[s] = level
     e0, f0 = pitch_entries_loops(outline_arrays, levels, tol)
     status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0)

@@ -14,7 +14,7 @@ import numpy as np
 __all__ = ["outline_loops", "stable_order_loops"]
 
 
-def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
+def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap):
     """:meth:`hullslice.kernel.outline.Outline.of` of the exact cut's contours as
     :func:`~hullslice.planecut_loops.cut_loops` gives them (``points``, ``ring_start``,
     ``ring_station``; the rings grouped by station), each point divided by ``scale``
@@ -22,6 +22,11 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
     same order, the same arrays. A station with a hole (a clockwise contour) needs the
     containment tests of numpy's path: then ``ok`` is False and nothing else is
     meaningful.
+
+    ``cap`` (one height a station, m, after the move) keeps of a station's edges those
+    whose lower end is below it, in their order (all where it is infinite): the edges
+    the wetted properties read with the water at that height or lower, in the order they
+    read them. The sections' own figures (areas, extremes, chines) are of all its edges.
 
     Returns ``(ok, station, ya, za, yb, zb, zlo, start, area, contour, part_area,
     part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
@@ -113,15 +118,32 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
                 if not (low < a[i, 1] or low != low):
                     low = a[i, 1]
         z_chine[s] = low
-    order = np.arange(n)
-    if n:
+    # the edges kept (below their station's cap), in their order, counted by station
+    order = np.empty(n, dtype=np.int64)
+    kept = np.zeros(n_st + 1, dtype=np.int64)
+    m = 0
+    for i in range(n):
+        top = cap[station[i]]
+        if top == np.inf or zlo[i] < top:
+            order[m] = i
+            kept[station[i] + 1] += 1
+            m += 1
+    order = order[:m]
+    for s in range(n_st):
+        kept[s + 1] += kept[s]
+    if m:
         lo, hi = zlo.min(), zlo.max()
         span = hi - lo
         key = np.empty(n)
-        for i in range(n):
+        for j in range(m):
+            i = order[j]
             key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
-        if not (grouped and stable_order_loops(key, start, order)):
-            order = np.argsort(key, kind="mergesort")
+        if not (grouped and stable_order_loops(key, kept, order)):
+            sub = np.empty(m)
+            for j in range(m):
+                sub[j] = key[order[j]]
+            order = order[np.argsort(sub, kind="mergesort")]
+    n = m
     ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
     for i in range(n):
@@ -131,22 +153,22 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz):
         o_zlo[i] = zlo[k]
         o_contour[i] = contour[k]
     return (
-        ok, o_station, ya, za, yb, zb, o_zlo, start, area, o_contour, c_area,
+        ok, o_station, ya, za, yb, zb, o_zlo, kept, area, o_contour, c_area,
         part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
     )  # fmt: skip
 
 
 def stable_order_loops(key, start, order):
-    """``order`` (``arange(n)`` on entry) sorted within each group ``start[g] ..
+    """``order`` (indices into ``key``, ascending) sorted within each group ``start[g] ..
     start[g + 1] - 1`` by ``key``, ties in their first order: numpy's stable sort of the
     group. A natural merge sort: a section's edges come as a few runs of rising or falling
     height around its contours, so this takes a few passes where a full sort takes
     log2(n); the keys move with the indices (one load fewer on the merge's critical path).
     Returns False, leaving ``order`` unusable, where a key is NaN (numpy's sort puts those
     last)."""
-    n = len(key)
+    n = len(order)
     for i in range(n):
-        if key[i] != key[i]:
+        if key[order[i]] != key[order[i]]:
             return False
     run = np.empty(n + 1, dtype=np.int64)  # the runs' starts (and the end)
     kv = np.empty(n)  # the keys in the order's order

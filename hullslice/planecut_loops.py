@@ -71,6 +71,7 @@ from .slices_loops import (
     right_loops,
     runs_of_loops,
     slope_loops,
+    wet_slices_loops,
     window_loops,
 )
 from .wetted_loops import wetted_loops
@@ -92,7 +93,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "b55513f8f5843a5b"
+STAGE_HELPERS_DIGEST = "7d7bdbba5fece665"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -282,21 +283,22 @@ def stage_loops(
     :func:`~hullslice.held_loops.pitch_loops` on them with
     the body's velocities ``w``, ``u`` and ``q`` (``fout`` to ``v_c`` as there). ``c`` and
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
-    steps made one by one: the same sums.
+    steps made one by one: the same sums. Two things of those steps no slice reads are
+    left out: the window's station before the wetted slices, and the order of the edges
+    above the water but at a source of an end slice (which may take it moved up).
 
     Returns ``(status, points, ring_start, ring_station)``: status 0 with the sums in
     ``scal`` and the cut's contours as :func:`cut_loops` gives them (their stations from
-    the window's first), or a status where the steps one by one must serve:
+    the first station cut), or a status where the steps one by one must serve:
     :data:`~hullslice.slices_loops.STATUS`'s, or 100 (the keel line needs numpy's
     refinement), 101 (it has no facet with a finite slope), 102 (a contour does not
-    close) or 103 (a section has a hole). ``extra`` receives the window's first station
-    and its station count, the contours' origin ``(y, z)``, the water's level, the draft
+    close) or 103 (a section has a hole). ``extra`` receives the first station cut and
+    the count, the contours' origin ``(y, z)``, the water's level, the draft
     (clipped to the body's height), the draft unclipped, and the body's lowest point, m."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
-    ok, _, low, high, kx, kz, runs = frame_keel_loops(
-        a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope
-    )
+    keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
+    ok, _, low, high, kx, kz, runs = keel_line
     if not ok:
         return 100, none2, none1, none1
     r_ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = runs
@@ -304,9 +306,8 @@ def stage_loops(
         return 101, none2, none1, none1
     if not bottom:
         height, lo, hi = np.empty(0), np.empty(0), np.empty(0)
-    keel, runs_arr, chords = keel_arrays_loops(
-        kx, kz, steep, mid, cont, bend, starts, offsets, height, lo, hi
-    )
+    keel, runs_arr, chords = keel_arrays_loops(kx, kz, steep, mid, cont, bend, starts, offsets,
+                                               height, lo, hi)  # fmt: skip
     draft = -(low + z_cg)  # ForceModel.draft's max(0.0, ...), _run's clip
     if not draft > 0.0:
         draft = 0.0
@@ -317,6 +318,8 @@ def stage_loops(
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
         return status, none2, none1, none1
+    _, k0, k1 = wet_slices_loops(keel, level, n)
+    w0 = max(w0, k0)  # the window's station before the wetted slices: no slice's section
     xa, xb = kx[0], kx[len(kx) - 1]  # the fixed stations (Frame.fixed_stations)
     d = (xb - xa) / n
     n_cut = w1 - w0
@@ -341,7 +344,12 @@ def stage_loops(
     )
     if closed != 0:
         return 102, none2, none1, none1
-    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz)
+    # edges above the water: read only by an end slice's own or inward source, moved
+    cap = np.full(n_cut, level)
+    for k in (k0, k0 + 1, k1 - 1, k1):
+        if w0 <= k < w1:
+            cap[k - w0] = math.inf
+    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap)
     if not out[0]:
         return 103, none2, none1, none1
     extra[0], extra[1], extra[2], extra[3], extra[4], extra[5] = w0, n_cut, oy, oz, level, draft
@@ -455,7 +463,7 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, envelope=envelope_
 #: in those namespaces are numba's).
 #: What the fused evaluation's loops call, helpers before callers.
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
-         "h_extent", "h_window", "h_layout", "h_finish")  # fmt: skip
+         "h_extent", "h_wet", "h_window", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
@@ -467,7 +475,7 @@ _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", 
 CALLS = {
     "held": (*_HELD, "h_interval", "h_table"),
     "pitch": (*_HELD, "wetted", "h_entries"),
-    "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent"),
+    "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent", "h_wet"),
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
@@ -484,7 +492,8 @@ CALLS = {
 LOOPS.update(
     wetted=wetted_loops, held=held_loops, h_interp=interp_loops, h_right=right_loops,
     h_left=left_loops, h_div=div_loops, h_desc=left_loops_desc, h_cross=crossing_loops,
-    h_runs=runs_of_loops, h_extent=extent_loops, h_window=window_loops, h_layout=layout_loops,
+    h_runs=runs_of_loops, h_extent=extent_loops, h_wet=wet_slices_loops,
+    h_window=window_loops, h_layout=layout_loops,
     h_finish=finish_loops, h_interval=table_interval_loops,
     h_table=table_entry_loops, h_entries=pitch_entries_loops, pitch=pitch_loops,
     window=window_loops, h_slope=slope_loops

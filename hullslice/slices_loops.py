@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 __all__ = ["COLUMNS", "ENTRY", "OPTIONS", "REASON_BITS", "STATUS", "finish_loops",
-           "layout_loops", "window_loops"]  # fmt: skip
+           "layout_loops", "wet_slices_loops", "window_loops"]  # fmt: skip
 
 
 #: The float columns of the per-slice output ``fout``, by name.
@@ -193,10 +193,9 @@ def extent_loops(keel, level):
     return 0, lo, hi
 
 
-def window_loops(keel, level, n):
-    """The fixed stations a evaluation needs at the water's height ``level`` (``n`` slices):
-    ``(status, w0, w1)``, the wetted slices' stations and one on either side, status as
-    :func:`extent_loops`'s."""
+def wet_slices_loops(keel, level, n):
+    """The first and last of the ``n`` fixed slices the water wets at ``level`` (-1 for
+    none): ``(status, k0, k1)``, status as :func:`extent_loops`'s."""
     status, x0, x1 = extent_loops(keel, level)
     if status != 0:
         return status, 0, 0
@@ -211,6 +210,15 @@ def window_loops(keel, level, n):
             if k_first < 0:
                 k_first = k
             k_last = k
+    return 0, k_first, k_last
+
+
+def window_loops(keel, level, n):
+    """The fixed stations an evaluation needs at the water's height ``level`` (``n``
+    slices): ``(status, w0, w1)``, the wetted slices' and one on either side."""
+    status, k_first, k_last = wet_slices_loops(keel, level, n)
+    if status != 0:
+        return status, 0, 0
     return 0, max(k_first - 1, 0), min(k_last + 2, n)
 
 

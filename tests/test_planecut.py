@@ -379,13 +379,42 @@ def test_the_keel_fit_estimator_keeps_numpy(monkeypatch):
     assert float(np.nanmax(ref["penetration"])) > 0.0  # a wetted section was compared
 
 
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "cylinder"])
+def test_the_outline_capped_keeps_the_edges_below_in_the_full_outlines_order(name):
+    """With a cap per station (the one-call stage's: the water's height, or none), the
+    outline keeps of each station's edges those whose lower end is below its cap, in the
+    full outline's order (the wetted properties read no other, in that order); the
+    stations' own figures are the full outline's."""
+    hull = BODIES[name]
+    loops = planecut_loops.compiled("outline") or planecut_loops.outline_loops
+    rng = np.random.default_rng(3)
+    origin, scale = (0.3, -1.25), 7.5
+    for cut in _kernel_cuts(hull, "auto"):
+        points, ring_start, ring_station = cut.flat
+        n_st = len(cut)
+        full = loops(points, ring_start, ring_station, n_st, 1e-9, scale, *origin,
+                     np.full(n_st, np.inf))  # fmt: skip
+        zlo, station = full[6], full[1]
+        cap = rng.uniform(zlo.min(), zlo.max(), n_st)
+        cap[rng.random(n_st) < 0.2] = np.inf
+        got = loops(points, ring_start, ring_station, n_st, 1e-9, scale, *origin, cap)
+        keep = zlo < cap[station]
+        assert 0 < keep.sum() < len(keep)
+        for k in (1, 2, 3, 4, 5, 6, 9):  # station, the ends, the lower end, the contour
+            np.testing.assert_array_equal(got[k], full[k][keep])
+        np.testing.assert_array_equal(got[7], np.concatenate([[0], np.cumsum(
+            np.bincount(station[keep], minlength=n_st))]))  # fmt: skip
+        for k in (8, *range(10, 19)):  # areas, parts, extremes, chines: of all edges
+            np.testing.assert_array_equal(got[k], full[k])
+
+
 def test_a_section_with_a_hole_is_outlined_by_numpy():
     """A hole (a clockwise contour) needs numpy's containment tests: the loops decline."""
     ring = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
     hole = np.array([[0.5, 0.5], [0.5, 1.5], [1.5, 1.5], [1.5, 0.5]])
     points = np.concatenate([ring, hole])
     out = planecut_loops.outline_loops(points, np.array([0, 4, 8]), np.array([0, 0]), 1,
-                                       1e-9, 1.0, 0.0, 0.0)  # fmt: skip
+                                       1e-9, 1.0, 0.0, 0.0, np.full(1, np.inf))  # fmt: skip
     assert out[0] is False
     from hullslice.kernel.outline import Outline
     from hullslice.planecut import Rings

@@ -96,7 +96,8 @@ class Outline:
         flat = getattr(polygons, "flat", None)
         if loops is not None and flat is not None:
             oy, oz = (float(v) for v in origin)
-            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz)
+            every = np.full(len(polygons), np.inf)  # all edges of every station
+            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz, every)
             if out[0]:
                 return cls(*out[1:])
         s = len(polygons)
