@@ -8,6 +8,7 @@ numba's cache of it fresh. The call is compiled only: it needs numba."""
 from __future__ import annotations
 
 import hashlib
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -22,7 +23,7 @@ from hullslice.geometry import FRAMES, frame
 from hullslice.motion import ForceModel
 from hullslice.state import Motion, Pose
 
-from .test_planecut import BODIES
+from .test_planecut import BODIES, MESHES
 
 needs_numba = pytest.mark.skipif(not planecut_loops.available(), reason="needs numba")
 
@@ -260,3 +261,28 @@ def test_each_of_the_loops_compiles_first_in_a_fresh_process():
         [sys.executable, "-c", _REACH], capture_output=True, text=True, check=True, timeout=300
     )
     assert out.stdout.strip() == "", out.stdout
+
+
+@needs_numba
+@pytest.mark.slow
+def test_a_free_pitch_run_is_the_first_thing_a_fresh_process_compiles(tmp_path):
+    """A free-pitch run of the 1:10 model in a new process whose numba cache is empty
+    (numba compiles every loop it meets, in the order a run meets them: the one-call
+    stage before the keel line's loops by name) runs, through the one call, to the same
+    history as this process's. About a minute of compiling."""
+    code = (
+        "import sys, numpy as np, hullslice as hs\n"
+        "hull = hs.load_hull(sys.argv[1], mass=60.0)\n"
+        "h = hs.simulate(hull, -1.5, 0.01, dt=1e-3, pitch_deg=6.0, forward_speed=19.0,\n"
+        "                slices=32, slicing='fixed', stop_on=(), free_pitch=True)\n"
+        "np.save(sys.argv[2], np.stack([h.force, h.moment, h.pitch]))\n"
+    )
+    out = tmp_path / "history.npy"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
+    path = MESHES / "fuselage_model.obj"
+    subprocess.run([sys.executable, "-c", code, str(path), str(out)], env=env, check=True,
+                   timeout=600, capture_output=True)  # fmt: skip
+    hull = hs.load_hull(path, mass=60.0)
+    want = hs.simulate(hull, -1.5, 0.01, dt=1e-3, pitch_deg=6.0, forward_speed=19.0,
+                       slices=32, slicing="fixed", stop_on=(), free_pitch=True)  # fmt: skip
+    np.testing.assert_array_equal(np.load(out), np.stack([want.force, want.moment, want.pitch]))
