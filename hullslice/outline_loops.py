@@ -11,6 +11,10 @@ from __future__ import annotations
 
 import numpy as np
 
+#: 1, unsigned: an index from memory unsigned is not tested for a negative value at each
+#: use (see :data:`hullslice.planecut_loops.U0`).
+U1 = np.uint64(1)
+
 __all__ = ["outline_loops", "stable_order_loops"]
 
 
@@ -57,8 +61,9 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
             grouped = False
         sum_st = area[st]
         sum_c = c_area[j]
-        for i in range(ring_start[j], ring_start[j + 1]):
-            k = i + 1 if i + 1 < ring_start[j + 1] else ring_start[j]
+        i0, i1 = np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])  # unsigned (U1)
+        for i in range(i0, i1):
+            k = i + U1 if i + U1 < i1 else i0
             b[i, 0] = a[k, 0]
             b[i, 1] = a[k, 1]
             station[i] = st
@@ -93,7 +98,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         part_station[j] = s
         lo_z, lo_y, hi_y = zmin[s], ymin[s], ymax[s]
         p_z, p_lo, p_hi = part_zmax[j], part_ymin[j], part_ymax[j]
-        for i in range(ring_start[j], ring_start[j + 1]):
+        for i in range(np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])):
             y, z = a[i, 0], a[i, 1]
             if not (lo_z < z or lo_z != lo_z):
                 lo_z = z
@@ -113,7 +118,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     for j in range(r):
         s = ring_station[j]
         low, y_lo, y_hi = z_chine[s], ymin[s] + tol, ymax[s] - tol
-        for i in range(ring_start[j], ring_start[j + 1]):
+        for i in range(np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])):
             if a[i, 0] >= y_hi or a[i, 0] <= y_lo:
                 if not (low < a[i, 1] or low != low):
                     low = a[i, 1]
@@ -136,7 +141,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         span = hi - lo
         key = np.empty(n)
         for j in range(m):
-            i = order[j]
+            i = np.uint64(order[j])
             key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
         if not (grouped and stable_order_loops(key, kept, order)):
             sub = np.empty(m)
@@ -147,7 +152,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
     for i in range(n):
-        k = order[i]
+        k = np.uint64(order[i])
         o_station[i] = station[k]
         ya[i], za[i], yb[i], zb[i] = a[k, 0], a[k, 1], b[k, 0], b[k, 1]
         o_zlo[i] = zlo[k]
