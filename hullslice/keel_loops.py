@@ -106,7 +106,9 @@ def side_view_loops(a, b, gx, gz, c, s, order):
     seen = np.zeros(e, dtype=np.bool_)
     k = 0
     for i in range(2 * e):
-        j = order[i] % e if e else 0
+        j = order[i]  # an end: the segment's first (j < e) or its second (j - e)
+        if j >= e:  # not j % e: an integer division a value costs more than the loop
+            j -= e
         if not seen[j]:
             seen[j] = True
             seg[k] = j
