@@ -145,17 +145,24 @@ def lowest_walk_loops(xs, mid, xa, za, xb, zb, seg):
         while k0 < nm and mid[k0] < lo:
             k0 += 1
         flat = min(z0, zb[j])  # a vertical segment's lower end
-        lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat)
-        lower_loops(zm, mid, k0, hi, x0, z0, dx, dz, flat)
+        # no height the segment gives is below this (rounding is monotone: the fraction
+        # of dx is within 0 .. 1, z0 plus its share of dz between z0 and z0 + dz)
+        low = flat if dx == 0.0 else min(z0, z0 + dz)
+        lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat, low)
+        lower_loops(zm, mid, k0, hi, x0, z0, dx, dz, flat, low)
     return z, zm
 
 
-def lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat):
+def lower_loops(z, xs, i0, hi, x0, z0, dx, dz, flat, low):
     """``z`` lowered to the segment from ``x0`` (height ``z0``) by ``dx``, ``dz`` over the
-    sorted abscissae ``xs`` from ``i0`` to its end ``hi`` (``flat`` where it is vertical)."""
+    sorted abscissae ``xs`` from ``i0`` to its end ``hi`` (``flat`` where it is vertical),
+    its height not computed where ``z`` is already at most ``low``, the lowest it gives
+    (the division a height costs is most of the side view's time)."""
     for i in range(i0, len(xs)):
         if xs[i] > hi:
             break
+        if not low < z[i]:
+            continue
         zi = flat if dx == 0.0 else z0 + (xs[i] - x0) / dx * dz
         if zi < z[i]:
             z[i] = zi
