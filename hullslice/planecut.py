@@ -211,7 +211,7 @@ class PlaneIndex:
             return search(
                 self.key, self.bin_start, self.bin_zlo, self.bin_zhi, self.bin_reach, x_rel,
                 float(cg[0]), float(cg[2]), float(c), float(s), self.margin, self.key_span,
-                self.key_x0,
+                self.key_x0, np.empty((0, len(self.bin_zlo), 2), dtype=np.int64), 0,
             )  # fmt: skip
         # body x of each plane at a bin's lowest and highest z: r_x = (x_rel + r_z s) / c
         za = (self.bin_zlo - cg[2]) * s

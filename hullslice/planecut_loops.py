@@ -45,6 +45,7 @@ from .held_loops import (
     table_entry_loops,
     table_interval_loops,
 )
+from .index_loops import gallop_loops, near_loops, range_loops
 from .keel_loops import (
     abscissae_loops,
     envelope_loops,
@@ -93,7 +94,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "9aebd4ef86775c7b"
+STAGE_HELPERS_DIGEST = "54750058d30ee402"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -228,44 +229,9 @@ def cut_loops(
     return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], status
 
 
-def range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s, margin, span, x0):
-    """:meth:`hullslice.planecut.PlaneIndex.ranges` by loops, with the same arithmetic:
-    for each station ``i`` and bin ``b``, the body ``x`` of the plane at the bin's lowest
-    and highest ``z`` widened by the bin's reach and ``margin``, as keys (``b * span`` plus
-    the ``x`` from ``x0``, clipped to half the span), and the first of the bin's faces
-    whose key is not below the lower key and the first whose key is above the upper one,
-    searched among the bin's own faces ``bin_start[b] .. bin_start[b + 1] - 1`` (a bin's
-    keys lie in its own band: the same indices as a search of all the keys). Returns
-    ``(first, last)``, (stations, bins)."""
-    nb = len(bin_zlo)
-    n_st = len(x_rel)
-    first = np.empty((n_st, nb), dtype=np.int64)
-    last = np.empty((n_st, nb), dtype=np.int64)
-    half = 0.5 * span
-    for b in range(nb):
-        za = (bin_zlo[b] - gz) * s
-        zb = (bin_zhi[b] - gz) * s
-        base = b * span
-        end = bin_start[b + 1]
-        lo_was, hi_was = np.inf, np.inf
-        for i in range(n_st):
-            xa = gx + (x_rel[i] + za) / c
-            xb = gx + (x_rel[i] + zb) / c
-            lo = min(max(min(xa, xb) - bin_reach[b] - margin - x0, 0.0), half) + base
-            hi = min(max(max(xa, xb) + margin - x0, 0.0), half) + base
-            # from the station before where its bounds were no higher (every key before
-            # its indices is below these bounds too): a short gallop, not a whole search
-            at = first[i - 1, b] if lo_was <= lo else bin_start[b]
-            first[i, b] = gallop_loops(key, at, end, lo, False)
-            at = max(first[i, b], last[i - 1, b]) if hi_was <= hi else first[i, b]
-            last[i, b] = gallop_loops(key, at, end, hi, True)
-            lo_was, hi_was = lo, hi
-    return first, last
-
-
 def stage_loops(
     a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
-    key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot,
+    key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot, guess,
     k_out_of, k_in_of, merge, tol, n, c, s, z_cg, w, u, q, fout, iout, scal, extra, opts, a_c,
     v_c,
 ):  # fmt: skip
@@ -277,7 +243,8 @@ def stage_loops(
     (:func:`~hullslice.keel_loops.keel_arrays_loops`); the draft of the centre of gravity
     at height ``z_cg`` (m) and the water's level; the wetted slices' window; their fixed
     stations (``n`` slices over the keel line's length) cut by :func:`cut_loops` over the
-    plane index's ranges (:func:`range_loops`; ``key`` to ``slot`` as there, ``merge`` the
+    plane index's ranges (:func:`~hullslice.index_loops.range_loops`, from the thread's
+    ``guess``; ``key`` to ``slot`` as :func:`cut_loops` takes them, ``merge`` the
     contours' merge distance) with the cutter's map of :func:`hullslice.geometry._frame`
     (the body's ``bounds`` and ``scale``); their outline (``tol``, by
     :func:`~hullslice.outline_loops.outline_loops`); and
@@ -337,9 +304,8 @@ def stage_loops(
     m[0, 0], m[0, 1], m[0, 2], m[0, 3] = scale * 0.0, scale * 1.0, scale * 0.0, scale * -oy
     m[1, 0], m[1, 1], m[1, 2] = scale * s, scale * 0.0, scale * c
     m[1, 3] = scale * (-(s * gx + c * gz) - oz)
-    first, last = range_loops(
-        key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s, margin, span, x0
-    )
+    first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s,
+                              margin, span, x0, guess, w0)  # fmt: skip
     points, ring_start, ring_station, closed = cut_loops(
         first, last, corners, ends, x_rel, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
     )
@@ -366,25 +332,6 @@ def stage_loops(
     status = pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays,
                          a_c, v_c)  # fmt: skip
     return status, points, ring_start, ring_station
-
-
-def gallop_loops(a, lo, hi, v, right):
-    """:func:`~hullslice.keel_loops.search_loops` of ``v`` in the sorted ``a[lo:hi]``
-    (every value before ``lo`` below ``v``), probing from ``lo`` in steps of 1, 2, 4, ...
-    before the binary search: the same index, found in a few probes near ``lo`` when it is
-    near."""
-    step = 1
-    while True:
-        probe = lo + step - 1
-        if probe >= hi:
-            break
-        if a[probe] < v or (right and a[probe] == v):
-            lo = probe + 1
-            step *= 2
-        else:
-            hi = probe + 1  # the index is at most the probe
-            break
-    return search_loops(a, lo, hi, v, right)
 
 
 _LOCK = threading.Lock()
@@ -451,6 +398,7 @@ def _inject(callee: str, jit: Callable) -> None:
 
 LOOPS.update(outline=outline_loops, order=stable_order_loops, envelope=envelope_loops,
     side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
+    near=near_loops,
     sorted=sorted_loops, walk=lowest_walk_loops, lower=lower_loops, runs=runs_loops,
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
@@ -470,7 +418,7 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
-          "keel_arrays", "gallop", "ranges", "cut", "order", "outline", *_HELD, "wetted",
+          "keel_arrays", "gallop", "near", "ranges", "cut", "order", "outline", *_HELD, "wetted",
           "h_entries", "pitch")  # fmt: skip
 CALLS = {
     "held": (*_HELD, "h_interval", "h_table"),
@@ -484,7 +432,7 @@ CALLS = {
     "refine": ("search", *_REFINE),
     "crossings": ("search", "lowest_at"),
     "lowest_at": ("search",),
-    "ranges": ("search", "gallop"),
+    "ranges": ("search", "gallop", "near"),
     "stage": _STAGE,
     "outline": ("order",),
     "keel_arrays": ("row",),

@@ -59,6 +59,7 @@ LAYERS: dict[str, int] = {
     "hullslice.keel_loops": 3,
     "hullslice.frame_loops": 3,
     "hullslice.outline_loops": 3,
+    "hullslice.index_loops": 3,
     "hullslice.held_loops": 3,
     "hullslice.slices_loops": 3,
     "hullslice.geometry": 3,

@@ -239,7 +239,9 @@ def test_the_candidate_ranges_by_the_loops_equal_numpy(name):
     """The candidate faces' ranges searched bin by bin by the loops (run as Python, and
     compiled where numba is installed) are numpy's search of all the keys, index for
     index, at pitches from -40 to 40 degrees and stations before, along and past the
-    body, in order (each search from the station before), backwards and shuffled."""
+    body, in order (each search from the station before), backwards and shuffled; and
+    from guesses (the one-call stage's, from its last stage: near the ranges, or anywhere
+    at all), which the loops update to the ranges found."""
     hull = BODIES[name]
     index = plane_index(hull)
     g = np.asarray(hull.cg, dtype=np.float64)
@@ -256,9 +258,20 @@ def test_the_candidate_ranges_by_the_loops_equal_numpy(name):
         args = (index.key, index.bin_start, index.bin_zlo, index.bin_zhi, index.bin_reach, x,
                 float(g[0]), float(g[2]), float(c), float(s), index.margin, index.key_span,
                 index.key_x0)  # fmt: skip
-        got = [planecut_loops.LOOPS["ranges"](*args)]
+        none = np.empty((0, len(index.bin_zlo), 2), dtype=np.int64)
+        got = [planecut_loops.LOOPS["ranges"](*args, none, 0)]
         if planecut_loops.available():
             got.append(index.ranges(x, pitch, g, compiled=True))
+        # searched from guesses (an earlier stage's, or anything at all): the same ranges
+        k, nb = len(x) + 3, len(index.bin_zlo)
+        near = want[0][:, :, None] + rng.integers(-40, 41, (len(x), nb, 2))
+        for guess in (rng.integers(-5, len(index.key) + 5, (k, nb, 2)),
+                      np.concatenate([np.full((3, nb, 2), -1), near])):  # fmt: skip
+            got.append(planecut_loops.LOOPS["ranges"](*args, guess, 3))
+            got.append(planecut_loops.compiled("ranges")(*args, guess.copy(), 3)
+                       if planecut_loops.available() else got[-1])  # fmt: skip
+            np.testing.assert_array_equal(guess[3:, :, 0], want[0])  # updated in place
+            np.testing.assert_array_equal(guess[3:, :, 1], want[1])
         for first, last in got:
             np.testing.assert_array_equal(first, want[0])
             np.testing.assert_array_equal(last, want[1])
@@ -283,7 +296,9 @@ def test_the_candidate_ranges_by_the_loops_break_ties_as_numpy():
     want = index.ranges(x, 0.0, np.zeros(3))
     args = (key, start, index.bin_zlo, index.bin_zhi, index.bin_reach, x, 0.0, 0.0, 1.0, 0.0,
             0.25, span, 0.0)  # fmt: skip
-    got = [planecut_loops.LOOPS["ranges"](*args)]
+    got = [planecut_loops.LOOPS["ranges"](*args, np.empty((0, nb, 2), dtype=np.int64), 0)]
+    for guess in (rng.integers(-2, len(key) + 2, (len(x), nb, 2)),):  # from any guess
+        got.append(planecut_loops.LOOPS["ranges"](*args, guess, 0))
     if planecut_loops.available():
         got.append(index.ranges(x, 0.0, np.zeros(3), compiled=True))
     for first, last in got:

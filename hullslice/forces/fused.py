@@ -59,9 +59,8 @@ __all__ = ["FusedEvaluation", "fused_for"]
 #: goes the steps one by one, which make and keep its frame (a pitch held still, whose
 #: kept cut and waterline tables then serve).
 SEEN_PITCHES = 8
-#: The one call's status where the keel line is nowhere under the water
-#: (:data:`~hullslice.slices_loops.STATUS`), and what :meth:`FusedEvaluation._one_call`
-#: returns then: numpy's path gives such a pose no section, so zero sums.
+#: The one call's status where the keel line is nowhere under the water, and what
+#: :meth:`FusedEvaluation._one_call` returns then (numpy's path sums no section: zero).
 DRY_STATUS = 1
 DRY = "dry"
 #: The loops' columns per slice: room for the entries of sections in several wetted
@@ -333,9 +332,12 @@ class FusedEvaluation:
         extra = np.empty(8)
         index = plane_index(hull)
         c, s = np.cos(pitch), np.sin(pitch)
+        guess = getattr(local, "ranges", None)  # by station, the candidate ranges found last
+        if guess is None:
+            guess = local.ranges = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
         status, points, ring_start, ring_station = stage(
             args[0], args[1], _side_order(hull, 2 * len(args[0])), *args[2:18], index.scratch(),
-            *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, extra, opts,
+            guess, *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, extra, opts,
             self.a_c, self.v_c,
         )  # fmt: skip
         if status == DRY_STATUS:

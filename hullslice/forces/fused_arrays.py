@@ -20,8 +20,9 @@ __all__ = ["keel_arrays", "stage_arrays", "table_arrays"]
 
 def stage_arrays(hull, tol: float, n: int) -> tuple:
     """What :func:`~hullslice.planecut_loops.stage_loops` reads of a hull, in its order:
-    all of its arguments up to ``n`` but the ends' order (the third) and the scratch
-    array (the twentieth), which are each thread's own."""
+    all of its arguments up to ``n`` but the ends' order (the third), the scratch array
+    (the twentieth) and the ranges' guesses (the twenty-first), which are each thread's
+    own."""
     a, b = silhouette_edges(hull)
     index = plane_index(hull)
     return (
