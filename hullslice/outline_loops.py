@@ -79,11 +79,6 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         c_area[j] = 0.5 * c_area[j]
         if not c_area[j] > 0.0:
             ok = False
-    start = np.zeros(n_st + 1, dtype=np.int64)
-    for i in range(n):
-        start[station[i] + 1] += 1
-    for s in range(n_st):
-        start[s + 1] += start[s]
     zmin = np.full(n_st, np.inf)
     ymin = np.full(n_st, np.inf)
     ymax = np.full(n_st, -np.inf)
@@ -123,7 +118,8 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
                 if not (low < a[i, 1] or low != low):
                     low = a[i, 1]
         z_chine[s] = low
-    # the edges kept (below their station's cap), in their order, counted by station
+    # the edges kept (below their station's cap), in their order, counted by station:
+    # each station's first (and the end), the outline's ``start``
     order = np.empty(n, dtype=np.int64)
     kept = np.zeros(n_st + 1, dtype=np.int64)
     m = 0
