@@ -267,8 +267,8 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
         return status
-    k0 = wet_slices_loops(keel, level, n)[1]
-    if (k0 if k0 >= 0 else w0) < c0 or w1 > c0 + n_cut:
+    k0 = wet_slices_loops(keel, level, n)[1]  # -1 where none: then the window's first
+    if max(w0, k0) < c0 or w1 > c0 + n_cut:  # the first station a slice reads, as the stage's
         return 2
     levels = np.full(n_cut, -math.inf)
     for s in range(max(w0, c0) - c0, w1 - c0):

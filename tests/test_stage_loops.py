@@ -78,13 +78,14 @@ def test_a_framed_pitch_goes_the_steps_one_by_one_and_a_dry_body_sums_nothing():
     z_cg = -(fr.lowest + 0.2 * (fr.highest - fr.lowest))
     assert model.fused.stage_totals(0.07, z_cg, -1.0, 10.0, 0.0) is None
     high = 10.0 * hull.size
-    assert model.fused.stage_totals(0.071, high, -1.0, 10.0, 0.0) == (0.0, 0.0, 0.0)
+    got = model.fused.stage_totals(0.071, high, -1.0, 10.0, 0.0)
+    assert got == (0.0, 0.0, 0.0) and [np.copysign(1.0, v) for v in got] == [1.0, 1.0, 1.0]
     assert hull.cache[FRAMES].get(0.071) is None
     twin = _model(hull.with_mass(hull.mass))
     r = twin._numpy(Pose(twin.draft(high, 0.071), 0.071), Motion(-1.0, 10.0, 0.0))
     want = (r.total, r.moment, r.total_x)
     assert want == (0.0, 0.0, 0.0)
-    assert [np.copysign(1.0, v) for v in want] == [1.0, 1.0, 1.0]  # +0.0, as the call's
+    assert [np.copysign(1.0, v) for v in want] == [1.0, 1.0, 1.0]  # +0.0 too
     # the first stage's result (the record's) is numpy's path's: the call leaves it
     assert model.fused.stage_result(high, 0.073, Motion(-1.0, 10.0, 0.0)) is None
 
