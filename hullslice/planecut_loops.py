@@ -262,7 +262,8 @@ def stage_loops(
     refinement), 101 (it has no facet with a finite slope), 102 (a contour does not
     close) or 103 (a section has a hole). ``extra`` receives the first station cut and
     the count, the contours' origin ``(y, z)``, the water's level, the draft
-    (clipped to the body's height), the draft unclipped, and the body's lowest point, m."""
+    (clipped to the body's height), the draft unclipped, and the body's lowest point, m
+    (all but the first two at status 1 too: a dry instant)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
     keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
@@ -283,6 +284,13 @@ def stage_loops(
     if draft > high - low:
         draft = high - low
     level = low + draft
+    # the cutter's origin (geometry._frame): a dry instant's result has it too
+    box0 = (bounds[0, 0] + bounds[1, 0]) * 0.5 - gx
+    box1 = (bounds[0, 1] + bounds[1, 1]) * 0.5 - gy
+    box2 = (bounds[0, 2] + bounds[1, 2]) * 0.5 - gz
+    oz = box0 * s + box2 * c
+    oy = box1 + gy
+    extra[2], extra[3], extra[4], extra[5] = oy, oz, level, draft
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
         return status, none2, none1, none1
@@ -294,13 +302,7 @@ def stage_loops(
     x_rel = np.empty(n_cut)
     for i in range(n_cut):
         x_rel[i] = xa + ((w0 + i) + 0.5) * d
-    # the cutter's map and origin (geometry._frame)
-    box0 = (bounds[0, 0] + bounds[1, 0]) * 0.5 - gx
-    box1 = (bounds[0, 1] + bounds[1, 1]) * 0.5 - gy
-    box2 = (bounds[0, 2] + bounds[1, 2]) * 0.5 - gz
-    oz = box0 * s + box2 * c
-    oy = box1 + gy
-    m = np.empty((2, 4))
+    m = np.empty((2, 4))  # the cutter's map
     m[0, 0], m[0, 1], m[0, 2], m[0, 3] = scale * 0.0, scale * 1.0, scale * 0.0, scale * -oy
     m[1, 0], m[1, 1], m[1, 2] = scale * s, scale * 0.0, scale * c
     m[1, 3] = scale * (-(s * gx + c * gz) - oz)
@@ -319,7 +321,7 @@ def stage_loops(
     out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap)
     if not out[0]:
         return 103, none2, none1, none1
-    extra[0], extra[1], extra[2], extra[3], extra[4], extra[5] = w0, n_cut, oy, oz, level, draft
+    extra[0], extra[1] = w0, n_cut
     zmin, z_chine, area = out[15], out[18], out[8]
     stations = np.empty((3, n_cut))
     for i in range(n_cut):

@@ -71,23 +71,60 @@ def test_a_new_pitchs_sums_in_one_call_equal_the_steps_one_by_one(name):
 def test_a_framed_pitch_goes_the_steps_one_by_one_and_a_dry_body_sums_nothing():
     """A pitch that has a frame keeps its kept cut and waterline tables: the call leaves it
     to them. A body clear of the water (a ditching's skip) has no slice: the call's sums
-    are zero, numpy's path's (no section summed), and no frame is made for its pitch."""
+    are zero, numpy's path's (no section summed), and no frame is made for its pitch, met
+    again or not (the two middle stages of a step in the air share a pitch)."""
     hull = _massive(BODIES["fuselage_model.obj"])
     model = _model(hull)
     fr = frame(hull, 0.07)
     z_cg = -(fr.lowest + 0.2 * (fr.highest - fr.lowest))
     assert model.fused.stage_totals(0.07, z_cg, -1.0, 10.0, 0.0) is None
     high = 10.0 * hull.size
-    got = model.fused.stage_totals(0.071, high, -1.0, 10.0, 0.0)
-    assert got == (0.0, 0.0, 0.0) and [np.copysign(1.0, v) for v in got] == [1.0, 1.0, 1.0]
+    for _ in range(2):
+        got = model.fused.stage_totals(0.071, high, -1.0, 10.0, 0.0)
+        assert got == (0.0, 0.0, 0.0) and [np.copysign(1.0, v) for v in got] == [1.0, 1.0, 1.0]
     assert hull.cache[FRAMES].get(0.071) is None
     twin = _model(hull.with_mass(hull.mass))
     r = twin._numpy(Pose(twin.draft(high, 0.071), 0.071), Motion(-1.0, 10.0, 0.0))
     want = (r.total, r.moment, r.total_x)
     assert want == (0.0, 0.0, 0.0)
     assert [np.copysign(1.0, v) for v in want] == [1.0, 1.0, 1.0]  # +0.0 too
-    # the first stage's result (the record's) is numpy's path's: the call leaves it
-    assert model.fused.stage_result(high, 0.073, Motion(-1.0, 10.0, 0.0)) is None
+
+
+@needs_numba
+@pytest.mark.parametrize("above", [0.0, 0.3])
+def test_a_dry_bodys_result_in_one_call_is_numpys_with_no_section(above):
+    """The first stage's result (the record's) of a body clear of the water, or just
+    touching it, is made from the call as numpy's path makes it: no section, every array
+    empty of numpy's type, the water's level, the draft and the contours' origin the
+    same to the bit; and no frame is made for its pitch."""
+    hull = _massive(BODIES["fuselage_model.obj"])
+    model, twin = _model(hull), _model(hull.with_mass(hull.mass))
+    motion = Motion(-1.0, 10.0, 0.2)
+    for pitch in (-0.05, 0.073, 0.2):
+        fr = frame(twin.hull, pitch)
+        z_cg = -fr.lowest + above * (fr.highest - fr.lowest)
+        got = model.fused.stage_result(z_cg, pitch, motion)
+        assert got is not None and hull.cache[FRAMES].get(pitch) is None
+        r, pose = got
+        want = twin._numpy(Pose(twin.draft(z_cg, pitch), pitch), motion)
+        assert pose == want.pose == r.pose == Pose(0.0, pitch)
+        s, t = r.sections, want.sections
+        assert len(s) == len(t) == 0 and len(s.polygons) == len(t.polygons) == 0
+        for name in s._ARRAYS:
+            a, b = getattr(s, name), getattr(t, name)
+            assert a.dtype == b.dtype and a.shape == b.shape == (0,), name
+        for name in ("draft", "pitch", "wetted_length", "z_cg", "deadrise_method"):
+            assert getattr(s, name) == getattr(t, name), name
+        assert np.array_equal(s.polygons._shift, t.polygons._shift)
+        assert s.polygons._scale == t.polygons._scale
+        for a, b in ((r.loads.force_per_metre, want.loads.force_per_metre),
+                     (r.loads.valid, want.loads.valid), (r.loads.reason, want.loads.reason),
+                     (r.velocity, want.velocity)):  # fmt: skip
+            assert a.dtype == b.dtype and a.shape == b.shape == (0,)
+        assert r.loads.diagnostics == want.loads.diagnostics == {}
+        assert (r.solver, r.fluid, r.motion, r.x_cg) == (want.solver, want.fluid, want.motion,
+                                                          want.x_cg)  # fmt: skip
+        assert (r.total, r.moment, r.total_x) == (want.total, want.moment, want.total_x)
 
 
 @needs_numba

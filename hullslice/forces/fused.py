@@ -34,23 +34,16 @@ from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
 from ..planecut import Rings, plane_index
-from ..slices_loops import COLUMNS, I_CHINE, I_CODE, I_ROWS, I_SLICE, I_SOURCE, OPTIONS
+from ..slices_loops import COLUMNS, I_ROWS, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
 from ..slicing.own_keel import pieces
-from ..slicing.record import Sections, ShiftedPolygons
-from ..solvers.base import FREE_FALL, SectionLoads
+from ..solvers.base import FREE_FALL
 from ..solvers.karman import CurveSolver
 from ..state import Fluid, Motion, Pose
-from .evaluate import (
-    CHINE_REASON,
-    FACE_REASON,
-    FLAT_REASON,
-    MASSLESS_REASON,
-    MIN_DEADRISE,
-    STEEP_REASON,
-)
+from .evaluate import MIN_DEADRISE
 from .fused_arrays import keel_arrays, stage_arrays, table_arrays
+from .fused_result import Reasons, fused_result, reason_texts
 from .result import ForceResult
 
 __all__ = ["FusedEvaluation", "fused_for"]
@@ -60,33 +53,18 @@ __all__ = ["FusedEvaluation", "fused_for"]
 #: kept cut and waterline tables then serve).
 SEEN_PITCHES = 8
 #: The one call's status where the keel line is nowhere under the water, and what
-#: :meth:`FusedEvaluation._one_call` returns then (numpy's path sums no section: zero).
+#: :meth:`FusedEvaluation._one_call` returns in place of the contours then (numpy's path
+#: sums no section: zero, and its result has none).
 DRY_STATUS = 1
 DRY = "dry"
 #: The loops' columns per slice: room for the entries of sections in several wetted
 #: pieces (a fuselage and its two nacelles); beyond it numpy's path serves.
 ROWS_PER_SLICE = 4
 
-_COL = {name: i for i, name in enumerate(COLUMNS)}
 _OPT = {name: i for i, name in enumerate(OPTIONS)}
 # the options FusedEvaluation._run sets at each evaluation, by place
 assert [_OPT[k] for k in ("level", "w", "u", "q", "frame_x_cg", "c0", "n_cut", "top",
                           "has_chords")] == [0, 1, 2, 3, 5, 7, 8, 10, 23]  # fmt: skip
-#: The diagnostics of the curve solver, in its order.
-_DIAGNOSTICS = ("gamma", "z_tilde", "v_tilde", "a_tilde", "v_z0", "acceleration", "froude")
-#: The per-entry arrays of :class:`Sections` taken from the loops' columns.
-_SECTION_COLUMNS = (
-    "x", "dx", "penetration", "half_beam", "half_beam_port", "half_beam_stbd", "deadrise",
-    "deadrise_port", "deadrise_stbd", "area", "mass_per_metre", "keel_slope", "keel_z",
-    "y_keel", "part_half_beam", "keel_curvature",
-)  # fmt: skip
-
-
-#: The loops' columns a result reads, with their rows.
-_USED = tuple(
-    (name, _COL[name])
-    for name in (*_SECTION_COLUMNS, *_DIAGNOSTICS, "velocity", "force_per_metre", "lift")
-)
 
 
 def _serves(solver) -> bool:
@@ -171,8 +149,7 @@ class FusedEvaluation:
         self._opts = opts  # each thread fills a copy (see _buffers)
         self.a_c = np.array(curves.a_coeffs, dtype=np.float64)
         self.v_c = np.array(curves.v_coeffs, dtype=np.float64)
-        self.reasons = _reason_texts(solver, lo, hi)
-        self._texts: dict[int, str] = {0: ""}
+        self.reasons = Reasons(reason_texts(solver, lo, hi))
         self._local = threading.local()
         self.x_cg = float(hull.cg[0])
 
@@ -310,7 +287,9 @@ class FusedEvaluation:
         thread's sums), or None where the steps one by one must serve: numpy's loops,
         another cutter, a pitch with a frame (its kept cut and tables), a pitch met again
         (its frame is made then, and its kept cut and tables serve it from there on), or
-        a status of the call; :data:`DRY` where the keel line is nowhere under the water."""
+        a status of the call. Where the keel line is nowhere under the water,
+        ``(DRY, None, None, extra, None)``: the pitch is not kept as met (a frame would
+        serve it no better; the two middle stages of a step in the air share a pitch)."""
         stage = self.stage
         pitch = float(pitch)
         if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
@@ -341,7 +320,8 @@ class FusedEvaluation:
             self.a_c, self.v_c,
         )  # fmt: skip
         if status == DRY_STATUS:
-            return DRY
+            seen.pop()
+            return DRY, None, None, extra, None
         if status != 0:
             return None
         return points, ring_start, ring_station, extra, scal
@@ -355,9 +335,9 @@ class FusedEvaluation:
         same sums. None where the steps one by one must serve (see :meth:`_one_call`)."""
         _, _, fout, iout = self._buffers()
         done = self._one_call(pitch, z_cg, w, u, q, fout, iout)
-        if done is DRY:  # no slice: numpy's path sums no sections
-            return 0.0, 0.0, 0.0
-        return None if done is None else _sums(done[-1])
+        if done is None:
+            return None
+        return (0.0, 0.0, 0.0) if done[0] is DRY else _sums(done[-1])  # dry: no section
 
     def stage_result(
         self, z_cg: float, pitch: float, motion: Motion
@@ -366,17 +346,20 @@ class FusedEvaluation:
         centre of gravity at height ``z_cg`` (m), all finite, in one compiled call (as
         :meth:`stage_totals`), with the pose the model gives that state
         (:meth:`~hullslice.motion.model.ForceModel.draft`): the same result and pose.
-        None where the steps one by one must serve (see :meth:`_one_call`)."""
+        None where the steps one by one must serve (see :meth:`_one_call`). A dry body's
+        result has no section, as numpy's path's."""
         _, _, fout, iout = self._buffers()  # the result takes copies of what it needs
         done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
                               motion.pitch_rate, fout, iout)  # fmt: skip
-        if done is None or done is DRY:  # a dry result: the steps one by one make it
+        if done is None:
             return None
         points, ring_start, ring_station, extra, scal = done
-        rows = Rings.of(points, ring_start, ring_station, int(extra[1]))
+        dry = points is DRY
+        rows = () if dry else Rings.of(points, ring_start, ring_station, int(extra[1]))
+        m, length = (0, 0.0) if dry else (int(scal[0]), float(scal[1]))
         pose = Pose(float(extra[6]), pitch)
         scale = CUTTER_SIZE / self.hull.size  # the frame's (geometry._frame)
-        r = self._result(rows, float(extra[4]), float(extra[5]), scal, fout, iout, pose,
+        r = self._result(rows, float(extra[4]), float(extra[5]), m, length, fout, iout, pose,
                          motion, (float(extra[2]), float(extra[3])), scale)  # fmt: skip
         return r, pose
 
@@ -405,69 +388,14 @@ class FusedEvaluation:
         if done is None:
             return None
         rows, _, level, draft, scal = done
-        return self._result(rows, level, draft, scal, fout, iout, pose, motion, fr.origin,
-                            fr.scale)  # fmt: skip
+        return self._result(rows, level, draft, int(scal[0]), float(scal[1]), fout, iout, pose,
+                            motion, fr.origin, fr.scale)  # fmt: skip
 
-    def _result(
-        self, rows, level: float, draft: float, scal, fout, iout, pose: Pose, motion: Motion,
-        origin: tuple[float, float], scale: float,
-    ) -> ForceResult:  # fmt: skip
-        """The :class:`ForceResult` of the loops' columns ``fout`` and ``iout`` and sums
-        ``scal``, its sections' contours from the cut's ``rows`` (by the window's stations)
-        in the cutter's coordinates (``origin``, ``scale``), at the water's ``level``
-        (m) and the clipped ``draft`` (m)."""
-        m = int(scal[0])  # the rows: one per entry, a slice's one after another
-        block, ints = fout[:, :m].copy(), iout[:, :m].copy()  # the thread's to reuse
-        cols = {name: block[i] for name, i in _USED}
-        code = ints[I_CODE]
-        z_cg = -level
-        slot = ints[I_SLICE]
-        first: slice | np.ndarray = slice(None)  # each slice's first row (all: one entry each)
-        if m and slot[m - 1] != m - 1:  # sections in several wetted pieces
-            starts = np.ones(m, dtype=bool)
-            np.not_equal(slot[1:], slot[:-1], out=starts[1:])
-            first = np.flatnonzero(starts)
-        sections = Sections(
-            station=slot,
-            **{name: cols[name] for name in _SECTION_COLUMNS},
-            chine_wetted=ints[I_CHINE] > 0,
-            polygons=ShiftedPolygons(
-                [rows[k] for k in ints[I_SOURCE, first].tolist()],
-                (origin[0], origin[1] + z_cg),
-                scale,
-                cols["lift"][first],
-            ),
-            deadrise_method="wedge",
-            draft=draft,
-            pitch=pose.pitch,
-            wetted_length=float(scal[1]),
-            z_cg=z_cg,
-        )
-        loads = SectionLoads(
-            force_per_metre=cols["force_per_metre"],
-            valid=code == 0,
-            reason=self._reason(code),
-            # as numpy's path: none where the solver was given no section
-            diagnostics={name: cols[name] for name in _DIAGNOSTICS}
-            if np.isfinite(cols["gamma"]).any()
-            else {},
-        )
-        return ForceResult(
-            sections, cols["velocity"], loads, self.model.solver.name, self.fluid,
-            Pose(sections.draft, sections.pitch), motion, self.x_cg,
-        )  # fmt: skip
-
-    def _reason(self, code: np.ndarray) -> np.ndarray:
-        """The reasons' texts of the loops' codes."""
-        texts = self._texts
-        out = np.empty(len(code), dtype=object)
-        out[:] = [texts.get(c) if c in texts else self._text(c) for c in code.tolist()]
-        return out
-
-    def _text(self, c: int) -> str:
-        """The reasons of code ``c`` joined, as the solver and the checks join them."""
-        text = self._texts[c] = "; ".join(t for bit, t in enumerate(self.reasons) if c >> bit & 1)
-        return text
+    def _result(self, rows, level, draft, m, length, fout, iout, pose, motion, origin, scale):
+        """:func:`~hullslice.forces.fused_result.fused_result` of this model."""
+        return fused_result(rows, level, draft, m, length, fout, iout, pose, motion, origin,
+                            scale, self.model.solver.name, self.fluid, self.x_cg,
+                            self.reasons)  # fmt: skip
 
 
 def _columns(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -481,20 +409,3 @@ def _sums(scal: np.ndarray) -> tuple[float, float, float]:
     """The vertical force (N), the moment (N m) and the horizontal force (N) of the loops'
     sums."""
     return float(scal[2]), float(scal[4]), float(scal[3])
-
-
-def _reason_texts(solver, lo: float, hi: float) -> tuple[str, ...]:
-    """The texts of :data:`hullslice.held_loops.REASON_BITS`, as the solver and
-    :func:`~hullslice.forces.evaluate.evaluate` word them."""
-    fr_min = float(solver.settings["froude_min"])
-    return (
-        f"z~ outside the curves' range [{lo:.4g}, {hi:.4g}]",
-        "v~ <= 0 (past the end of the curves)",
-        "section not moving down into the water (no force)",
-        f"Fr* <= {fr_min:g} (gravity not negligible)",
-        MASSLESS_REASON,
-        FACE_REASON,
-        FLAT_REASON,
-        CHINE_REASON,
-        STEEP_REASON,
-    )

@@ -119,7 +119,8 @@ class Outline:
             a = b = np.empty((0, 2))
             contour = station = np.empty(0, dtype=np.int64)
         cross = a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]
-        area = np.bincount(station, weights=0.5 * cross, minlength=s)
+        # float with no point too (numpy's bincount then counts, in integers)
+        area = np.bincount(station, weights=0.5 * cross, minlength=s).astype(float, copy=False)
         c_area = 0.5 * np.bincount(contour, weights=cross, minlength=len(contours))
         outer = (c_area > 0.0)[contour] if len(a) else contour > 0
         part_area, renumber = _part_areas(contours, c_area, polygons)
