@@ -304,20 +304,14 @@ class FusedEvaluation:
         if pitch in seen:
             return None
         seen.append(pitch)
-        args = self._stage_args
-        if args is None:
-            args = self._stage_args = stage_arrays(hull, self.key[1], self.model.slices)
+        kit = getattr(local, "kit", None)  # the call's arguments but the stage's own
+        if kit is None:
+            kit = local.kit = self._kit()
         opts, scal, _, _ = self._buffers()
         extra = np.empty(8)
-        index = plane_index(hull)
-        c, s = np.cos(pitch), np.sin(pitch)
-        guess = getattr(local, "ranges", None)  # by station, the candidate ranges found last
-        if guess is None:
-            guess = local.ranges = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
         status, points, ring_start, ring_station = stage(
-            args[0], args[1], _side_order(hull, 2 * len(args[0])), *args[2:18], index.scratch(),
-            guess, *args[18:], float(c), float(s), z_cg, w, u, q, fout, iout, scal, extra, opts,
-            self.a_c, self.v_c,
+            *kit, float(np.cos(pitch)), float(np.sin(pitch)), z_cg, w, u, q, fout, iout, scal,
+            extra, opts, self.a_c, self.v_c,
         )  # fmt: skip
         if status == DRY_STATUS:
             seen.pop()
@@ -325,6 +319,18 @@ class FusedEvaluation:
         if status != 0:
             return None
         return points, ring_start, ring_station, extra, scal
+
+    def _kit(self) -> tuple:
+        """What :func:`~hullslice.planecut_loops.stage_loops` reads of the hull, in its order
+        up to ``n``, with this thread's own: the ends' order, the scratch array and the
+        candidate ranges found last, by station (its guesses)."""
+        args = self._stage_args
+        if args is None:
+            args = self._stage_args = stage_arrays(self.hull, self.key[1], self.model.slices)
+        index = plane_index(self.hull)
+        order = _side_order(self.hull, 2 * len(args[0]))
+        guess = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
+        return (*args[:2], order, *args[2:18], index.scratch(), guess, *args[18:])
 
     def stage_totals(
         self, pitch: float, z_cg: float, w: float, u: float, q: float

@@ -63,7 +63,9 @@ class Recorder:
         texts = set(r.loads.reason.tolist())  # a few texts, each over many slices
         reasons = sorted({part for text in texts if text for part in text.split("; ")})
         w = r.motion.velocity
-        wetted = bool((r.sections.penetration > 0).any())
+        s = r.sections
+        wet = s.penetration > 0
+        wetted = bool(wet.any())
         self.touched = self.touched or wetted
         crossed = {
             "velocity": w >= 0.0 and r.motion.forward_speed == 0.0,
@@ -75,9 +77,7 @@ class Recorder:
             "validity": 1.0 - share > self.max_flagged_share,
             "slender": slender < MIN_SLENDERNESS,
         }
-        s = r.sections
-        wet = s.penetration > 0
-        if wet.any():
+        if wetted:
             fp = (float((s.x - s.dx / 2)[wet].min()), float((s.x + s.dx / 2)[wet].max()))
         else:
             fp = (math.nan, math.nan)
@@ -97,7 +97,7 @@ class Recorder:
                 "slices": int(np.count_nonzero(np.bincount(s.station[wet]))),  # distinct
                 "valid": r.all_valid,
                 "valid_share": share,
-                "chine_wetted": bool(r.sections.chine_wetted.any()),
+                "chine_wetted": bool(s.chine_wetted.any()),
                 "reason": "; ".join(reasons),
                 "footprint": fp,
                 "added_mass": r.added_mass,
@@ -171,10 +171,12 @@ def _suction_share(r: ForceResult) -> float:
     """Share of the wetted length whose force per metre is held at the water's suction
     bound (a momentum-form solver's ``suction_limited``; 0 for the others)."""
     limited = r.loads.diagnostics.get("suction_limited")
+    if limited is None:
+        return 0.0
     s = r.sections
     wet = s.penetration > 0
     length = float(s.dx[wet].sum())
-    if limited is None or length <= 0.0:
+    if length <= 0.0:
         return 0.0
     return float(s.dx[wet & (np.asarray(limited) > 0)].sum() / length)
 

@@ -184,7 +184,7 @@ class Sections:
                 arr = np.ascontiguousarray(arr)
                 if arr.shape != (n,):
                     raise ValueError(f"Sections.{name} has shape {arr.shape}, expected ({n},)")
-            arr.flags.writeable = False
+            arr.setflags(write=False)  # the method: cheaper than the flags' object
             values[name] = arr
 
     def __len__(self) -> int:

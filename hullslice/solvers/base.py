@@ -63,12 +63,12 @@ def _freeze(fields: dict, arrays: Sequence[tuple[str, Any]]) -> None:
     already), and its ``diagnostics`` a dict of read-only float arrays."""
     for name, dtype in arrays:
         a = np.asarray(fields[name], dtype=dtype)
-        a.flags.writeable = False
+        a.setflags(write=False)
         fields[name] = a
     diags = {}
     for k, a in dict(fields["diagnostics"]).items():
         arr = np.asarray(a, dtype=np.float64)  # no copy: the solver's own arrays
-        arr.flags.writeable = False
+        arr.setflags(write=False)
         diags[str(k)] = arr
     fields["diagnostics"] = diags
 
