@@ -30,6 +30,7 @@ import math
 import numpy as np
 
 from .slices_loops import (
+    _AREA,
     _LIFT,
     COLUMNS,
     ENTRY,
@@ -55,7 +56,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "bc09a8fd23b9cb69"
+HELPERS_DIGEST = "ac3dde44291e4d3e"
 
 __all__ = [
     "COLUMNS",
@@ -253,7 +254,7 @@ def pitch_entries_loops(outline_arrays, levels, tol):
 
 
 def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outline_arrays,
-                a_c, v_c):  # fmt: skip
+                a_c, v_c, e_f, f_f, area_f):  # fmt: skip
     """:func:`held_loops` at a pitch without a waterline table (a new pitch): the wetted
     properties of the kept cut's stations computed afresh by
     :func:`hullslice.wetted_loops.wetted_loops`, as numpy's path computes them, from
@@ -261,7 +262,14 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     :class:`~hullslice.kernel.outline.Outline` holds them, to ``z_chine``). Returns 0, or
     a status of :data:`STATUS` (4: two slices taking one station's section at two
     heights). The stations may start at the first wetted slice's: no slice takes the
-    section of the window's station before it."""
+    section of the window's station before it.
+
+    With ``opts``' ``fresh`` set, the slices to cut where they are (the first contact) are
+    the caller's: status 9 where ``area_f`` holds no area for each of them (``scal[0]``
+    then holds the slice count, and each such slice is marked 2 in ``iout[I_MOVED]``, its
+    relative ``x`` in ``fout``'s first row); with their sections' entries at the water's
+    height (``e_f``, from row ``f_f[j]`` for the ``j``-th, as :func:`pitch_entries_loops`
+    gives them) and areas, the evaluation, the ``j``-th taking the source ``n_cut + j``."""
     level, n, c0, n_cut = opts[0], int(opts[6]), int(opts[7]), int(opts[8])
     tol = opts[9]
     status, w0, w1 = window_loops(keel, level, n)
@@ -278,31 +286,49 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     if status != 0:
         return status
     n_moved = 0
+    n_fresh = 0
     for i in range(m):
-        n_moved += iout[I_MOVED, i]
+        if iout[I_MOVED, i] == 1:
+            n_moved += 1
+        elif iout[I_MOVED, i] == 2:
+            n_fresh += 1
+    if n_fresh != len(area_f):
+        scal[0] = m
+        return 9
     g1 = np.zeros(m + 1, dtype=np.int64)
-    if n_moved == 0:
+    if n_moved + n_fresh == 0:
         return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0,
                             e0[:0], g1, m, a_c, v_c)  # fmt: skip
     levels[:] = -math.inf
     for i in range(m):
-        if iout[I_MOVED, i] > 0:
+        if iout[I_MOVED, i] == 1:
             s = iout[I_SOURCE, i] - c0
             at = level - fout[_LIFT, i]
             if levels[s] != -math.inf and levels[s] != at:
                 return 4
             levels[s] = at
     e_moved, f_moved = pitch_entries_loops(outline_arrays, levels, tol)
+    j = 0
     for i in range(m):
         g1[i + 1] = g1[i]
-        if iout[I_MOVED, i] > 0:
+        if iout[I_MOVED, i] == 1:
             s = iout[I_SOURCE, i] - c0
             g1[i + 1] += f_moved[s + 1] - f_moved[s]
+        elif iout[I_MOVED, i] == 2:
+            g1[i + 1] += f_f[j + 1] - f_f[j]
+            j += 1
     e1 = np.empty((g1[m], len(ENTRY)))
+    j = 0
     for i in range(m):
-        if iout[I_MOVED, i] > 0:
+        if iout[I_MOVED, i] == 1:
             s = iout[I_SOURCE, i] - c0
-            for j in range(f_moved[s + 1] - f_moved[s]):
-                e1[g1[i] + j] = e_moved[f_moved[s] + j]
+            for t in range(f_moved[s + 1] - f_moved[s]):
+                e1[g1[i] + t] = e_moved[f_moved[s] + t]
+        elif iout[I_MOVED, i] == 2:  # its own section, its own area (finish_loops)
+            for t in range(f_f[j + 1] - f_f[j]):
+                e1[g1[i] + t] = e_f[f_f[j] + t]
+            fout[_AREA, i] = area_f[j]
+            iout[I_SOURCE, i] = c0 + n_cut + j
+            j += 1
     return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
                         g1, m, a_c, v_c)  # fmt: skip

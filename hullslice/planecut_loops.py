@@ -61,6 +61,8 @@ from .keel_loops import (
 )
 from .outline_loops import outline_loops, stable_order_loops
 from .slices_loops import (
+    ENTRY,
+    I_MOVED,
     crossing_loops,
     div_loops,
     extent_loops,
@@ -94,7 +96,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "724214239eeb49d7"
+STAGE_HELPERS_DIGEST = "b34f1e857ef6841f"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -253,17 +255,20 @@ def stage_loops(
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
     steps made one by one: the same sums. Two things of those steps no slice reads are
     left out: the window's station before the wetted slices, and the order of the edges
-    above the water but at a source of an end slice (which may take it moved up).
+    above the water but at a source of an end slice (which may take it moved up). A slice
+    of the first contact (no wetted station near it) is cut where it is, its outline and
+    wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``).
 
     Returns ``(status, points, ring_start, ring_station)``: status 0 with the sums in
     ``scal`` and the cut's contours as :func:`cut_loops` gives them (their stations from
-    the first station cut), or a status where the steps one by one must serve:
+    the first station cut, then those of the first contact's slices), or a status where
+    the steps one by one must serve:
     :data:`~hullslice.slices_loops.STATUS`'s, or 100 (the keel line needs numpy's
     refinement), 101 (it has no facet with a finite slope), 102 (a contour does not
     close) or 103 (a section has a hole). ``extra`` receives the first station cut and
-    the count, the contours' origin ``(y, z)``, the water's level, the draft
-    (clipped to the body's height), the draft unclipped, and the body's lowest point, m
-    (all but the first two at status 1 too: a dry instant)."""
+    the count of sections (the first contact's too), the contours' origin ``(y, z)``, the
+    water's level, the draft (clipped to the body's height), the draft unclipped, and the
+    body's lowest point, m (all but the first two at status 1 too: a dry instant)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
     keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
@@ -331,9 +336,42 @@ def stage_loops(
     opts[0], opts[1], opts[2], opts[3] = level, w, u, q  # FusedEvaluation._options
     opts[5], opts[7], opts[8], opts[10] = gx, w0, n_cut, math.inf
     opts[23] = 1.0 if bottom else 0.0
+    opts[24] = 1.0  # the first contact's slices cut here, where they are
+    no_f = np.empty((0, len(ENTRY)))
     status = pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays,
-                         a_c, v_c)  # fmt: skip
-    return status, points, ring_start, ring_station
+                         a_c, v_c, no_f, np.zeros(1, dtype=np.int64), np.empty(0))  # fmt: skip
+    if status != 9:
+        return status, points, ring_start, ring_station
+    # slices with no wetted station near (the first contact): cut where they are, and their
+    # outline and wetted properties, as numpy's path (slicing.fixed._with_fresh)
+    n_f = 0
+    for i in range(int(scal[0])):
+        n_f += 1 if iout[I_MOVED, i] == 2 else 0
+    x_f = np.empty(n_f)
+    j = 0
+    for i in range(int(scal[0])):
+        if iout[I_MOVED, i] == 2:
+            x_f[j] = fout[0, i]  # its relative x (layout_loops')
+            j += 1
+    first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_f, gx, gz, c, s,
+                              margin, span, x0, guess[:0], 0)  # fmt: skip
+    p_f, rs_f, rst_f, closed = cut_loops(
+        first, last, corners, ends, x_f, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
+    )
+    if closed != 0:
+        return 102, none2, none1, none1
+    o = outline_loops(p_f, rs_f, rst_f, n_f, tol, scale, oy, oz, np.full(n_f, math.inf))
+    if not o[0]:
+        return 103, none2, none1, none1
+    e_f, f_f = pitch_entries_loops((o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9],
+                                    o[10], o[11], o[12], o[13], o[14], o[18]),
+                                   np.full(n_f, level), tol)  # fmt: skip
+    status = pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays,
+                         a_c, v_c, e_f, f_f, o[8])  # fmt: skip
+    extra[1] = n_cut + n_f  # the sections: the window's stations', then these
+    ring_start = np.concatenate((ring_start, rs_f[1:] + len(points)))
+    ring_station = np.concatenate((ring_station, rst_f + n_cut))
+    return status, np.concatenate((points, p_f)), ring_start, ring_station
 
 
 _LOCK = threading.Lock()

@@ -9,51 +9,24 @@ import math
 
 import numpy as np
 
-__all__ = ["COLUMNS", "ENTRY", "OPTIONS", "REASON_BITS", "STATUS", "finish_loops",
-           "layout_loops", "wet_slices_loops", "window_loops"]  # fmt: skip
+from .loops_layout import (  # the layout's names, read from here too
+    COLUMNS,
+    ENTRY,
+    I_CHINE,
+    I_CODE,
+    I_MOVED,
+    I_ROWS,
+    I_SLICE,
+    I_SOURCE,
+    OPTIONS,
+    REASON_BITS,
+    STATUS,
+)
 
+__all__ = ["COLUMNS", "ENTRY", "I_CHINE", "I_CODE", "I_MOVED", "I_ROWS", "I_SLICE", "I_SOURCE",
+           "OPTIONS", "REASON_BITS", "STATUS", "finish_loops", "layout_loops",
+           "wet_slices_loops", "window_loops"]  # fmt: skip
 
-#: The float columns of the per-slice output ``fout``, by name.
-COLUMNS = (
-    "x", "dx", "penetration", "half_beam", "half_beam_port", "half_beam_stbd", "deadrise",
-    "deadrise_port", "deadrise_stbd", "area", "mass_per_metre", "keel_slope", "keel_z",
-    "y_keel", "part_half_beam", "keel_curvature", "velocity", "force_per_metre", "gamma",
-    "z_tilde", "v_tilde", "a_tilde", "v_z0", "acceleration", "froude", "lift",
-)  # fmt: skip
-#: The integer rows of ``iout`` (``I_ROWS`` of them), by column: its source station (of
-#: the kept cut), chine flag (0 or 1), reason code (bits of :data:`REASON_BITS`), whether
-#: it takes its source's section moved to its depth (0 or 1), and its slice. A column is
-#: an entry of a slice (a wetted piece of its section, or its dry entry), as numpy's path
-#: lists them: a section in two wetted pieces (two nacelles) gives its slice two.
-I_SOURCE, I_CHINE, I_CODE, I_MOVED, I_SLICE, I_ROWS = 0, 1, 2, 3, 4, 5
-#: The columns of a station's entry (its wetted properties at one height of the water):
-#: whether the table serves it (1 or 0), the table's wet flag, then the properties.
-ENTRY = ("ok", "wet", "penetration", "half_beam", "half_beam_port", "half_beam_stbd",
-         "deadrise", "deadrise_port", "deadrise_stbd", "y_keel", "part_half_beam",
-         "mass_share", "chine_wetted")  # fmt: skip
-#: The entries of the options array ``opts``, by name.
-OPTIONS = (
-    "level", "w", "u", "q", "x_cg", "frame_x_cg", "n", "c0", "n_cut", "tol", "top",
-    "density", "rho_ratio", "rho_curves", "g", "froude_min", "z_lo", "z_hi", "keel_window",
-    "sound", "min_deadrise", "end_face", "steep", "has_chords",
-)  # fmt: skip
-#: Why a section is flagged, as bits in the order the reasons are joined: the curve
-#: solver's own four checks, then a section without mass, then the checks of
-#: :func:`hullslice.forces.evaluate.evaluate` (a face, a flat bottom, the chine, steep).
-REASON_BITS = ("z_range", "v_tilde", "not_down", "froude", "massless", "face", "flat",
-               "chine", "steep")  # fmt: skip
-#: What :func:`held_loops` returns: 0 when it did the evaluation, else why numpy's path must.
-STATUS = {
-    0: "done",
-    1: "dry: the keel is nowhere under the water",
-    2: "a station outside the kept cut",
-    3: "the water above the table's top (or a moved slice's)",
-    4: "an inexact interval of the table, or a section in two wetted pieces",
-    5: "a slice cut afresh (the first contact)",
-    6: "a keel point faster than sound, or a non-finite mass or force",
-    7: "the keel line's end faces walk out of its range",
-    8: "more entries than the columns hold (sections in many wetted pieces)",
-}
 
 _X, _DX, _PEN, _HB, _HBP, _HBS, _DR, _DRP, _DRS, _AREA, _MPM, _SLOPE, _KZ, _YK, _PHB = range(15)
 _CURV, _VEL, _FPM, _GAM, _ZT, _VT, _AT, _V0, _ACC, _FR, _LIFT = range(15, 26)
@@ -225,9 +198,12 @@ def window_loops(keel, level, n):
 def layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0):
     """The slices of the wetted range (``fixed_sections``): each one's thickness, place,
     source station (of the kept cut) and lift, and whether it takes its source moved to
-    its depth (``iout[I_MOVED]``); ``e0`` holds the window's entries at the water's height,
-    station ``s``'s from row ``f0[s]`` (see :func:`finish_loops`).
-    Returns ``(status, m)``: 0 and the slice count, or a status of :data:`STATUS`."""
+    its depth (``iout[I_MOVED]`` 1), or, with no wetted station near it (the first
+    contact), is cut where it is: status 5, or with ``opts``' ``fresh`` marked 2 for the
+    caller to cut (see :func:`hullslice.held_loops.pitch_loops`). ``e0`` holds the
+    window's entries at the water's height, station ``s``'s from row ``f0[s]`` (see
+    :func:`finish_loops`). Returns ``(status, m)``: 0 and the slice count, or a status of
+    :data:`STATUS`."""
     level = opts[0]
     n, c0 = int(opts[6]), int(opts[7])
     end_face, steep_slope = opts[21], opts[22]
@@ -278,7 +254,10 @@ def layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0):
                 fresh = fresh and not e0[j, 2] > 0.0
         if abs(depth) > steep_slope * abs(x - (xa + (source + 0.5) * d)):
             fresh = True
-        if fresh:
+        if fresh:  # marked for the caller to cut where it is (opts' fresh), else numpy's
+            if opts[24] > 0.0:
+                iout[I_MOVED, i] = 2
+                continue
             return 5, 0
         if not math.isfinite(level - depth):
             return 6, 0
@@ -293,8 +272,10 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     """From the slices' entries to the sections (``assemble``), their velocities, the curve
     solver's force, the flags and the sums (``evaluate``, ``ForceResult``): a slice's
     entries are its kept station's at the water's height, ``e0[f0[s]:f0[s + 1]]`` for
-    station ``s`` (from the window's first), or, for a moved slice ``i``, its own,
-    ``e1[g1[i]:g1[i + 1]]``; one row each (a wetted piece of the section, or its dry
+    station ``s`` (from the window's first), or, for a moved slice ``i`` or one cut
+    afresh, its own, ``e1[g1[i]:g1[i + 1]]`` (one cut afresh, ``iout[I_MOVED]`` 2, takes
+    its own section's area from ``fout``'s area column); one row each (a wetted piece of
+    the section, or its dry
     entry), the rows of a slice one after another, the slices in order, as numpy's path
     lists them. Returns 0, 6 (a keel point faster than sound, a non-finite mass, a
     non-finite force or sum of forces: numpy's path names them in its errors) or 8 (more
@@ -321,6 +302,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
     # the slices as layout_loops left them (their columns are written over by the rows)
     s_x, s_dx, s_lift = fout[_X, :m].copy(), fout[_DX, :m].copy(), fout[_LIFT, :m].copy()
     s_src, s_moved = iout[I_SOURCE, :m].copy(), iout[I_MOVED, :m].copy()
+    s_area = fout[_AREA, :m].copy()  # a slice cut afresh: its own section's area (2 moved)
     total = 0.0
     total_x = 0.0
     moment = 0.0
@@ -352,7 +334,7 @@ def finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f
                     - interp_loops(x - window / 2, mid, bend)) / window  # fmt: skip
         if not math.isfinite(keel_z):
             keel_z = level
-        area = station_vals[2, s]
+        area = s_area[i] if s_moved[i] == 2 else station_vals[2, s]
         keel_at = keel_z + z_cg
         x_earth = x + frame_x_cg
         # the section's penetration velocity (forces.kinematics.section_velocity)

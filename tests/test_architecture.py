@@ -62,6 +62,7 @@ LAYERS: dict[str, int] = {
     "hullslice.index_loops": 3,
     "hullslice.held_loops": 3,
     "hullslice.slices_loops": 3,
+    "hullslice.loops_layout": 3,
     "hullslice.geometry": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,

@@ -10,9 +10,10 @@ stage of a free-pitch run) it evaluates the sections of the stations it cuts, as
 path does; at a pitch the hull has no frame for (every stage of a free-pitch step), one
 compiled call makes the keel line, the cut, the outline and the sums
 (:meth:`FusedEvaluation.stage_totals`, and :meth:`FusedEvaluation.stage_result` with the
-result), with no frame kept. At any evaluation the loops hand back (the first contact, a
-section in two wetted pieces, the evaluation that makes a pitch's table), numpy's path
-serves. Both give
+result), with no frame kept; it cuts the first contact's slices (no wetted station near)
+where they are, as numpy's path does. At any evaluation the loops hand back (the first
+contact at a frame's pitch, a section in two wetted pieces, the evaluation that makes a
+pitch's table), numpy's path serves. Both give
 the same numbers (to 1e-12; the tests compare them over whole histories); the fused one
 costs some microseconds an evaluation where numpy's costs some hundreds. It needs numba
 (the ``fast`` extra) and is switched off with ``HULLSLICE_NUMBA=0``, as the other
@@ -34,7 +35,7 @@ from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
 from ..planecut import Rings, plane_index
-from ..slices_loops import COLUMNS, I_ROWS, OPTIONS
+from ..slices_loops import COLUMNS, ENTRY, I_ROWS, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
 from ..slicing.own_keel import pieces
@@ -64,7 +65,10 @@ ROWS_PER_SLICE = 4
 _OPT = {name: i for i, name in enumerate(OPTIONS)}
 # the options FusedEvaluation._run sets at each evaluation, by place
 assert [_OPT[k] for k in ("level", "w", "u", "q", "frame_x_cg", "c0", "n_cut", "top",
-                          "has_chords")] == [0, 1, 2, 3, 5, 7, 8, 10, 23]  # fmt: skip
+                          "has_chords", "fresh")] == [0, 1, 2, 3, 5, 7, 8, 10, 23, 24]  # fmt: skip
+#: No slice cut afresh (see :func:`~hullslice.held_loops.pitch_loops`): a frame's stations
+#: leave the first contact to numpy's path.
+_NO_FRESH = (np.empty((0, len(ENTRY))), np.zeros(1, dtype=np.int64), np.empty(0))
 
 
 def _serves(solver) -> bool:
@@ -212,6 +216,7 @@ class FusedEvaluation:
         opts[8] = n_cut
         opts[10] = top
         opts[23] = keel["has_chords"]
+        opts[24] = 0.0  # a slice to cut afresh: numpy's path (the one call cuts its own)
         return opts
 
     def _held(self, fr, kept, table, rows, c0, level, w, u, q, fout, iout, opts, scal):
@@ -255,7 +260,7 @@ class FusedEvaluation:
         self._options(opts, level, w, u, q, fr, c0, o.n_stations, math.inf, keel)
         status = self.pitch(
             fout, iout, scal, opts, keel["keel"], keel["runs"], keel["chords"], stations,
-            arrays, self.a_c, self.v_c,
+            arrays, self.a_c, self.v_c, *_NO_FRESH,
         )  # fmt: skip
         return (rows, c0) if status == 0 else None
 
