@@ -135,7 +135,7 @@ def table_entry_loops(e, k, first, count, at, s, tvals, station_vals, tol):
 
 
 def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights, tkey,
-               tvals, a_c, v_c):  # fmt: skip
+               tvals, a_c, v_c, e_f, f_f, area_f):  # fmt: skip
     """Evaluate the force of a held pitch's fixed slices at the water's height ``level``,
     their wetted properties from the kept cut's waterline table.
 
@@ -156,7 +156,9 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
     Writes each slice's columns (:data:`COLUMNS`) into ``fout`` (26, n) and ``iout`` (4, n),
     and ``scal``: the slice count, the wetted length, the vertical force (N), the
     horizontal force (N), the moment (N m) and the wetted range's ends ``x0``, ``x1``;
-    with status 3, the height the table must reach (``scal[7]``).
+    with status 3, the height the table must reach (``scal[7]``). The first contact's
+    slices (cut where they are) as :func:`pitch_loops` takes them (``e_f``, ``f_f``,
+    ``area_f``; status 9 asks for them, with ``opts``' ``fresh``).
     Returns 0, or a status of :data:`STATUS` for numpy's path.
     """
     level, n, c0, n_cut = opts[0], int(opts[6]), int(opts[7]), int(opts[8])
@@ -187,13 +189,20 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
     status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0)
     if status != 0:
         return status
+    if fresh_count_loops(iout, m) != len(area_f):
+        scal[0] = m
+        return 9
     # each moved slice's entries at its own depth
     need = -math.inf  # the highest water a moved slice needs above the table's top
     g1 = np.zeros(m + 1, dtype=np.int64)
     first1 = np.zeros(m, dtype=np.int64)
+    j = 0
     for i in range(m):
         g1[i + 1] = g1[i]
-        if iout[I_MOVED, i] > 0:
+        if iout[I_MOVED, i] == 2:
+            g1[i + 1] += f_f[j + 1] - f_f[j]
+            j += 1
+        elif iout[I_MOVED, i] > 0:
             at = level - fout[_LIFT, i]
             if at > top:
                 need = max(need, at)
@@ -207,11 +216,12 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         return 3
     e1 = np.empty((g1[m], len(ENTRY)))
     for i in range(m):
-        if iout[I_MOVED, i] > 0:
+        if iout[I_MOVED, i] == 1:
             at = level - fout[_LIFT, i]
             s = iout[I_SOURCE, i] - c0
             table_entry_loops(e1, g1[i], first1[i], g1[i + 1] - g1[i], at, s, tvals, station_vals,
                               tol)  # fmt: skip
+    fresh_entries_loops(fout, iout, e1, g1, m, e_f, f_f, area_f, c0 + n_cut)
     return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
                         g1, m, a_c, v_c)  # fmt: skip
 
@@ -285,16 +295,13 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
     status, m = layout_loops(fout, iout, opts, keel, runs, station_vals, e0, f0)
     if status != 0:
         return status
-    n_moved = 0
-    n_fresh = 0
-    for i in range(m):
-        if iout[I_MOVED, i] == 1:
-            n_moved += 1
-        elif iout[I_MOVED, i] == 2:
-            n_fresh += 1
+    n_fresh = fresh_count_loops(iout, m)
     if n_fresh != len(area_f):
         scal[0] = m
         return 9
+    n_moved = 0
+    for i in range(m):
+        n_moved += 1 if iout[I_MOVED, i] == 1 else 0
     g1 = np.zeros(m + 1, dtype=np.int64)
     if n_moved + n_fresh == 0:
         return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0,
@@ -318,17 +325,35 @@ def pitch_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, outlin
             g1[i + 1] += f_f[j + 1] - f_f[j]
             j += 1
     e1 = np.empty((g1[m], len(ENTRY)))
-    j = 0
     for i in range(m):
         if iout[I_MOVED, i] == 1:
             s = iout[I_SOURCE, i] - c0
             for t in range(f_moved[s + 1] - f_moved[s]):
                 e1[g1[i] + t] = e_moved[f_moved[s] + t]
-        elif iout[I_MOVED, i] == 2:  # its own section, its own area (finish_loops)
+    fresh_entries_loops(fout, iout, e1, g1, m, e_f, f_f, area_f, c0 + n_cut)
+    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
+                        g1, m, a_c, v_c)  # fmt: skip
+
+
+def fresh_count_loops(iout, m):
+    """How many of the ``m`` slices are to be cut where they are (marked 2 in
+    ``iout[I_MOVED]`` by :func:`~hullslice.slices_loops.layout_loops`)."""
+    n = 0
+    for i in range(m):
+        n += 1 if iout[I_MOVED, i] == 2 else 0
+    return n
+
+
+def fresh_entries_loops(fout, iout, e1, g1, m, e_f, f_f, area_f, first):
+    """The slices cut where they are (marked 2), the ``j``-th of them taking its own
+    section: its entries ``e_f[f_f[j]:f_f[j + 1]]`` into ``e1`` from row ``g1`` of its
+    slice, its area into ``fout``'s area column (read by
+    :func:`~hullslice.slices_loops.finish_loops`) and the source station ``first + j``."""
+    j = 0
+    for i in range(m):
+        if iout[I_MOVED, i] == 2:
             for t in range(f_f[j + 1] - f_f[j]):
                 e1[g1[i] + t] = e_f[f_f[j] + t]
             fout[_AREA, i] = area_f[j]
-            iout[I_SOURCE, i] = c0 + n_cut + j
+            iout[I_SOURCE, i] = first + j
             j += 1
-    return finish_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, e0, f0, e1,
-                        g1, m, a_c, v_c)  # fmt: skip

@@ -39,6 +39,8 @@ from .frame_loops import (
     segment_reach_loops,
 )
 from .held_loops import (
+    fresh_count_loops,
+    fresh_entries_loops,
     held_loops,
     pitch_entries_loops,
     pitch_loops,
@@ -96,7 +98,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "b34f1e857ef6841f"
+STAGE_HELPERS_DIGEST = "e12e8bc3495f3c50"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -459,10 +461,10 @@ _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
           "keel_arrays", "gallop", "near", "ranges", "cut", "order", "outline", *_HELD, "wetted",
-          "h_entries", "pitch")  # fmt: skip
+          "h_entries", "h_fcount", "h_fentries", "pitch")  # fmt: skip
 CALLS = {
-    "held": (*_HELD, "h_interval", "h_table"),
-    "pitch": (*_HELD, "wetted", "h_entries"),
+    "held": (*_HELD, "h_interval", "h_table", "h_fcount", "h_fentries"),
+    "pitch": (*_HELD, "wetted", "h_entries", "h_fcount", "h_fentries"),
     "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent", "h_wet"),
     "lowest": ("search",),
     "envelope": ("search", "lowest", "abscissae"),
@@ -476,6 +478,7 @@ CALLS = {
     "stage": _STAGE,
     "outline": ("order",),
     "keel_arrays": ("row",),
+    "h_entries": ("wetted",),
 }
 LOOPS.update(
     wetted=wetted_loops, held=held_loops, h_interp=interp_loops, h_right=right_loops,
@@ -484,5 +487,6 @@ LOOPS.update(
     h_window=window_loops, h_layout=layout_loops,
     h_finish=finish_loops, h_interval=table_interval_loops,
     h_table=table_entry_loops, h_entries=pitch_entries_loops, pitch=pitch_loops,
-    window=window_loops, h_slope=slope_loops
+    window=window_loops, h_slope=slope_loops, h_fcount=fresh_count_loops,
+    h_fentries=fresh_entries_loops,
 )  # fmt: skip

@@ -164,6 +164,40 @@ def test_the_fused_evaluation_at_new_pitches_equals_numpy(name, path):
 
 
 @pytest.mark.parametrize("path", [p for p, _ in _paths()])
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "fuselage_full.obj", "fuselage"])
+def test_the_first_contacts_slices_are_cut_by_the_fused_evaluation(name, path, monkeypatch):
+    """At a touch of the water a partial slice with no wetted station near it (the first
+    contact) is cut where it is, as numpy's path cuts it: the fused evaluation does it too,
+    at a held pitch with its waterline table and at a new one without, and gives numpy's
+    result (the slice's own section, its area and contours)."""
+    loops = dict(_paths())[path]
+    hull = _massive(BODIES[name])
+    outline_of = fused.fixed_slicing.outline_of
+    cuts = []
+
+    def counted(*args, **kw):
+        cuts.append(args[1])
+        return outline_of(*args, **kw)
+
+    for cutter in ("manifold3d", "exact"):
+        fast, slow = _models(hull, loops, slices=32, cutter=cutter)
+        for pitch in np.linspace(0.02, 0.25, 12):
+            fr = hs.geometry.frame(hull, pitch)
+            depth = fr.highest - fr.lowest
+            if cutter == "manifold3d":  # its table, then the loops read it
+                for _ in range(TABLE_AFTER):
+                    slow(Pose(0.3 * depth, pitch), Motion(-2.0, 10.0))
+            for share in (2e-4, 1e-3):
+                pose, motion = Pose(share * depth, pitch), Motion(-1.5, 19.0, 0.1)
+                monkeypatch.setattr(fused.fixed_slicing, "outline_of", counted)
+                got = fast.fused.force(pose, motion)
+                monkeypatch.setattr(fused.fixed_slicing, "outline_of", outline_of)
+                assert got is not None, (cutter, pitch, share)
+                assert_same_result(got, slow(pose, motion))
+    assert len(cuts) >= 6, len(cuts)
+
+
+@pytest.mark.parametrize("path", [p for p, _ in _paths()])
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "wedge_prism.stl"])
 def test_a_free_pitch_history_equals_numpy(name, path, monkeypatch):
     """A run with free pitch (every stage a new pitch, cut afresh) by the loops against

@@ -35,7 +35,7 @@ from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
 from ..planecut import Rings, plane_index
-from ..slices_loops import COLUMNS, ENTRY, I_ROWS, OPTIONS
+from ..slices_loops import COLUMNS, ENTRY, I_MOVED, I_ROWS, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
 from ..slicing.own_keel import pieces
@@ -66,8 +66,8 @@ _OPT = {name: i for i, name in enumerate(OPTIONS)}
 # the options FusedEvaluation._run sets at each evaluation, by place
 assert [_OPT[k] for k in ("level", "w", "u", "q", "frame_x_cg", "c0", "n_cut", "top",
                           "has_chords", "fresh")] == [0, 1, 2, 3, 5, 7, 8, 10, 23, 24]  # fmt: skip
-#: No slice cut afresh (see :func:`~hullslice.held_loops.pitch_loops`): a frame's stations
-#: leave the first contact to numpy's path.
+#: No slice cut afresh (see :func:`~hullslice.held_loops.pitch_loops`): the loops' first
+#: call, which asks for those of the first contact.
 _NO_FRESH = (np.empty((0, len(ENTRY))), np.zeros(1, dtype=np.int64), np.empty(0))
 
 
@@ -123,6 +123,9 @@ class FusedEvaluation:
         self.pack = planecut_loops.compiled("keel_arrays") if compiled else None
         # a new pitch's frame, cut, outline and sums in one call, with the compiled loops
         self.stage = planecut_loops.compiled("stage") if compiled else None
+        # the wetted entries of sections cut afresh (the first contact's slices)
+        entries = planecut_loops.compiled("h_entries") if compiled else None
+        self.entries = entries or planecut_loops.LOOPS["h_entries"]
         self._stage_args: tuple | None = None
         hull = model.hull
         self.hull = hull
@@ -216,7 +219,6 @@ class FusedEvaluation:
         opts[8] = n_cut
         opts[10] = top
         opts[23] = keel["has_chords"]
-        opts[24] = 0.0  # a slice to cut afresh: numpy's path (the one call cuts its own)
         return opts
 
     def _held(self, fr, kept, table, rows, c0, level, w, u, q, fout, iout, opts, scal):
@@ -228,17 +230,33 @@ class FusedEvaluation:
         keel = self._keel(fr, kept)
         arrays = plan[1]
         self._options(opts, level, w, u, q, fr, c0, arrays["n_cut"], table.top, keel)
-        status = self.loops(
+        status, fresh = self._fresh(fr, level, fout, iout, opts, scal, lambda *f: self.loops(
             fout, iout, scal, opts, keel["keel"], keel["runs"], keel["chords"],
             arrays["stations"], arrays["heights"], arrays["tkey"], arrays["tvals"], self.a_c,
-            self.v_c,
-        )  # fmt: skip
+            self.v_c, *f,
+        ))  # fmt: skip
         if status == 3:
             higher = self._higher(kept, table, float(scal[7]))
             if higher is not None:
                 return self._held(fr, kept, higher, rows, c0, level, w, u, q, fout, iout, opts,
                                   scal)  # fmt: skip
-        return (rows, c0) if status == 0 else None
+        return ([*rows, *fresh] if fresh else rows, c0) if status == 0 else None
+
+    def _fresh(self, fr, level: float, fout, iout, opts, scal, call) -> tuple[int, list]:
+        """``call(e_f, f_f, area_f)`` of the loops (:func:`~hullslice.held_loops.held_loops`
+        or :func:`~hullslice.held_loops.pitch_loops`) with the first contact's slices (no
+        wetted station near) cut where they are, as numpy's path cuts them
+        (``slicing.fixed._with_fresh``: its outline and wetted properties), where the loops
+        ask for them: ``(status, polys)``, the slices' contours (none asked)."""
+        opts[24] = 1.0
+        status = call(*_NO_FRESH)
+        if status != 9:
+            return status, []
+        m = int(scal[0])
+        x = fout[0, :m][iout[I_MOVED, :m] == 2]  # their relative x, in order
+        o, polys = fixed_slicing.outline_of(fr, x, self.key[1], self.model.cutter)
+        e_f, f_f = self.entries(_outline_arrays(o), np.full(len(x), level), self.key[1])
+        return call(e_f, f_f, o.area), list(polys)
 
     def _pitch(self, fr, kept, level, w, u, q, fout, iout, opts, scal):
         """The loops on the stations cut afresh: the evaluations of a pitch before its
@@ -254,15 +272,12 @@ class FusedEvaluation:
                 return None
         o = outline
         stations = np.stack([o.zmin, o.z_chine, o.area])
-        arrays = (o.station, o.ya, o.za, o.yb, o.zb, o.zlo, o.start, o.area, o.contour,
-                  o.part_area, o.part_station, o.part_zmax, o.part_ymin, o.part_ymax,
-                  o.z_chine)  # fmt: skip
         self._options(opts, level, w, u, q, fr, c0, o.n_stations, math.inf, keel)
-        status = self.pitch(
+        status, fresh = self._fresh(fr, level, fout, iout, opts, scal, lambda *f: self.pitch(
             fout, iout, scal, opts, keel["keel"], keel["runs"], keel["chords"], stations,
-            arrays, self.a_c, self.v_c, *_NO_FRESH,
-        )  # fmt: skip
-        return (rows, c0) if status == 0 else None
+            _outline_arrays(o), self.a_c, self.v_c, *f,
+        ))  # fmt: skip
+        return ([*rows, *fresh] if fresh else rows, c0) if status == 0 else None
 
     def _higher(self, kept, table, need: float):
         """The kept cut's waterline table made again, up to above ``need`` (m, the water's
@@ -407,6 +422,12 @@ class FusedEvaluation:
         return fused_result(rows, level, draft, m, length, fout, iout, pose, motion, origin,
                             scale, self.model.solver.name, self.fluid, self.x_cg,
                             self.reasons)  # fmt: skip
+
+
+def _outline_arrays(o) -> tuple:
+    """An :class:`~hullslice.kernel.outline.Outline`'s arrays as the loops read them."""
+    return (o.station, o.ya, o.za, o.yb, o.zb, o.zlo, o.start, o.area, o.contour, o.part_area,
+            o.part_station, o.part_zmax, o.part_ymin, o.part_ymax, o.z_chine)  # fmt: skip
 
 
 def _columns(n: int) -> tuple[np.ndarray, np.ndarray]:
