@@ -52,11 +52,12 @@ from .slices_loops import (
 )
 from .wetted_loops import wetted_loops
 
-#: The digest of the helpers' sources (``slices_loops.py``, ``wetted_loops.py``). numba's
+#: The digest of the helpers' sources (``slices_loops.py``, ``wetted_loops.py``, and
+#: ``loops_layout.py``, whose tuples the loops read as constants). numba's
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "ac3dde44291e4d3e"
+HELPERS_DIGEST = "bc805368ee2c44fd"
 
 __all__ = [
     "COLUMNS",

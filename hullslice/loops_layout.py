@@ -43,7 +43,7 @@ STATUS = {
     2: "a station outside the kept cut",
     3: "the water above the table's top (or a moved slice's)",
     4: "an inexact interval of the table, or a section in two wetted pieces",
-    5: "a slice cut afresh (the first contact)",
+    5: "a slice cut afresh (the first contact), opts' fresh unset (else 9)",
     6: "a keel point faster than sound, or a non-finite mass or force",
     7: "the keel line's end faces walk out of its range",
     8: "more entries than the columns hold (sections in many wetted pieces)",

@@ -10,10 +10,10 @@ stage of a free-pitch run) it evaluates the sections of the stations it cuts, as
 path does; at a pitch the hull has no frame for (every stage of a free-pitch step), one
 compiled call makes the keel line, the cut, the outline and the sums
 (:meth:`FusedEvaluation.stage_totals`, and :meth:`FusedEvaluation.stage_result` with the
-result), with no frame kept; it cuts the first contact's slices (no wetted station near)
-where they are, as numpy's path does. At any evaluation the loops hand back (the first
-contact at a frame's pitch, a section in two wetted pieces, the evaluation that makes a
-pitch's table), numpy's path serves. Both give
+result), with no frame kept. The first contact's slices (no wetted station near) are cut
+where they are, as numpy's path cuts them, by the call or, at a frame, by numpy's cut
+(:meth:`FusedEvaluation._fresh`). At any evaluation the loops hand back (a section in two
+wetted pieces, the evaluation that makes a pitch's table), numpy's path serves. Both give
 the same numbers (to 1e-12; the tests compare them over whole histories); the fused one
 costs some microseconds an evaluation where numpy's costs some hundreds. It needs numba
 (the ``fast`` extra) and is switched off with ``HULLSLICE_NUMBA=0``, as the other
