@@ -203,7 +203,7 @@ def held_loops(fout, iout, scal, opts, keel, runs, chords, station_vals, heights
         if iout[I_MOVED, i] == 2:
             g1[i + 1] += f_f[j + 1] - f_f[j]
             j += 1
-        elif iout[I_MOVED, i] > 0:
+        elif iout[I_MOVED, i] == 1:
             at = level - fout[_LIFT, i]
             if at > top:
                 need = max(need, at)

@@ -98,7 +98,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "12e04a7a3dc7dfd3"
+STAGE_HELPERS_DIGEST = "036ac3ae1a9e272b"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -346,9 +346,7 @@ def stage_loops(
         return status, points, ring_start, ring_station
     # slices with no wetted station near (the first contact): cut where they are, and their
     # outline and wetted properties, as numpy's path (slicing.fixed._with_fresh)
-    n_f = 0
-    for i in range(int(scal[0])):
-        n_f += 1 if iout[I_MOVED, i] == 2 else 0
+    n_f = fresh_count_loops(iout, int(scal[0]))
     x_f = np.empty(n_f)
     j = 0
     for i in range(int(scal[0])):
