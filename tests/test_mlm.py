@@ -427,3 +427,45 @@ def test_the_breadth_under_the_water_is_the_same_from_the_kept_cut_as_per_contou
             wet = s.wetted
             assert (submerged_widths(s)[wet] > 0.0).all()
     assert lifted  # partial slices moved to their depths were among them
+
+
+def test_the_sides_sampled_rows_are_read_as_take_along_axis_reads_them():
+    # an invariance: the contours' rows, read at many points by flat indices (the
+    # bisection of the pressure's change of sign reads them some fifty times an
+    # evaluation), give numpy's take_along_axis of the clipped indices to the last bit,
+    # out of range, at the ends and at NaN
+    from hullslice_mlm.contours import RealBottom, _interp_rows, _slope_at
+
+    rng = np.random.default_rng(7)
+    k, n, m = 129, 5, 11
+    raw = np.cumsum(rng.random((2, n, k)), axis=-1)
+    ds = rng.random((2, n)) * 0.01
+    ds[0, 1] = 0.0  # an unsampled side
+    y = rng.uniform(-0.2, 1.6, (2, n, m)) * (k - 1) * ds.max()
+    y[1, 2, 3], y[0, 4, :2] = np.nan, (k - 1) * ds[0, 4]  # a NaN, the grid's very end
+
+    def reference(f, ds, y, last):
+        with np.errstate(invalid="ignore", divide="ignore"):
+            x = np.where(ds[..., None] > 0, y / ds[..., None], 0.0)
+            if last:
+                i = np.clip(np.floor(x).astype(np.int64), 0, f.shape[-1] - 1)
+                return np.take_along_axis(f, i, axis=-1)
+            x = np.clip(x, 0.0, f.shape[-1] - 1)
+            i0 = np.clip(np.floor(x).astype(np.int64), 0, f.shape[-1] - 2)
+        frac = x - i0
+        a, b = np.take_along_axis(f, i0, axis=-1), np.take_along_axis(f, i0 + 1, axis=-1)
+        return a * (1.0 - frac) + b * frac
+
+    slope = np.diff(raw, axis=-1) / np.where(ds > 0, ds, 1.0)[..., None]
+    with np.errstate(invalid="ignore"):
+        got = (_interp_rows(raw, ds, y), _slope_at(slope, ds, y))
+        want = (reference(raw, ds, y, False), reference(slope, ds, y, True))
+    for a, b in zip(got, want, strict=True):
+        assert a.shape == b.shape == (2, n, m)
+        np.testing.assert_array_equal(a.view(np.uint64), b.view(np.uint64))
+    # the bottom's slope alone is its height-and-slope's slope
+    y_last, s_last = (k - 3) * ds, rng.random((2, n))
+    bottom = RealBottom(raw, ds, y_last, s_last)
+    with np.errstate(invalid="ignore"):
+        both, alone = bottom(y), bottom.slope(y)
+    np.testing.assert_array_equal(both[1].view(np.uint64), alone.view(np.uint64))

@@ -90,10 +90,10 @@ from hullslice.solvers.contour import submerged_parts
 
 from .contours import (
     WU,
+    RealBottom,
     U,
     contact,
     continued_contours,
-    real_bottom,
     side_contours,
     sign_change,
 )
@@ -267,10 +267,8 @@ class MLM(MomentumFormSolver):
         t_lim = np.arcsin(np.clip(y_lim / np.where(c > 0, c, 1.0), 0.0, 1.0))
         t_lim = np.minimum(t_lim, 0.5 * np.pi * (1.0 - 1e-12))
 
-        def body(y):  # the real bottom's height and slope at y (up to its widest point)
-            return real_bottom(raw, ds, y_last, s_last, y)
-
-        t_a, t_star = sign_change(c, cp, body, t_lim)
+        body = RealBottom(raw, ds, y_last, s_last)  # its height and slope up to its widest
+        t_a, t_star = sign_change(c, cp, body.slope, t_lim)
         tk = t_a[..., None] + (t_star - t_a)[..., None] * U
         wk = (t_star - t_a)[..., None] * WU
         yk = c[..., None] * np.sin(tk)

@@ -7,6 +7,7 @@ along the side, ``(2, n, K)``.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -102,14 +103,15 @@ def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_
     Returns the heights (2, n, GRID) and their step, the edge ``e`` (the side's
     widest point), the line's ``(offset, slope)`` (``f = offset + slope y`` past the
     departure), which sides are sharp and smooth there, and the last sample of the real
-    bottom with its slope ``(y_last, s_edge)`` (:func:`real_bottom` goes on with it)."""
+    bottom with its slope ``(y_last, s_edge)`` (:class:`RealBottom` goes on with it)."""
     k_raw = raw.shape[-1]
     slope_raw = np.diff(raw, axis=-1) / ds[..., None]
     i_last = np.clip(last, 1, k_raw - 1)
     s_edge = np.take_along_axis(slope_raw, (i_last - 1)[..., None], axis=-1)[..., 0]
     y_last = i_last * ds
     e = np.where(edge_in, extent, y_last)
-    f_edge = real_bottom(raw, ds, y_last, s_edge, e[..., None])[0][..., 0]
+    bottom = RealBottom(raw, ds, y_last, s_edge)
+    f_edge = bottom.height(e[..., None])[..., 0]
     tan_dep = math.tan(math.radians(settings["smooth_edge_deg"])) if cont_tan is None else cont_tan
     # a smooth side leaves its contour where it is first as steep as the continuation
     index = np.arange(k_raw - 1)
@@ -143,7 +145,7 @@ def continued_contours(sections, raw, ds, last, extent, edge_in, settings, cont_
     end = np.where(edge_in, SHARP_REACH * e, e)
     step = end / (GRID - 1)
     y = step[..., None] * np.arange(GRID)
-    inside = real_bottom(raw, ds, y_last, s_edge, np.minimum(y, e[..., None]))[0]
+    inside = bottom.height(np.minimum(y, e[..., None]))
     line = f_dep[..., None] + (y - dep[..., None]) * slope[..., None]
     g = np.where(edge_in[..., None] & (y > dep[..., None]), line, inside)
     g = np.maximum.accumulate(g, axis=-1)
@@ -182,17 +184,17 @@ def contact(g, step, pen, edge_in, line):
     return c, cp, capped, i_end
 
 
-def sign_change(c, cp, body, t_lim):
+def sign_change(c, cp, slope, t_lim):
     """The interval ``(t_a, t_b)`` of ``(0, t_lim)`` where the velocity term's pressure is
     positive: ``t_a = 0`` where it is positive at the keel (else where it first turns
     positive: on a side steeper than ``atan(pi) = 72.3`` deg at the keel the bracket
     starts negative, rises and falls again), ``t_b`` where it next changes sign (``t_lim``
-    where it does not); ``t_a = t_b`` where it is nowhere positive. ``body(y)`` gives the
-    real bottom's height and slope. The first positive interval is taken: a second one
-    further out (a bottom that turns flat again) is not loaded."""
+    where it does not); ``t_a = t_b`` where it is nowhere positive. ``slope(y)`` gives the
+    real bottom's slope (:meth:`RealBottom.slope`). The first positive interval is taken: a
+    second one further out (a bottom that turns flat again) is not loaded."""
 
     def bracket(t):
-        fp = body(c[..., None] * np.sin(t))[1]
+        fp = slope(c[..., None] * np.sin(t))
         return cp[..., None] - 0.5 * np.cos(t) - np.sin(t) ** 2 / (2.0 * np.cos(t) * (1.0 + fp**2))
 
     grid = t_lim[..., None] * np.linspace(0.0, 1.0, SCAN + 1)
@@ -218,16 +220,36 @@ def sign_change(c, cp, body, t_lim):
     return t_a, np.where(some, t_b, 0.0)
 
 
-def real_bottom(raw, ds, y_last, s_last, y):
-    """The real bottom's height and slope at ``y`` ((2, n, m)): the samples up to the last
-    one, the last interval's slope on to the widest point."""
-    k = raw.shape[-1]
-    yc = np.minimum(y, y_last[..., None])
-    f = _interp_rows(raw, ds, yc) + np.maximum(y - y_last[..., None], 0.0) * s_last[..., None]
-    slope = np.diff(raw, axis=-1) / np.where(ds > 0, ds, 1.0)[..., None]
-    fp = _slope_at(slope, ds, np.minimum(y, (k - 1.5) * ds[..., None]))
-    fp = np.where(y >= y_last[..., None], s_last[..., None], fp)
-    return f, fp
+class RealBottom:
+    """The real bottom of each side as cut: the samples ``raw`` ((2, n, K), every ``ds``
+    from the keel) up to the last one, ``y_last``, then the last interval's slope
+    ``s_last`` on to the widest point ((2, n) each). Its slopes between samples are taken
+    once, when first asked for: the root of :func:`sign_change` asks for the slope some
+    fifty times a call."""
+
+    def __init__(self, raw, ds, y_last, s_last) -> None:
+        self.raw, self.ds = raw, ds
+        self.y_last, self.s_last = y_last[..., None], s_last[..., None]
+
+    @functools.cached_property
+    def slopes(self) -> np.ndarray:
+        """The slopes between samples, (2, n, K - 1)."""
+        return np.diff(self.raw, axis=-1) / np.where(self.ds > 0, self.ds, 1.0)[..., None]
+
+    def __call__(self, y):
+        """The height and the slope at ``y`` ((2, n, m))."""
+        return self.height(y), self.slope(y)
+
+    def height(self, y):
+        """The height at ``y`` ((2, n, m))."""
+        yc = np.minimum(y, self.y_last)
+        return _interp_rows(self.raw, self.ds, yc) + np.maximum(y - self.y_last, 0.0) * self.s_last
+
+    def slope(self, y):
+        """The slope at ``y`` ((2, n, m))."""
+        y_top = (self.raw.shape[-1] - 1.5) * self.ds[..., None]  # the last interval's middle
+        fp = _slope_at(self.slopes, self.ds, np.minimum(y, y_top))
+        return np.where(y >= self.y_last, self.s_last, fp)
 
 
 def _extents(sections) -> np.ndarray:
@@ -268,12 +290,12 @@ def _interp_rows(f: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
     k = f.shape[-1]
     with np.errstate(invalid="ignore", divide="ignore"):
         x = np.where(ds[..., None] > 0, y / ds[..., None], 0.0)
-    x = np.clip(x, 0.0, k - 1)
-    i0 = np.clip(np.floor(x).astype(np.int64), 0, k - 2)
+    x = np.minimum(np.maximum(x, 0.0), k - 1)  # np.clip's values, without its wrapping
+    i0 = np.minimum(np.maximum(np.floor(x).astype(np.int64), 0), k - 2)
     frac = x - i0
-    a = np.take_along_axis(f, i0, axis=-1)
-    b = np.take_along_axis(f, i0 + 1, axis=-1)
-    return a * (1.0 - frac) + b * frac
+    at = _row_index(f, i0)
+    flat = f.reshape(-1)
+    return flat[at] * (1.0 - frac) + flat[at + 1] * frac
 
 
 def _slope_at(slope: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -281,5 +303,14 @@ def _slope_at(slope: np.ndarray, ds: np.ndarray, y: np.ndarray) -> np.ndarray:
     k = slope.shape[-1]
     with np.errstate(invalid="ignore", divide="ignore"):
         x = np.where(ds[..., None] > 0, y / ds[..., None], 0.0)
-    i = np.clip(np.floor(x).astype(np.int64), 0, k - 1)
-    return np.take_along_axis(slope, i, axis=-1)
+    i = np.minimum(np.maximum(np.floor(x).astype(np.int64), 0), k - 1)
+    return slope.reshape(-1)[_row_index(slope, i)]
+
+
+def _row_index(f: np.ndarray, i: np.ndarray) -> np.ndarray:
+    """Flat indices into the C-ordered ``f`` ((..., K)) of ``i`` ((..., m), the same leading
+    shape) along its rows: ``f.reshape(-1)[_row_index(f, i)]`` is ``np.take_along_axis(f,
+    i, axis=-1)``, gathered at once rather than through an index per axis."""
+    k = f.shape[-1]
+    rows = np.arange(0, f.size, k).reshape(*f.shape[:-1], 1)
+    return rows + i
