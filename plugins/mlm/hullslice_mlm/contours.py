@@ -239,17 +239,6 @@ class RealBottom:
         """The slopes between samples, (2, n, K - 1)."""
         return np.diff(self.raw, axis=-1) / np.where(self.ds > 0, self.ds, 1.0)[..., None]
 
-    @functools.cached_property
-    def _reading(self) -> tuple:
-        """What :meth:`slope` reads at every call: the slopes flat and their rows' first
-        indices, the step with a new axis and where it is positive, the last interval's
-        middle and the last slope's index."""
-        slopes = self.slopes
-        k = slopes.shape[-1]
-        step = self.ds[..., None]
-        rows = np.arange(0, slopes.size, k).reshape(*slopes.shape[:-1], 1)
-        return slopes.reshape(-1), rows, step, step > 0, (k - 0.5) * step, k - 1
-
     def __call__(self, y):
         """The height and the slope at ``y`` ((2, n, m))."""
         return self.height(y), self.slope(y)
@@ -260,13 +249,11 @@ class RealBottom:
         return _interp_rows(self.raw, self.ds, yc) + np.maximum(y - self.y_last, 0.0) * self.s_last
 
     def slope(self, y):
-        """The slope at ``y`` ((2, n, m)): :func:`_slope_at` of the slopes up to the last
-        interval's middle, the last slope past ``y_last``."""
-        flat, rows, step, stepped, y_top, last = self._reading
-        with np.errstate(invalid="ignore", divide="ignore"):
-            x = np.where(stepped, np.minimum(y, y_top) / step, 0.0)
-        i = np.minimum(np.maximum(np.floor(x).astype(np.int64), 0), last)
-        return np.where(y >= self.y_last, self.s_last, flat[rows + i])
+        """The slope at ``y`` ((2, n, m)): the samples' slopes up to the last interval's
+        middle, the last slope past ``y_last``."""
+        y_top = (self.raw.shape[-1] - 1.5) * self.ds[..., None]
+        fp = _slope_at(self.slopes, self.ds, np.minimum(y, y_top))
+        return np.where(y >= self.y_last, self.s_last, fp)
 
 
 def _extents(sections) -> np.ndarray:
