@@ -29,6 +29,13 @@ from collections.abc import Callable
 
 import numpy as np
 
+from .contour_loops import (
+    match_loops,
+    memo_cut_loops,
+    points_loops,
+    recipe_loops,
+    same_sides_loops,
+)
 from .frame_loops import (
     above_chord_loops,
     crossings_loops,
@@ -93,20 +100,18 @@ __all__ = [
 ]
 
 #: The digest of the sources of :func:`stage_loops`' helpers in other files
-#: (``keel_loops.py``, ``frame_loops.py``, ``outline_loops.py``, ``held_loops.py``, which
+#: (``keel_loops.py``, ``frame_loops.py``, ``outline_loops.py``, ``index_loops.py``,
+#: ``contour_loops.py`` and ``held_loops.py``, which
 #: holds its own helpers' digest). numba's cache of the loops goes stale when this file
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "036ac3ae1a9e272b"
+STAGE_HELPERS_DIGEST = "c9ee113eace9f979"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
 K_OUT = np.array([0, 0, 1, 1, 2, 0, 2, 0], dtype=np.int64)
 K_IN = np.array([0, 2, 0, 2, 1, 1, 0, 0], dtype=np.int64)
-#: Unsigned index constants: numba tests a signed index from memory for a negative value at
-#: each use (to count from the end), an unsigned one not (an eighth of the cut's time).
-U0, U1, U2, U3, U6 = (np.uint64(v) for v in (0, 1, 2, 3, 6))
 
 
 def cut_loops(
@@ -124,120 +129,23 @@ def cut_loops(
     Returns ``(points, ring_start, ring_station, status)``: the kept contours' points one
     after another, each kept contour's first point (and the end), its station, and 0, or
     1 where the mesh is not closed along a cut. ``slot`` is scratch space, one integer per
-    edge.
+    edge. The recipe of :func:`~hullslice.contour_loops.recipe_loops`, then its points by
+    :func:`~hullslice.contour_loops.points_loops`.
     """
-    n_st, n_bins = first.shape
-    q = 0
-    for i in range(n_st):
-        for j in range(n_bins):
-            q += max(last[i, j] - first[i, j], 0)
-    seg_station = np.empty(q, dtype=np.int64)
-    e_out = np.empty(q, dtype=np.int64)
-    e_in = np.empty(q, dtype=np.int64)
-    point = np.empty((q, 2))
-    m00, m01, m02, m03 = m[0, 0], m[0, 1], m[0, 2], m[0, 3]
-    m10, m11, m12, m13 = m[1, 0], m[1, 1], m[1, 2], m[1, 3]
-    n = 0
-    for st in range(n_st):
-        xs = x_rel[st]
-        for b in range(n_bins):
-            for f in range(np.uint64(first[st, b]), np.uint64(last[st, b])):
-                d0 = (corners[f, 0] - gx) * c - (corners[f, 3] - gz) * s - xs
-                d1 = (corners[f, 1] - gx) * c - (corners[f, 4] - gz) * s - xs
-                d2 = (corners[f, 2] - gx) * c - (corners[f, 5] - gz) * s - xs
-                code = (d0 >= 0.0) + 2 * (d1 >= 0.0) + 4 * (d2 >= 0.0)
-                if code == 0 or code == 7:
-                    continue
-                ko = np.uint64(k_out_of[code])  # unsigned, as the face (see U0)
-                kn = ko + U1 if ko != U2 else U0
-                e_out[n] = ends[f, U3 + ko]
-                e_in[n] = ends[f, U3 + np.uint64(k_in_of[code])]
-                ka, kb = ko, kn
-                if ends[f, ko] > ends[f, kn]:  # the edge's canonical order: by vertex number
-                    ka, kb = kn, ko
-                da = d0 if ka == U0 else (d1 if ka == U1 else d2)
-                db = d0 if kb == U0 else (d1 if kb == U1 else d2)
-                xa, wa, ha = corners[f, ka], corners[f, U6 + ka], corners[f, U3 + ka]
-                xb, wb, hb = corners[f, kb], corners[f, U6 + kb], corners[f, U3 + kb]
-                ya = m00 * xa + m01 * wa + m02 * ha + m03
-                za = m10 * xa + m11 * wa + m12 * ha + m13
-                yb = m00 * xb + m01 * wb + m02 * hb + m03
-                zb = m10 * xb + m11 * wb + m12 * hb + m13
-                if abs(da) <= abs(db):
-                    t = da / (da - db)
-                    point[n, 0] = ya + t * (yb - ya)
-                    point[n, 1] = za + t * (zb - za)
-                else:
-                    t = db / (db - da)
-                    point[n, 0] = yb + t * (ya - yb)
-                    point[n, 1] = zb + t * (za - zb)
-                seg_station[n] = st
-                n += 1
-    # successors, station by station: the segment leaving from the edge each one enters
-    succ = np.empty(n, dtype=np.int64)
-    status = 0
-    a = 0
-    while a < n:
-        b = a
-        while b < n and seg_station[b] == seg_station[a]:
-            b += 1
-        for j in range(a, b):
-            slot[e_out[j]] = j
-        for j in range(a, b):
-            k = slot[e_in[j]]
-            if k < a or k >= b or e_out[k] != e_in[j]:
-                status = 1
-                k = j
-            succ[j] = k
-        a = b
-    # the contours, each from its lowest segment, repeated points dropped
-    out = np.empty((n, 2))
-    ring_start = np.empty(n + 1, dtype=np.int64)
-    ring_station = np.empty(n, dtype=np.int64)
-    seen = np.zeros(n, dtype=np.bool_)
-    ring = np.empty(n, dtype=np.int64)
-    n_out = 0
-    n_ring = 0
-    ring_start[0] = 0
-    for j0 in range(n):
-        if seen[j0]:
-            continue
-        length = 0
-        j = j0
-        while not seen[j]:
-            seen[j] = True
-            ring[length] = j
-            length += 1
-            j = succ[j]
-        first = n_out
-        area = 0.0  # the shoelace sum, term by term in the points' order, closing last
-        for k in range(length):
-            p = ring[k]
-            r = ring[k - 1] if k > 0 else ring[length - 1]
-            if abs(point[p, 0] - point[r, 0]) > merge or abs(point[p, 1] - point[r, 1]) > merge:
-                out[n_out, 0] = point[p, 0]
-                out[n_out, 1] = point[p, 1]
-                if n_out > first:
-                    area += out[n_out - 1, 0] * out[n_out, 1] - out[n_out, 0] * out[n_out - 1, 1]
-                n_out += 1
-        kept = n_out - first
-        if kept > 0:
-            k = n_out - 1
-            area += out[k, 0] * out[first, 1] - out[first, 0] * out[k, 1]
-        if kept >= 3 and area != 0.0:
-            ring_station[n_ring] = seg_station[j0]
-            n_ring += 1
-            ring_start[n_ring] = n_out
-        else:
-            n_out = first
-    return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], status
+    none = np.empty(0)
+    recipe = recipe_loops(first, last, corners, ends, x_rel, gx, gz, c, s, slot, k_out_of,
+                          k_in_of, none, np.empty(0, dtype=np.int64), none, none, none)  # fmt: skip
+    ends6, ring_len, st_p, st_q, status = recipe[0], recipe[1], recipe[2], recipe[3], recipe[9]
+    points, ring_start, ring_station = points_loops(ends6, ring_len, st_p, st_q, 0, x_rel, gx,
+                                                    gz, c, s, m, merge)  # fmt: skip
+    return points, ring_start, ring_station, status
 
 
 def stage_loops(
     a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
     key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot, guess,
-    k_out_of, k_in_of, merge, tol, n, c, s, z_cg, w, u, q, fout, iout, scal, extra, opts, a_c,
-    v_c,
+    k_out_of, k_in_of, merge, tol, n, xmin, reach_x, reach_z, c, s, z_cg, w, u, q, fout, iout,
+    scal, extra, opts, a_c, v_c, memo,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
     (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line
@@ -246,10 +154,13 @@ def stage_loops(
     ``end_face`` and ``steep_slope`` as there) and its arrays
     (:func:`~hullslice.keel_loops.keel_arrays_loops`); the draft of the centre of gravity
     at height ``z_cg`` (m) and the water's level; the wetted slices' window; their fixed
-    stations (``n`` slices over the keel line's length) cut by :func:`cut_loops` over the
-    plane index's ranges (:func:`~hullslice.index_loops.range_loops`, from the thread's
-    ``guess``; ``key`` to ``slot`` as :func:`cut_loops` takes them, ``merge`` the
-    contours' merge distance) with the cutter's map of :func:`hullslice.geometry._frame`
+    stations (``n`` slices over the keel line's length) cut by
+    :func:`~hullslice.contour_loops.memo_cut_loops` (each from the thread's ``memo`` where
+    its recipe serves, the others over the plane index's ranges,
+    :func:`~hullslice.index_loops.range_loops`, from the thread's ``guess``; ``key`` to
+    ``slot`` as :func:`cut_loops` takes them, ``merge`` the contours' merge distance,
+    ``xmin`` the index's faces' lowest ``x``, ``reach_x`` and ``reach_z`` the body's reach
+    from ``g``) with the cutter's map of :func:`hullslice.geometry._frame`
     (the body's ``bounds`` and ``scale``); their outline (``tol``, by
     :func:`~hullslice.outline_loops.outline_loops`); and
     :func:`~hullslice.held_loops.pitch_loops` on them with
@@ -261,7 +172,7 @@ def stage_loops(
     of the first contact (no wetted station near it) is cut where it is, its outline and
     wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``).
 
-    Returns ``(status, points, ring_start, ring_station)``: status 0 with the sums in
+    Returns ``(status, points, ring_start, ring_station, memo)``: status 0 with the sums in
     ``scal`` and the cut's contours as :func:`cut_loops` gives them (their stations from
     the first station cut, then those of the first contact's slices), or a status where
     the steps one by one must serve:
@@ -270,16 +181,17 @@ def stage_loops(
     close) or 103 (a section has a hole). ``extra`` receives the first station cut and
     the count of sections (the first contact's too), the contours' origin ``(y, z)``, the
     water's level, the draft (clipped to the body's height), the draft unclipped, and the
-    body's lowest point, m (all but the first two at status 1 too: a dry instant)."""
+    body's lowest point, m (all but the first two at status 1 too: a dry instant). The
+    memo returned is that of the stations cut (the one given where none was)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
     keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
     ok, _, low, high, kx, kz, runs = keel_line
     if not ok:
-        return 100, none2, none1, none1
+        return 100, none2, none1, none1, memo
     r_ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi = runs
     if not r_ok:
-        return 101, none2, none1, none1
+        return 101, none2, none1, none1, memo
     if not bottom:
         height, lo, hi = np.empty(0), np.empty(0), np.empty(0)
     keel, runs_arr, chords = keel_arrays_loops(kx, kz, steep, mid, cont, bend, starts, offsets,
@@ -300,7 +212,7 @@ def stage_loops(
     extra[2], extra[3], extra[4], extra[5] = oy, oz, level, draft
     status, w0, w1 = window_loops(keel, level, n)
     if status != 0:
-        return status, none2, none1, none1
+        return status, none2, none1, none1, memo
     _, k0, k1 = wet_slices_loops(keel, level, n)
     w0 = max(w0, k0)  # the window's station before the wetted slices: no slice's section
     xa, xb = kx[0], kx[len(kx) - 1]  # the fixed stations (Frame.fixed_stations)
@@ -313,13 +225,12 @@ def stage_loops(
     m[0, 0], m[0, 1], m[0, 2], m[0, 3] = scale * 0.0, scale * 1.0, scale * 0.0, scale * -oy
     m[1, 0], m[1, 1], m[1, 2] = scale * s, scale * 0.0, scale * c
     m[1, 3] = scale * (-(s * gx + c * gz) - oz)
-    first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_rel, gx, gz, c, s,
-                              margin, span, x0, guess, w0)  # fmt: skip
-    points, ring_start, ring_station, closed = cut_loops(
-        first, last, corners, ends, x_rel, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
-    )
+    points, ring_start, ring_station, closed, memo = memo_cut_loops(
+        key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, xmin, corners, ends, x_rel,
+        gx, gz, c, s, m, merge, slot, k_out_of, k_in_of, guess, w0, memo, reach_x, reach_z,
+    )  # fmt: skip
     if closed != 0:
-        return 102, none2, none1, none1
+        return 102, none2, none1, none1, memo
     # edges above the water: read only by an end slice's own or inward source, moved
     cap = np.full(n_cut, level)
     for k in (k0, k0 + 1, k1 - 1, k1):
@@ -327,7 +238,7 @@ def stage_loops(
             cap[k - w0] = math.inf
     out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap)
     if not out[0]:
-        return 103, none2, none1, none1
+        return 103, none2, none1, none1, memo
     extra[0], extra[1] = w0, n_cut
     zmin, z_chine, area = out[15], out[18], out[8]
     stations = np.empty((3, n_cut))
@@ -343,7 +254,7 @@ def stage_loops(
     status = pitch_loops(fout, iout, scal, opts, keel, runs_arr, chords, stations, arrays,
                          a_c, v_c, no_f, np.zeros(1, dtype=np.int64), np.empty(0))  # fmt: skip
     if status != 9:
-        return status, points, ring_start, ring_station
+        return status, points, ring_start, ring_station, memo
     # slices with no wetted station near (the first contact): cut where they are, and their
     # outline and wetted properties, as numpy's path (slicing.fixed._with_fresh)
     n_f = fresh_count_loops(iout, int(scal[0]))
@@ -359,10 +270,10 @@ def stage_loops(
         first, last, corners, ends, x_f, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
     )
     if closed != 0:
-        return 102, none2, none1, none1
+        return 102, none2, none1, none1, memo
     o = outline_loops(p_f, rs_f, rst_f, n_f, tol, scale, oy, oz, np.full(n_f, math.inf))
     if not o[0]:
-        return 103, none2, none1, none1
+        return 103, none2, none1, none1, memo
     e_f, f_f = pitch_entries_loops((o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9],
                                     o[10], o[11], o[12], o[13], o[14], o[18]),
                                    np.full(n_f, level), tol)  # fmt: skip
@@ -371,7 +282,7 @@ def stage_loops(
     extra[1] = n_cut + n_f  # the sections: the window's stations', then these
     ring_start = np.concatenate((ring_start, rs_f[1:] + len(points)))
     ring_station = np.concatenate((ring_station, rst_f + n_cut))
-    return status, np.concatenate((points, p_f)), ring_start, ring_station
+    return status, np.concatenate((points, p_f)), ring_start, ring_station, memo
 
 
 _LOCK = threading.Lock()
@@ -443,7 +354,8 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, envelope=envelope_
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
     crossings=crossings_loops, refine=refine_loops, extremes=extremes_loops,
-    frame_keel=frame_keel_loops, stage=stage_loops
+    frame_keel=frame_keel_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
+    match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops,
 )  # fmt: skip
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into every module's namespace that holds them (:func:`_inject`; numba calls compiled
@@ -458,9 +370,12 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
-          "keel_arrays", "gallop", "near", "ranges", "cut", "order", "outline", *_HELD, "wetted",
+          "keel_arrays", "gallop", "near", "ranges", "recipe", "points", "match", "sides",
+          "memo_cut", "cut", "order", "outline", *_HELD, "wetted",
           "h_entries", "h_fcount", "h_fentries", "pitch")  # fmt: skip
 CALLS = {
+    "cut": ("recipe", "points"),
+    "memo_cut": ("search", "gallop", "near", "ranges", "recipe", "points", "match", "sides"),
     "held": (*_HELD, "h_interval", "h_table", "h_fcount", "h_fentries"),
     "pitch": (*_HELD, "wetted", "h_entries", "h_fcount", "h_fentries"),
     "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent", "h_wet"),

@@ -55,6 +55,7 @@ LAYERS: dict[str, int] = {
     # 3 cut: frames, caches of cuts, the slicing API
     "hullslice.planecut": 3,
     "hullslice.planecut_loops": 3,
+    "hullslice.contour_loops": 3,
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
     "hullslice.frame_loops": 3,

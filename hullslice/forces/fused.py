@@ -31,6 +31,7 @@ import numpy as np
 
 from .. import planecut_loops
 from ..constants import SOUND_WATER, TOL
+from ..contour_loops import empty_memo
 from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame, keel_loops
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
@@ -327,11 +328,14 @@ class FusedEvaluation:
         kit = getattr(local, "kit", None)  # the call's arguments but the stage's own
         if kit is None:
             kit = local.kit = self._kit()
+        memo = getattr(local, "memo", None)  # the stations this thread cut last
+        if memo is None:
+            memo = empty_memo(len(kit[11]))  # kit[11]: the index's bins' lowest z
         opts, scal, _, _ = self._buffers()
         extra = np.empty(8)
-        status, points, ring_start, ring_station = stage(
+        status, points, ring_start, ring_station, local.memo = stage(
             *kit, float(np.cos(pitch)), float(np.sin(pitch)), z_cg, w, u, q, fout, iout, scal,
-            extra, opts, self.a_c, self.v_c,
+            extra, opts, self.a_c, self.v_c, memo,
         )  # fmt: skip
         if status == DRY_STATUS:
             seen.pop()
@@ -342,8 +346,10 @@ class FusedEvaluation:
 
     def _kit(self) -> tuple:
         """What :func:`~hullslice.planecut_loops.stage_loops` reads of the hull, in its order
-        up to ``n``, with this thread's own: the ends' order, the scratch array and the
-        candidate ranges found last, by station (its guesses)."""
+        up to ``reach_z``, with this thread's own: the ends' order, the scratch array and
+        the candidate ranges found last, by station (its guesses). The thread's memo of
+        the stations cut last (:func:`~hullslice.contour_loops.memo_cut_loops`) is kept
+        beside it."""
         args = self._stage_args
         if args is None:
             args = self._stage_args = stage_arrays(self.hull, self.key[1], self.model.slices)

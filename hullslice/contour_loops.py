@@ -1,0 +1,417 @@
+"""The exact plane cut's loops, written for a compiler (numba's, compiled by
+:mod:`hullslice.planecut_loops`), and its memo of crossed edges.
+
+A cut is made in two passes. :func:`recipe_loops` finds what a station's plane crosses:
+the sign test on the candidate faces, the segments' successors and each contour's order,
+kept as each contour point's edge (its two ends, in the edge's canonical order, as body
+coordinates), the *recipe*. :func:`points_loops` computes the points from a recipe at a
+pitch and stations: one crossing point per edge, from the end nearer the plane, repeated
+points dropped and contours with no area discarded. :func:`cut_loops
+<hullslice.planecut_loops.cut_loops>` is the two in turn.
+
+Where no vertex has changed side of a station's plane since its recipe was made, the
+plane crosses the same edges in the same order, and the recipe gives the points of a
+fresh cut, to the last bit (the same arithmetic on the same numbers).
+:func:`memo_cut_loops` serves each station so where that is shown, and cuts the others
+afresh. Between two pitches a vertex's distance to a plane changes by at most
+``|dc| |r_x| + |ds| |r_z| + |dx|`` (the change of the pitch's cosine and sine, and of the
+station's place). It is shown:
+
+* for the faces outside the station's candidate ranges, by their distance when the recipe
+  was made: at least the *gap* along ``x`` from the index's sorted faces to the plane;
+* for the candidate faces, by their nearest vertex's distance when that is larger than
+  the change anywhere on the body, or else by the sign test on each candidate again (each
+  face's side code compared with the recipe's).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .index_loops import range_loops
+
+#: Unsigned index constants: numba tests a signed index from memory for a negative value at
+#: each use (to count from the end), an unsigned one not (an eighth of the cut's time).
+U0, U1, U2, U3, U6 = (np.uint64(v) for v in (0, 1, 2, 3, 6))
+#: How far :func:`memo_cut_loops` widens a fresh station's candidate ranges, as a share of
+#: the index's key span (four times the body's size): a thousandth of the size, so that the
+#: faces out of them are that far from the plane, and the recipe serves while no vertex
+#: has moved by as much.
+MEMO_WIDTH = 2.5e-4
+
+
+def recipe_loops(
+    first, last, corners, ends, x_rel, gx, gz, c, s, slot, k_out_of, k_in_of, xmin, bin_start,
+    bin_zlo, bin_zhi, bin_reach,
+):  # fmt: skip
+    """The recipe of the contours of the candidate faces of each station ``i``, the faces
+    ``first[i, j] .. last[i, j] - 1`` of each bin ``j``, cut by the planes ``x_rel`` at a
+    pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)`` (see
+    :func:`~hullslice.planecut_loops.cut_loops` for the other arguments).
+
+    Returns ``(ends6, ring_len, st_p, st_q, near, gap, reach, codes, code_p, status)``:
+    each contour point's edge ends, ``x y z`` of its canonical first end then of its second
+    (``(p, 6)``, contour by contour, each from its lowest segment), each contour's length,
+    each station's first point and first contour (and the ends); each station's nearest
+    candidate vertex's distance to its plane (m), the gap along ``x`` from its plane to
+    the faces out of its ranges (m; -inf where ``xmin``, the index's faces' lowest ``x``,
+    is empty) and the largest ``|x - gx|`` of its plane over the bins' heights (m); each
+    candidate face's side code (bit ``k`` set for corner ``k`` ahead), station by station
+    in range order, and each station's first code (and the end); and 0, or 1 where the
+    mesh is not closed along a cut.
+    """
+    n_st, n_bins = first.shape
+    q = 0
+    for i in range(n_st):
+        for j in range(n_bins):
+            q += max(last[i, j] - first[i, j], 0)
+    seg_station = np.empty(q, dtype=np.int64)
+    seg_face = np.empty(q, dtype=np.int64)
+    seg_ab = np.empty(q, dtype=np.int64)
+    e_out = np.empty(q, dtype=np.int64)
+    e_in = np.empty(q, dtype=np.int64)
+    near_d = np.empty(n_st)
+    codes = np.empty(q, dtype=np.int8)
+    code_p = np.zeros(n_st + 1, dtype=np.int64)
+    n = 0
+    n_c = 0
+    for st in range(n_st):
+        xs = x_rel[st]
+        near = math.inf
+        for b in range(n_bins):
+            for f in range(np.uint64(first[st, b]), np.uint64(last[st, b])):
+                d0 = (corners[f, 0] - gx) * c - (corners[f, 3] - gz) * s - xs
+                d1 = (corners[f, 1] - gx) * c - (corners[f, 4] - gz) * s - xs
+                d2 = (corners[f, 2] - gx) * c - (corners[f, 5] - gz) * s - xs
+                near = min(near, abs(d0), abs(d1), abs(d2))
+                code = (d0 >= 0.0) + 2 * (d1 >= 0.0) + 4 * (d2 >= 0.0)
+                codes[n_c] = code
+                n_c += 1
+                if code == 0 or code == 7:
+                    continue
+                ko = np.uint64(k_out_of[code])  # unsigned, as the face (see U0)
+                kn = ko + U1 if ko != U2 else U0
+                e_out[n] = ends[f, U3 + ko]
+                e_in[n] = ends[f, U3 + np.uint64(k_in_of[code])]
+                if ends[f, ko] > ends[f, kn]:  # the edge's canonical order: by vertex number
+                    seg_ab[n] = 3 * kn + ko
+                else:
+                    seg_ab[n] = 3 * ko + kn
+                seg_face[n] = f
+                seg_station[n] = st
+                n += 1
+        near_d[st] = near
+        code_p[st + 1] = n_c
+    gaps = np.full(n_st, -math.inf)
+    reach = np.zeros(n_st)
+    if len(xmin) > 0:  # every face out of the ranges: as far as the bin's sorted lowest x allow
+        for st in range(n_st):
+            xs = x_rel[st]
+            gap = math.inf
+            far = 0.0
+            for b in range(n_bins):
+                xa = gx + (xs + (bin_zlo[b] - gz) * s) / c
+                xb = gx + (xs + (bin_zhi[b] - gz) * s) / c
+                far = max(far, abs(xa - gx), abs(xb - gx))
+                if last[st, b] < bin_start[b + 1]:  # the faces after: all ahead
+                    gap = min(gap, xmin[last[st, b]] - max(xa, xb))
+                if first[st, b] > bin_start[b]:  # the faces before: all behind
+                    gap = min(gap, min(xa, xb) - bin_reach[b] - xmin[first[st, b] - 1])
+            gaps[st] = gap
+            reach[st] = far
+    # successors, station by station: the segment leaving from the edge each one enters
+    succ = np.empty(n, dtype=np.int64)
+    status = 0
+    a = 0
+    while a < n:
+        b = a
+        while b < n and seg_station[b] == seg_station[a]:
+            b += 1
+        for j in range(a, b):
+            slot[e_out[j]] = j
+        for j in range(a, b):
+            k = slot[e_in[j]]
+            if k < a or k >= b or e_out[k] != e_in[j]:
+                status = 1
+                k = j
+            succ[j] = k
+        a = b
+    # the contours, each from its lowest segment (grouped by station, as the segments)
+    ends6 = np.empty((n, 6))
+    ring_len = np.empty(n, dtype=np.int64)
+    st_p = np.zeros(n_st + 1, dtype=np.int64)
+    st_q = np.zeros(n_st + 1, dtype=np.int64)
+    seen = np.zeros(n, dtype=np.bool_)
+    n_p = 0
+    n_ring = 0
+    for j0 in range(n):
+        if seen[j0]:
+            continue
+        j = j0
+        length = 0
+        while not seen[j]:
+            seen[j] = True
+            f = np.uint64(seg_face[j])
+            ka = np.uint64(seg_ab[j] // 3)
+            kb = np.uint64(seg_ab[j] - 3 * (seg_ab[j] // 3))
+            ends6[n_p, 0] = corners[f, ka]
+            ends6[n_p, 1] = corners[f, U6 + ka]
+            ends6[n_p, 2] = corners[f, U3 + ka]
+            ends6[n_p, 3] = corners[f, kb]
+            ends6[n_p, 4] = corners[f, U6 + kb]
+            ends6[n_p, 5] = corners[f, U3 + kb]
+            n_p += 1
+            length += 1
+            j = succ[j]
+        ring_len[n_ring] = length
+        n_ring += 1
+        st = seg_station[j0]
+        st_p[st + 1] += length
+        st_q[st + 1] += 1
+    for st in range(n_st):
+        st_p[st + 1] += st_p[st]
+        st_q[st + 1] += st_q[st]
+    return (ends6, ring_len[:n_ring].copy(), st_p, st_q, near_d, gaps, reach, codes[:n_c].copy(),
+            code_p, status)  # fmt: skip
+
+
+def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge):
+    """The contours of the recipe's stations ``k0``, ``k0 + 1``, ... cut by the planes
+    ``x_rel`` at a pitch (``c``, ``s``) about ``(gx, gz)``, mapped by ``m`` (2 x 4) to the
+    cutter's ``(Y, Z)``: each point from its edge's end nearer the plane, consecutive points
+    closer than ``merge`` along both axes one, contours of fewer than three points or no
+    area left out. Returns ``(points, ring_start, ring_station)`` as
+    :func:`~hullslice.planecut_loops.cut_loops` (stations counted from ``k0``)."""
+    n_st = len(x_rel)
+    p0, p1 = st_p[k0], st_p[k0 + n_st]
+    q0 = st_q[k0]
+    n_rings = st_q[k0 + n_st] - q0
+    m00, m01, m02, m03 = m[0, 0], m[0, 1], m[0, 2], m[0, 3]
+    m10, m11, m12, m13 = m[1, 0], m[1, 1], m[1, 2], m[1, 3]
+    point = np.empty((p1 - p0, 2))
+    for i in range(n_st):
+        xs = x_rel[i]
+        for p in range(st_p[k0 + i], st_p[k0 + i + 1]):
+            xa, wa, ha = ends6[p, 0], ends6[p, 1], ends6[p, 2]
+            xb, wb, hb = ends6[p, 3], ends6[p, 4], ends6[p, 5]
+            da = (xa - gx) * c - (ha - gz) * s - xs
+            db = (xb - gx) * c - (hb - gz) * s - xs
+            ya = m00 * xa + m01 * wa + m02 * ha + m03
+            za = m10 * xa + m11 * wa + m12 * ha + m13
+            yb = m00 * xb + m01 * wb + m02 * hb + m03
+            zb = m10 * xb + m11 * wb + m12 * hb + m13
+            k = p - p0
+            if abs(da) <= abs(db):
+                t = da / (da - db)
+                point[k, 0] = ya + t * (yb - ya)
+                point[k, 1] = za + t * (zb - za)
+            else:
+                t = db / (db - da)
+                point[k, 0] = yb + t * (ya - yb)
+                point[k, 1] = zb + t * (za - zb)
+    out = np.empty((p1 - p0, 2))
+    ring_start = np.empty(n_rings + 1, dtype=np.int64)
+    ring_station = np.empty(n_rings, dtype=np.int64)
+    n_out = 0
+    n_ring = 0
+    ring_start[0] = 0
+    r = q0
+    at = 0
+    for i in range(n_st):
+        for _ in range(st_q[k0 + i + 1] - st_q[k0 + i]):
+            length = ring_len[r]
+            r += 1
+            first = n_out
+            area = 0.0  # the shoelace sum, term by term in the points' order, closing last
+            for k in range(length):
+                p = at + k
+                pr = p - 1 if k > 0 else at + length - 1
+                if (abs(point[p, 0] - point[pr, 0]) > merge
+                        or abs(point[p, 1] - point[pr, 1]) > merge):  # fmt: skip
+                    out[n_out, 0] = point[p, 0]
+                    out[n_out, 1] = point[p, 1]
+                    if n_out > first:
+                        area += (out[n_out - 1, 0] * out[n_out, 1]
+                                 - out[n_out, 0] * out[n_out - 1, 1])  # fmt: skip
+                    n_out += 1
+            at += length
+            kept = n_out - first
+            if kept > 0:
+                k = n_out - 1
+                area += out[k, 0] * out[first, 1] - out[first, 0] * out[k, 1]
+            if kept >= 3 and area != 0.0:
+                ring_station[n_ring] = i
+                n_ring += 1
+                ring_start[n_ring] = n_out
+            else:
+                n_out = first
+    return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring]
+
+
+def match_loops(x_rel, c, s, memo, reach_x, reach_z, eps):
+    """For each station ``x_rel`` (ascending) at a pitch (``c``, ``s``), the station of the
+    ``memo`` (see :func:`memo_cut_loops`; its places ascending) nearest it, where its
+    recipe may serve: ``k`` where it serves as it is (no vertex within the body's reach,
+    ``reach_x`` and ``reach_z`` from the centre of gravity along ``x`` and ``z``, m, can
+    have crossed the plane), ``-2 - k`` where it serves if its candidates' side codes are
+    unchanged (the faces out of its ranges cannot have crossed), else -1. ``eps`` (m) is
+    rounding's room."""
+    mx, mc, ms, m_near, m_gap, m_reach = memo[0], memo[1], memo[2], memo[3], memo[4], memo[5]
+    n = len(x_rel)
+    kn = len(mx)
+    src = np.full(n, -1, dtype=np.int64)
+    k = 0
+    for i in range(n):
+        if kn == 0:
+            break
+        x = x_rel[i]
+        while k + 1 < kn and abs(mx[k + 1] - x) <= abs(mx[k] - x):
+            k += 1
+        dc, ds, dx = abs(c - mc[k]), abs(s - ms[k]), abs(x - mx[k])
+        if (mc[k] - dc) * m_gap[k] - dc * m_reach[k] - ds * reach_z - dx <= eps:
+            continue
+        if dc * reach_x + ds * reach_z + dx < m_near[k] - eps:
+            src[i] = k
+        else:
+            src[i] = -2 - k
+    return src
+
+
+def same_sides_loops(ranges, codes, at, corners, x, gx, gz, c, s):
+    """Whether each candidate face of the ranges ``ranges`` (``(bins, 2)``: first, last)
+    has the side ``codes[at], codes[at + 1], ...`` of the plane ``x`` at a pitch (``c``,
+    ``s``) about ``(gx, gz)``: the same sign test as :func:`recipe_loops`."""
+    for b in range(ranges.shape[0]):
+        for f in range(np.uint64(ranges[b, 0]), np.uint64(ranges[b, 1])):
+            d0 = (corners[f, 0] - gx) * c - (corners[f, 3] - gz) * s - x
+            d1 = (corners[f, 1] - gx) * c - (corners[f, 4] - gz) * s - x
+            d2 = (corners[f, 2] - gx) * c - (corners[f, 5] - gz) * s - x
+            if (d0 >= 0.0) + 2 * (d1 >= 0.0) + 4 * (d2 >= 0.0) != codes[at]:
+                return False
+            at += 1
+    return True
+
+
+def memo_cut_loops(
+    key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, xmin, corners, ends, x_rel,
+    gx, gz, c, s, m, merge, slot, k_out_of, k_in_of, guess, g0, memo, reach_x, reach_z,
+):  # fmt: skip
+    """:func:`~hullslice.planecut_loops.cut_loops` of the stations ``x_rel`` (ascending) at
+    a pitch, each station from the thread's ``memo`` where its recipe serves
+    (:func:`match_loops`, :func:`same_sides_loops`), the others cut afresh over the plane
+    index's ranges (:func:`~hullslice.index_loops.range_loops`; from the ``guess`` of the
+    stations ``g0``, ... where all are), widened by :data:`MEMO_WIDTH`. The same points.
+
+    ``memo`` holds, by station (ascending): its place, the cosine and sine of its pitch,
+    its nearest candidate vertex's distance, its gap and its plane's reach (see
+    :func:`recipe_loops`), its ranges ``(n, bins, 2)``, its first side code (and the end)
+    and the codes, then its recipe (``ends6``, ``ring_len``, ``st_p``, ``st_q``). Returns
+    ``(points, ring_start, ring_station, status, memo)``, the memo of these stations (the
+    one given where it served them all in its order, or the status is not 0). ``margin``
+    (m) is rounding's room too."""
+    n = len(x_rel)
+    src = match_loops(x_rel, c, s, memo, reach_x, reach_z, margin)
+    m_ranges, m_code_p, m_codes = memo[6], memo[7], memo[8]
+    m_ends6, m_ring_len, m_st_p, m_st_q = memo[9], memo[10], memo[11], memo[12]
+    for i in range(n):
+        if src[i] <= -2:
+            k = -2 - src[i]
+            same = same_sides_loops(m_ranges[k], m_codes, m_code_p[k], corners, x_rel[i], gx, gz,
+                                    c, s)  # fmt: skip
+            src[i] = k if same else -1
+    k0 = src[0] if n > 0 else -1
+    kept = k0 >= 0
+    for i in range(n):
+        if src[i] != k0 + i:
+            kept = False
+            break
+    if kept:  # every station from the memo, in its order: the memo as it is
+        pts, ring_start, ring_station = points_loops(m_ends6, m_ring_len, m_st_p, m_st_q, k0,
+                                                     x_rel, gx, gz, c, s, m, merge)  # fmt: skip
+        return pts, ring_start, ring_station, 0, memo
+    n_f = 0
+    for i in range(n):
+        if src[i] < 0:
+            n_f += 1
+    x_f = np.empty(n_f)
+    j = 0
+    for i in range(n):
+        if src[i] < 0:
+            x_f[j] = x_rel[i]
+            j += 1
+    wide = margin + MEMO_WIDTH * span
+    if n_f == n:
+        first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_f, gx, gz, c, s,
+                                  wide, span, x0, guess, g0)  # fmt: skip
+    else:
+        first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_f, gx, gz, c, s,
+                                  wide, span, x0, guess[:0], 0)  # fmt: skip
+    fresh = recipe_loops(first, last, corners, ends, x_f, gx, gz, c, s, slot, k_out_of, k_in_of,
+                         xmin, bin_start, bin_zlo, bin_zhi, bin_reach)  # fmt: skip
+    f_ends6, f_ring_len, f_st_p, f_st_q, f_near, f_gap, f_reach, f_codes, f_code_p, status = fresh
+    if status != 0:
+        none = np.empty(0, dtype=np.int64)
+        return np.empty((0, 2)), none, none, status, memo
+    # the memo of these stations: each one's from the old memo or from the fresh cut
+    nb = len(bin_zlo)
+    place, cos_, sin_ = np.empty(n), np.empty(n), np.empty(n)
+    near, gap, reach = np.empty(n), np.empty(n), np.empty(n)
+    ranges = np.empty((n, nb, 2), dtype=np.int64)
+    code_p = np.zeros(n + 1, dtype=np.int64)
+    st_p = np.zeros(n + 1, dtype=np.int64)
+    st_q = np.zeros(n + 1, dtype=np.int64)
+    j = 0
+    for i in range(n):
+        k = src[i]
+        if k >= 0:
+            place[i], cos_[i], sin_[i] = memo[0][k], memo[1][k], memo[2][k]
+            near[i], gap[i], reach[i] = memo[3][k], memo[4][k], memo[5][k]
+            ranges[i] = m_ranges[k]
+            code_p[i + 1] = code_p[i] + m_code_p[k + 1] - m_code_p[k]
+            st_p[i + 1] = st_p[i] + m_st_p[k + 1] - m_st_p[k]
+            st_q[i + 1] = st_q[i] + m_st_q[k + 1] - m_st_q[k]
+        else:
+            place[i], cos_[i], sin_[i] = x_f[j], c, s
+            near[i], gap[i], reach[i] = f_near[j], f_gap[j], f_reach[j]
+            for b in range(nb):
+                ranges[i, b, 0], ranges[i, b, 1] = first[j, b], last[j, b]
+            code_p[i + 1] = code_p[i] + f_code_p[j + 1] - f_code_p[j]
+            st_p[i + 1] = st_p[i] + f_st_p[j + 1] - f_st_p[j]
+            st_q[i + 1] = st_q[i] + f_st_q[j + 1] - f_st_q[j]
+            j += 1
+    codes = np.empty(code_p[n], dtype=np.int8)
+    ends6 = np.empty((st_p[n], 6))
+    ring_len = np.empty(st_q[n], dtype=np.int64)
+    j = 0
+    for i in range(n):
+        k = src[i]
+        if k >= 0:
+            e6, rl, cd = m_ends6, m_ring_len, m_codes
+            p_a, q_a, c_a = m_st_p[k], m_st_q[k], m_code_p[k]
+        else:
+            e6, rl, cd = f_ends6, f_ring_len, f_codes
+            p_a, q_a, c_a = f_st_p[j], f_st_q[j], f_code_p[j]
+            j += 1
+        for p in range(st_p[i + 1] - st_p[i]):
+            for col in range(6):
+                ends6[st_p[i] + p, col] = e6[p_a + p, col]
+        for r in range(st_q[i + 1] - st_q[i]):
+            ring_len[st_q[i] + r] = rl[q_a + r]
+        for r in range(code_p[i + 1] - code_p[i]):
+            codes[code_p[i] + r] = cd[c_a + r]
+    pts, ring_start, ring_station = points_loops(ends6, ring_len, st_p, st_q, 0, x_rel, gx, gz,
+                                                 c, s, m, merge)  # fmt: skip
+    new = (place, cos_, sin_, near, gap, reach, ranges, code_p, codes, ends6, ring_len, st_p, st_q)
+    return pts, ring_start, ring_station, 0, new
+
+
+def empty_memo(bins: int) -> tuple:
+    """A memo of no station for an index of ``bins`` height bins (see
+    :func:`memo_cut_loops`)."""
+    none = np.empty(0)
+    zero = np.zeros(1, dtype=np.int64)
+    return (none, none, none, none, none, none, np.empty((0, bins, 2), dtype=np.int64), zero,
+            np.empty(0, dtype=np.int8), np.empty((0, 6)), np.empty(0, dtype=np.int64), zero,
+            zero)  # fmt: skip

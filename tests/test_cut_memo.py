@@ -1,0 +1,157 @@
+"""The exact cut's memo (hullslice.contour_loops): a station served from its recipe gives
+the points of a fresh cut to the last bit, and a station where a vertex has crossed its
+plane is cut afresh.
+
+The reference is the fresh cut by the same loops (:func:`cut_loops`), itself compared with
+numpy's and manifold3d's in ``tests/test_planecut.py``. Each test runs the loops as Python
+and, where numba is installed, compiled.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import hullslice as hs
+from hullslice import contour_loops, planecut_loops, shapes
+from hullslice.forces.fused_arrays import stage_arrays
+from hullslice.geometry import CUTTER_SIZE, MERGE, frame
+from hullslice.planecut import plane_index
+
+from .conftest import MESHES
+
+
+def _bodies():
+    yield "fuselage_model.obj", hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    yield "paper_prism.stl", hs.load_hull(MESHES / "paper_prism.stl", mass=1.0)
+    shaped = {
+        "cylinder": shapes.circular_cylinder(),
+        "asymmetric wedge": shapes.asymmetric_wedge_prism(),
+        "fuselage": shapes.fuselage(stations=40, points=24),
+    }
+    for name, (v, f) in shaped.items():
+        yield name, hs.Hull.from_arrays(v, f, name=name)
+
+
+BODIES = dict(_bodies())
+
+
+def _paths():
+    paths = [("python", {n: planecut_loops.LOOPS[n] for n in ("memo_cut", "cut", "ranges")})]
+    if planecut_loops.available():
+        paths.append(("numba", {n: planecut_loops.compiled(n) for n in ("memo_cut", "cut",
+                                                                         "ranges")}))  # fmt: skip
+    return paths
+
+
+PATHS = _paths()
+
+
+class Cutter:
+    """A hull's cut at a pitch and stations, by the memo and afresh, with the same loops."""
+
+    def __init__(self, hull, fns):
+        self.hull, self.fns = hull, fns
+        self.index = index = plane_index(hull)
+        self.reach = stage_arrays(hull, 1e-9 * hull.size, 8)[-2:]  # the body's x and z reach
+        self.g = np.asarray(hull.cg, dtype=np.float64)
+        self.memo = contour_loops.empty_memo(len(index.bin_zlo))
+        self.guess = np.full((0, len(index.bin_zlo), 2), -1)
+        self.merge = MERGE * CUTTER_SIZE
+
+    def _common(self, pitch):
+        ix = self.index
+        c, s = float(np.cos(pitch)), float(np.sin(pitch))
+        m = np.ascontiguousarray(frame(self.hull, pitch)._matrix[:2])
+        return ix, c, s, m
+
+    def served(self, x_rel, pitch) -> np.ndarray:
+        """Which stations the memo serves at a pitch (its station, or -1): the loops'
+        test, by their Python functions."""
+        ix, c, s, _ = self._common(pitch)
+        src = contour_loops.match_loops(x_rel, c, s, self.memo, *self.reach, ix.margin)
+        for i in np.flatnonzero(src <= -2):
+            k = -2 - src[i]
+            same = contour_loops.same_sides_loops(self.memo[6][k], self.memo[8], self.memo[7][k],
+                                                  ix.corners, x_rel[i], self.g[0], self.g[2],
+                                                  c, s)  # fmt: skip
+            src[i] = k if same else -1
+        return src
+
+    def by_memo(self, x_rel, pitch):
+        ix, c, s, m = self._common(pitch)
+        pts, start, station, status, self.memo = self.fns["memo_cut"](
+            ix.key, ix.bin_start, ix.bin_zlo, ix.bin_zhi, ix.bin_reach, ix.margin, ix.key_span,
+            ix.key_x0, ix.xmin, ix.corners, ix.ends, x_rel, self.g[0], self.g[2], c, s, m,
+            self.merge, ix.scratch(), planecut_loops.K_OUT, planecut_loops.K_IN, self.guess, 0,
+            self.memo, *self.reach,
+        )  # fmt: skip
+        assert status == 0
+        return pts, start, station
+
+    def fresh(self, x_rel, pitch):
+        ix, c, s, m = self._common(pitch)
+        first, last = self.fns["ranges"](
+            ix.key, ix.bin_start, ix.bin_zlo, ix.bin_zhi, ix.bin_reach, x_rel, self.g[0],
+            self.g[2], c, s, ix.margin, ix.key_span, ix.key_x0, self.guess, 0,
+        )  # fmt: skip
+        pts, start, station, status = self.fns["cut"](
+            first, last, ix.corners, ix.ends, x_rel, self.g[0], self.g[2], c, s, m, self.merge,
+            ix.scratch(), planecut_loops.K_OUT, planecut_loops.K_IN,
+        )  # fmt: skip
+        assert status == 0
+        return pts, start, station
+
+
+def _assert_same(got, want):
+    for a, b, what in zip(got, want, ("points", "ring starts", "ring stations"), strict=True):
+        np.testing.assert_array_equal(a, b, err_msg=what)
+
+
+@pytest.mark.parametrize("path", [p[0] for p in PATHS])
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_the_memo_gives_a_fresh_cuts_points_to_the_bit(name, path):
+    """A walk of 60 pitches (steps of 1e-5 to 3e-3 rad) and stations drifting and growing
+    in number, as a free-pitch run's: every cut by the memo equals the fresh cut to the
+    bit, most stations are served by it, and some are cut afresh."""
+    hull = BODIES[name]
+    cutter = Cutter(hull, dict(PATHS)[path])
+    rng = np.random.default_rng(7)
+    pitch = 0.06
+    _, stations = frame(hull, pitch).fixed_stations(24)
+    served = total = 0
+    for step in range(60):
+        pitch += rng.choice([1e-5, 3e-4, 3e-3]) * rng.choice([-1.0, 1.0])
+        lo, hi = 6 + step // 20, 12 + step // 6
+        x_rel = np.ascontiguousarray(stations[lo:hi] + 1e-4 * hull.size * np.sin(pitch * 40))
+        src = cutter.served(x_rel, pitch)
+        served += int((src >= 0).sum())
+        total += len(src)
+        _assert_same(cutter.by_memo(x_rel, pitch), cutter.fresh(x_rel, pitch))
+    assert served >= 0.3 * total, (served, total)
+    assert served < total
+
+
+@pytest.mark.parametrize("path", [p[0] for p in PATHS])
+def test_a_vertex_crossing_its_plane_is_cut_afresh(path):
+    """A station moved just past the candidate vertex nearest its plane (its recipe no
+    longer holds, though the faces out of its ranges are far): the sign test finds the
+    crossing, and the cut equals the fresh one."""
+    hull = BODIES["fuselage"]
+    cutter = Cutter(hull, dict(PATHS)[path])
+    pitch = 0.05
+    x_rel = np.ascontiguousarray(frame(hull, pitch).fixed_stations(40)[1][10:14])
+    cutter.by_memo(x_rel, pitch)
+    near = cutter.memo[3][1]  # the second station's nearest candidate vertex, m
+    assert 0.0 < near < 1e-3 * hull.size
+    moved = x_rel.copy()
+    for sign in (1.0, -1.0):
+        moved[1] = x_rel[1] + sign * 1.5 * near / np.cos(pitch)
+        src = cutter.served(moved, pitch)
+        got = cutter.by_memo(moved, pitch)
+        _assert_same(got, cutter.fresh(moved, pitch))
+        if src[1] == -1:
+            break
+        cutter.by_memo(x_rel, pitch)  # the memo of the first cut again
+    assert src[1] == -1  # one of the two ways crosses the nearest vertex
+    assert src[0] >= 0 and src[2] >= 0  # the others served
