@@ -37,8 +37,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import planecut_loops
+from . import planecut_loops, planecut_numpy
 from .caching import Entry, Once
+from .contour_loops import empty_memo
 from .reduce import row_max, row_min
 
 __all__ = ["PLANE_INDEX", "PlaneIndex", "plane_index"]
@@ -82,6 +83,8 @@ class PlaneIndex:
         The faces' search keys, ascending: ``bin * key_span + xmin - key_x0``.
     key_span, key_x0 : float
         The keys' span per bin (twice the body's length and more) and their ``x`` origin, m.
+    box : (2, 3) float
+        The vertices' lowest and highest coordinates, m.
     """
 
     vertices: np.ndarray
@@ -97,6 +100,7 @@ class PlaneIndex:
     key: np.ndarray
     key_span: float
     key_x0: float
+    box: np.ndarray
     #: Per thread, the compiled loops' scratch (one integer per edge), kept: a fresh one
     #: at every cut is mapped anew and faulted in page by page.
     _scratch: threading.local = field(default_factory=threading.local, repr=False)
@@ -109,17 +113,11 @@ class PlaneIndex:
             slot = self._scratch.slot = np.empty(max(self.n_edges, 1), dtype=np.int64)
         return slot
 
-    def _ends(self, cx, cz, face, rows, at, matrix) -> np.ndarray:
-        """The cutter's ``(Y, Z)``, ``(n, 2)``, of the corners ``at`` (flat indices into the
-        candidates' ``(q, 3)`` corners ``cx``, ``cz``) of the crossed faces ``face`` (the
-        candidates' ``rows``)."""
-        k = at - 3 * rows
-        x, y, z = cx.ravel()[at], self.corners[face, 6 + k], cz.ravel()[at]
-        m = matrix
-        return np.stack(
-            [m[0, 0] * x + m[0, 1] * y + m[0, 2] * z + m[0, 3],
-             m[1, 0] * x + m[1, 1] * y + m[1, 2] * z + m[1, 3]], axis=1
-        )  # fmt: skip
+    def reach(self, cg: np.ndarray) -> tuple[float, float]:
+        """The body's largest ``|x - x_g|`` and ``|z - z_g|`` from a centre of gravity, m."""
+        box = self.box
+        return (float(max(box[1, 0] - cg[0], cg[0] - box[0, 0])),
+                float(max(box[1, 2] - cg[2], cg[2] - box[0, 2])))  # fmt: skip
 
     @classmethod
     def of(cls, vertices: np.ndarray, faces: np.ndarray) -> PlaneIndex:
@@ -179,6 +177,7 @@ class PlaneIndex:
             key=key,
             key_span=key_span,
             key_x0=x0,
+            box=np.stack([v.min(axis=0), v.max(axis=0)]) if len(v) else np.zeros((2, 3)),
         )
 
     def candidates(
@@ -198,19 +197,29 @@ class PlaneIndex:
         return station, face
 
     def ranges(
-        self, x_rel: np.ndarray, pitch: float, cg: np.ndarray, compiled: bool = False
-    ) -> tuple[np.ndarray, np.ndarray]:
+        self,
+        x_rel: np.ndarray,
+        pitch: float,
+        cg: np.ndarray,
+        compiled: bool = False,
+        margin: float | None = None,
+        ends: bool = False,
+    ) -> tuple[np.ndarray, ...]:
         """The candidate faces of :meth:`candidates` as ranges: ``(first, last)``, (s, b)
         arrays, the faces ``first[i, j] .. last[i, j] - 1`` of bin ``j`` for station ``i``
         (none where ``last <= first``); ``compiled``: searched by numba's loops where numba
-        serves (:func:`~hullslice.planecut_loops.range_loops`: the same indices)."""
+        serves (:func:`~hullslice.planecut_loops.range_loops`: the same indices);
+        ``margin`` (m) widens them instead of :attr:`margin`; ``ends``: the plane's body
+        ``x`` at each bin's lowest and highest ``z`` too, ``(first, last, xa, xb)`` (by
+        numpy)."""
+        margin = self.margin if margin is None else margin
         c, s = np.cos(pitch), np.sin(pitch)
         x_rel = np.asarray(x_rel, dtype=np.float64)
         search = planecut_loops.compiled("ranges") if compiled else None
-        if search is not None:  # the same arithmetic and indices by loops
+        if search is not None and not ends:  # the same arithmetic and indices by loops
             return search(
                 self.key, self.bin_start, self.bin_zlo, self.bin_zhi, self.bin_reach, x_rel,
-                float(cg[0]), float(cg[2]), float(c), float(s), self.margin, self.key_span,
+                float(cg[0]), float(cg[2]), float(c), float(s), margin, self.key_span,
                 self.key_x0, np.empty((0, len(self.bin_zlo), 2), dtype=np.int64), 0,
             )  # fmt: skip
         # body x of each plane at a bin's lowest and highest z: r_x = (x_rel + r_z s) / c
@@ -218,8 +227,8 @@ class PlaneIndex:
         zb = (self.bin_zhi - cg[2]) * s
         xa = cg[0] + (x_rel[:, None] + za[None, :]) / c
         xb = cg[0] + (x_rel[:, None] + zb[None, :]) / c
-        lo = np.minimum(xa, xb) - self.bin_reach - self.margin
-        hi = np.maximum(xa, xb) + self.margin
+        lo = np.minimum(xa, xb) - self.bin_reach - margin
+        hi = np.maximum(xa, xb) + margin
         nb = len(self.bin_zlo)
         # one search of the faces' keys (bin number times a span beyond the body's length,
         # plus the lowest x): each bin's faces are a contiguous, sorted run of them
@@ -231,6 +240,8 @@ class PlaneIndex:
         hi = (base[:, None] + np.clip(hi.T - x0, 0.0, 0.5 * span)).ravel()
         first = np.searchsorted(self.key, lo, side="left").reshape(nb, -1).T
         last = np.searchsorted(self.key, hi, side="right").reshape(nb, -1).T
+        if ends:
+            return np.ascontiguousarray(first), np.ascontiguousarray(last), xa, xb
         return np.ascontiguousarray(first), np.ascontiguousarray(last)
 
     def cut(
@@ -253,46 +264,19 @@ class PlaneIndex:
         checking), or ``"auto"`` (numba's where installed, else numpy's).
         """
         x_rel = np.asarray(x_rel, dtype=np.float64)
-        n_st = len(x_rel)
         c, s = np.cos(pitch), np.sin(pitch)
         loops = _loops(path)
         if loops is not None:
             compiled = loops is not planecut_loops.LOOPS["cut"]
             first, last = self.ranges(x_rel, pitch, cg, compiled=compiled)
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
-        station, face = self.candidates(x_rel, pitch, cg)
-        corner = self.ends[face, 0:3]  # (q, 3): the vertices
-        cx, cz = self.corners[face, 0:3], self.corners[face, 3:6]
-        # each vertex's distance ahead of its station's plane, the same for all its faces
-        d = (cx - cg[0]) * c - (cz - cg[2]) * s
-        d -= x_rel[station][:, None]
-        ahead = d >= 0.0
-        code = ahead[:, 0] + 2 * ahead[:, 1].astype(np.int64) + 4 * ahead[:, 2]
-        rows = np.flatnonzero((code > 0) & (code < 7))
-        station, face, code = station[rows], face[rows], code[rows]
-        # the segment runs from the edge that leaves the ahead side (corner k ahead, k + 1
-        # not) to the one that enters it: counter-clockwise around the section seen along X
-        k_out, k_in = _K_OUT[code], _K_IN[code]
-        e_out = self.ends[face, 3 + k_out].astype(np.int64)
-        e_in = self.ends[face, 3 + k_in].astype(np.int64)
-        # the crossing point of each segment's first edge (every crossed edge is the first
-        # edge of exactly one segment of its station): from the edge's canonical ends
-        at_a = rows * 3 + k_out
-        at_b = rows * 3 + _NEXT[k_out]
-        swap = corner.ravel()[at_a] > corner.ravel()[at_b]
-        at_a, at_b = np.where(swap, at_b, at_a), np.where(swap, at_a, at_b)
-        da, db = d.ravel()[at_a], d.ravel()[at_b]
-        # the ends' coordinates from the faces' own corners (the vertices', exactly)
-        pa, pb = (
-            self._ends(cx, cz, face, rows, at_a, matrix),
-            self._ends(cx, cz, face, rows, at_b, matrix),
-        )
-        near_a = (np.abs(da) <= np.abs(db))[:, None]
-        ta = (da / (da - db))[:, None]
-        tb = (db / (db - da))[:, None]
-        point = np.where(near_a, pa + ta * (pb - pa), pb + tb * (pa - pb))
-        succ = _successors(station, e_out, e_in, self.n_edges)
-        return _contours(point, station, succ, n_st, merge)
+        # numpy's: each station from this thread's memo where its recipe serves
+        memo = getattr(self._scratch, "memo", None)
+        if memo is None or not np.array_equal(memo[0], cg):
+            memo = (np.array(cg, dtype=np.float64), empty_memo(len(self.bin_zlo)))
+        cuts, kept = planecut_numpy.memo_cut(self, memo[1], x_rel, pitch, cg, matrix, merge)
+        self._scratch.memo = (memo[0], kept)
+        return cuts
 
     def _cut_by_loops(
         self,
@@ -342,12 +326,6 @@ class Rings(list):
         return cls([tuple(ring) for ring in out], (points, start, ring_station))
 
 
-#: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
-#: next corner leaves the ahead side, and the one whose edge enters it.
-_K_OUT = planecut_loops.K_OUT
-_K_IN = planecut_loops.K_IN
-_NEXT = np.array([1, 2, 0])
-
 #: The loops' paths (see :meth:`PlaneIndex.cut`).
 PATHS = ("auto", "numpy", "numba", "python")
 
@@ -364,127 +342,6 @@ def _loops(path: str) -> Callable | None:
     if fn is None and path == "numba":
         raise ImportError("the compiled path needs numba: pip install hullslice[fast]")
     return fn
-
-
-def _successors(station: np.ndarray, e_out: np.ndarray, e_in: np.ndarray, n_edges: int):
-    """Each segment's successor: the segment of its station leaving from the edge it
-    enters."""
-    n = len(e_out)
-    # most crossed edges are crossed at one station only: a scatter by edge finds their
-    # segments; the edges of several stations (long faces) are matched by a sort
-    slot = np.empty(n_edges, dtype=np.int64)
-    slot[e_out] = np.arange(n)
-    succ = np.clip(slot[e_in], 0, max(n - 1, 0))
-    wrong = np.flatnonzero((e_out[succ] != e_in) | (station[succ] != station))
-    if len(wrong):
-        key_out = station * n_edges + e_out
-        order = np.argsort(key_out, kind="stable")
-        key_in = station[wrong] * n_edges + e_in[wrong]
-        at = np.minimum(np.searchsorted(key_out[order], key_in), n - 1)
-        succ[wrong] = order[at]
-        if not np.array_equal(key_out[succ[wrong]], key_in):
-            raise ValueError("the mesh is not closed along a cut: a contour does not close")
-    return succ
-
-
-def _contours(
-    point: np.ndarray, station: np.ndarray, succ: np.ndarray, n_st: int, merge: float
-) -> list[tuple[np.ndarray, ...]]:
-    """The closed contours of the segments' chains, one tuple per station."""
-    n = len(succ)
-    out: list[list[np.ndarray]] = [[] for _ in range(n_st)]
-    if n == 0:
-        return [tuple(c) for c in out]
-    walked = _walk(succ)
-    if walked is not None:  # the rings' own order, in one depth-first walk
-        ordered, first = point[walked[0]], walked[1]
-        length = np.diff(np.append(first, n))
-        roots = walked[0][first]
-    else:
-        ordered, roots, length = _jump(point, succ)
-    ring = np.repeat(np.arange(len(roots)), length)
-    first = np.cumsum(length) - length
-    prev = np.arange(n) - 1
-    prev[first] = first + length - 1
-    # repeated points dropped: a vertex on the plane (reached from several edges), or
-    # points closer than ``merge`` along both axes (a plane through a ring of vertices up
-    # to rounding; manifold3d's grid joins them too)
-    far = np.abs(ordered - ordered[prev]) > merge
-    keep = far[:, 0] | far[:, 1]
-    ordered, ring = ordered[keep], ring[keep]
-    length = np.bincount(ring, minlength=len(roots))
-    first = np.cumsum(length) - length
-    nxt = np.arange(len(ring)) + 1
-    full = length > 0
-    nxt[(first + length - 1)[full]] = first[full]
-    cross = ordered[:, 0] * ordered[nxt, 1] - ordered[nxt, 0] * ordered[:, 1]
-    area = np.bincount(ring, weights=cross, minlength=len(roots))
-    root_station = station[roots]
-    bounds = np.concatenate([[0], np.cumsum(length)])
-    for i in np.flatnonzero((length >= 3) & (area != 0.0)):  # contours with an area
-        out[int(root_station[i])].append(ordered[bounds[i] : bounds[i + 1]])
-    return [tuple(c) for c in out]
-
-
-def _walk(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
-    """The segments ring by ring, each ring from its lowest segment number along ``succ``,
-    the rings by that number: ``(order, first)``, the order and each ring's first place in
-    it; None where that is not what a depth-first walk gave (checked: then
-    :func:`_jump` orders them).
-
-    The walk is scipy's, from a root joined to every segment in turn: it follows the
-    first segment's ring to its end, returns to the root, and the next segment it has not
-    seen is the lowest of the next ring.
-    """
-    from scipy.sparse import csr_array
-    from scipy.sparse.csgraph import depth_first_order
-
-    n = len(succ)
-    indptr = np.append(np.arange(n + 1), 2 * n)
-    graph = csr_array(
-        (np.ones(2 * n), np.concatenate((succ, np.arange(n))), indptr), shape=(n + 1, n + 1)
-    )
-    order = depth_first_order(graph, n, directed=True, return_predecessors=False)[1:]
-    if len(order) != n:
-        return None
-    first = np.flatnonzero(np.append(True, order[1:] != succ[order[:-1]]))
-    last = np.append(first[1:], n) - 1
-    heads = order[first]
-    closed = np.array_equal(succ[order[last]], heads)
-    if not (closed and np.all(np.diff(heads) > 0)):
-        return None
-    if not np.array_equal(np.minimum.reduceat(order, first), heads):
-        return None
-    return order, first
-
-
-def _jump(point: np.ndarray, succ: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The points ring by ring as :func:`_walk` orders them, by pointer jumping (windows
-    of 1, 2, 4, ... segments): ``(ordered, roots, length)``, the points, each ring's
-    lowest segment and its length."""
-    n = len(succ)
-    # each chain's lowest segment number and each segment's distance ahead to it
-    label = np.arange(n)
-    dist = np.zeros(n, dtype=np.int64)
-    jump, width = succ, 1
-    while True:
-        lab2 = label[jump]
-        if width >= 2 and np.array_equal(lab2, label) and np.array_equal(label[succ], label):
-            break
-        better = lab2 < label
-        label = np.where(better, lab2, label)
-        dist = np.where(better, dist[jump] + width, dist)
-        jump, width = jump[jump], 2 * width
-    roots = np.flatnonzero(label == np.arange(n))  # ascending: grouped by station
-    size = np.bincount(label, minlength=n)
-    length = size[roots]
-    offset = np.zeros(n, dtype=np.int64)
-    offset[roots] = np.cumsum(length) - length
-    ring_size = size[label]
-    where = offset[label] + (ring_size - dist) % ring_size
-    ordered = np.empty_like(point)
-    ordered[where] = point
-    return ordered, roots, length
 
 
 #: A hull's plane index (geometry alone).

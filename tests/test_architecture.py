@@ -56,6 +56,7 @@ LAYERS: dict[str, int] = {
     "hullslice.planecut": 3,
     "hullslice.planecut_loops": 3,
     "hullslice.contour_loops": 3,
+    "hullslice.planecut_numpy": 3,
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
     "hullslice.frame_loops": 3,

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 import hullslice as hs
-from hullslice import contour_loops, planecut_loops, shapes
+from hullslice import contour_loops, planecut_loops, planecut_numpy, shapes
 from hullslice.forces.fused_arrays import stage_arrays
 from hullslice.geometry import CUTTER_SIZE, MERGE, frame
 from hullslice.planecut import plane_index
@@ -103,6 +103,18 @@ class Cutter:
         return pts, start, station
 
 
+def _walk(hull):
+    """60 pitches (steps of 1e-5 to 3e-3 rad) and their stations, drifting and growing in
+    number, as a free-pitch run's."""
+    rng = np.random.default_rng(7)
+    pitch = 0.06
+    _, stations = frame(hull, pitch).fixed_stations(24)
+    for step in range(60):
+        pitch += rng.choice([1e-5, 3e-4, 3e-3]) * rng.choice([-1.0, 1.0])
+        lo, hi = 6 + step // 20, 12 + step // 6
+        yield pitch, np.ascontiguousarray(stations[lo:hi] + 1e-4 * hull.size * np.sin(pitch * 40))
+
+
 def _assert_same(got, want):
     for a, b, what in zip(got, want, ("points", "ring starts", "ring stations"), strict=True):
         np.testing.assert_array_equal(a, b, err_msg=what)
@@ -116,14 +128,8 @@ def test_the_memo_gives_a_fresh_cuts_points_to_the_bit(name, path):
     bit, most stations are served by it, and some are cut afresh."""
     hull = BODIES[name]
     cutter = Cutter(hull, dict(PATHS)[path])
-    rng = np.random.default_rng(7)
-    pitch = 0.06
-    _, stations = frame(hull, pitch).fixed_stations(24)
     served = total = 0
-    for step in range(60):
-        pitch += rng.choice([1e-5, 3e-4, 3e-3]) * rng.choice([-1.0, 1.0])
-        lo, hi = 6 + step // 20, 12 + step // 6
-        x_rel = np.ascontiguousarray(stations[lo:hi] + 1e-4 * hull.size * np.sin(pitch * 40))
+    for pitch, x_rel in _walk(hull):
         src = cutter.served(x_rel, pitch)
         served += int((src >= 0).sum())
         total += len(src)
@@ -155,3 +161,33 @@ def test_a_vertex_crossing_its_plane_is_cut_afresh(path):
         cutter.by_memo(x_rel, pitch)  # the memo of the first cut again
     assert src[1] == -1  # one of the two ways crosses the nearest vertex
     assert src[0] >= 0 and src[2] >= 0  # the others served
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_numpys_memo_gives_a_fresh_cuts_contours_to_the_bit(name):
+    """numpy's path (:mod:`hullslice.planecut_numpy`) over the same walk: each cut by the
+    memo equals a cut with an empty memo (every station afresh) to the bit, most stations
+    are served, and the memo holds the last cut's stations (and more where it served
+    them all)."""
+    hull = BODIES[name]
+    index = plane_index(hull)
+    g = np.asarray(hull.cg, dtype=np.float64)
+    empty = contour_loops.empty_memo(len(index.bin_zlo))
+    memo = empty
+    served = total = 0
+    for pitch, x_rel in _walk(hull):
+        c, s = np.cos(pitch), np.sin(pitch)
+        src = planecut_numpy.served(index, memo, x_rel, c, s, g)
+        served += int((src >= 0).sum())
+        total += len(src)
+        m = frame(hull, pitch)._matrix
+        got, memo = planecut_numpy.memo_cut(index, memo, x_rel, pitch, g, m, MERGE * CUTTER_SIZE)
+        want, _ = planecut_numpy.memo_cut(index, empty, x_rel, pitch, g, m, MERGE * CUTTER_SIZE)
+        assert len(got) == len(want)
+        for a, b in zip(got, want, strict=True):
+            assert len(a) == len(b)
+            for p, q in zip(a, b, strict=True):
+                np.testing.assert_array_equal(p, q)
+        assert len(memo[0]) >= len(x_rel)  # these stations, and more where all were served
+    assert served >= 0.3 * total, (served, total)
+    assert served < total

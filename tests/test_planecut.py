@@ -578,7 +578,7 @@ def test_the_keel_line_by_numpy_equals_every_pair_at_once(name):
 def test_the_rings_walked_equal_the_rings_by_pointer_jumping(monkeypatch):
     """The contours' order of numpy's path: scipy's depth-first walk (checked) against
     the pointer jumping it replaces where the check fails, and against a plain walk."""
-    from hullslice import planecut
+    from hullslice import planecut_numpy
 
     rng = np.random.default_rng(3)
     for n in (1, 2, 7, 400, 3000):
@@ -589,15 +589,15 @@ def test_the_rings_walked_equal_the_rings_by_pointer_jumping(monkeypatch):
                 seen[j] = True
                 plain.append(j)
                 j = succ[j]
-        order, first = planecut._walk(succ)
+        order, first = planecut_numpy._walk(succ)
         assert np.array_equal(order, plain)
         point = rng.normal(size=(n, 2))
-        ordered, roots, length = planecut._jump(point, succ)
+        ordered, roots, length = planecut_numpy._jump(point, succ)
         assert np.array_equal(ordered, point[order])
         assert np.array_equal(roots, order[first])
         assert np.array_equal(length, np.diff(np.append(first, n)))
     # a body's cuts, walked and (the walk refused) jumped: the same contours
     hull = BODIES["fuselage_model.obj"]
     walked = _kernel_cuts(hull, "numpy")
-    monkeypatch.setattr(planecut, "_walk", lambda succ: None)
+    monkeypatch.setattr(planecut_numpy, "_walk", lambda succ: None)
     assert _largest_difference(walked, _kernel_cuts(hull, "numpy")) == 0.0

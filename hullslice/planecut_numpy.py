@@ -1,0 +1,332 @@
+"""numpy's path of the exact plane cut (:mod:`hullslice.planecut`): each station's recipe
+(the edges its plane crosses, contour by contour) from a fresh cut, the thread's memo of
+the stations cut last, and the contours from a recipe at a pitch.
+
+The same scheme as the compiled loops of :mod:`hullslice.contour_loops` (whose text gives
+the reasoning), with the same memo, in numpy's arithmetic: a station is served from the
+memo where no vertex can have changed side of its plane since its recipe was made, and
+its points are then a fresh cut's to the last bit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .contour_loops import MEMO_WIDTH, empty_memo
+from .planecut_loops import K_IN, K_OUT
+
+#: Each corner's next around its face.
+_NEXT = np.array([1, 2, 0])
+
+
+def memo_cut(index, memo, x_rel, pitch, cg, matrix, merge) -> tuple[list, tuple]:
+    """The sections at relative stations ``x_rel`` (m, ascending) at a pitch (rad), as
+    :meth:`hullslice.planecut.PlaneIndex.cut` gives them, each station from the ``memo``
+    where its recipe serves and the others cut afresh, and the memo of these stations."""
+    c, s = np.cos(pitch), np.sin(pitch)
+    src = served(index, memo, x_rel, c, s, cg)
+    fresh = np.flatnonzero(src < 0)
+    k0 = int(src[0]) if len(src) else 0
+    if len(fresh) or not np.array_equal(src, k0 + np.arange(len(src))):
+        new = recipe(index, x_rel[fresh], pitch, cg) if len(fresh) else None
+        memo, k0 = _combined(memo, src, new), 0
+    return contours(memo, k0, x_rel, c, s, cg, matrix, merge), memo
+
+
+def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
+    """:func:`hullslice.contour_loops.match_loops` and, where it asks for it,
+    :func:`~hullslice.contour_loops.same_sides_loops`, by numpy: each station's source in
+    the memo, or -1."""
+    mx, mc, ms, m_near, m_gap, m_reach = memo[:6]
+    n = len(x_rel)
+    if len(mx) == 0 or n == 0:
+        return np.full(n, -1, dtype=np.int64)
+    top = len(mx) - 1
+    j = np.searchsorted(mx, x_rel)
+    lo, hi = np.clip(j - 1, 0, top), np.clip(j, 0, top)
+    k = np.where(np.abs(mx[lo] - x_rel) < np.abs(mx[hi] - x_rel), lo, hi)  # the nearest
+    dc, ds, dx = np.abs(c - mc[k]), np.abs(s - ms[k]), np.abs(x_rel - mx[k])
+    reach_x, reach_z = index.reach(cg)
+    eps = index.margin
+    far_ok = (mc[k] - dc) * m_gap[k] - dc * m_reach[k] - ds * reach_z - dx > eps
+    quiet = dc * reach_x + ds * reach_z + dx < m_near[k] - eps
+    src = np.where(far_ok, k, -1)
+    check = np.flatnonzero(far_ok & ~quiet)
+    if len(check):  # the sign test on each candidate again, its side code compared
+        kk = k[check]
+        ranges = memo[6][kk]
+        station, face = _faces(ranges[:, :, 0], ranges[:, :, 1])
+        _, code = _sides(index, station, face, x_rel[check], c, s, cg)
+        want = memo[8][_spans(memo[7][kk], memo[7][kk + 1] - memo[7][kk])]
+        wrong = np.bincount(station[code != want], minlength=len(check))
+        src[check[wrong > 0]] = -1
+    return src
+
+
+def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
+    """The memo of stations ``x_rel`` cut afresh at a pitch (rad): their places, pitch,
+    nearest candidate vertex, gap and reach, ranges (widened by :data:`MEMO_WIDTH`), side
+    codes and recipe, as :func:`hullslice.contour_loops.memo_cut_loops` keeps them."""
+    c, s = np.cos(pitch), np.sin(pitch)
+    n_st = len(x_rel)
+    wide = index.margin + MEMO_WIDTH * index.key_span
+    first, last, xa, xb = index.ranges(x_rel, pitch, cg, margin=wide, ends=True)
+    station, face = _faces(first, last)
+    d, codes = _sides(index, station, face, x_rel, c, s, cg)
+    per = np.bincount(station, minlength=n_st)
+    code_p = np.concatenate(([0], np.cumsum(per)))
+    near = np.full(n_st, np.inf)
+    if len(face):
+        has = per > 0
+        near[has] = np.minimum.reduceat(np.abs(d).min(axis=1), code_p[:-1][has])
+    gap, reach = _gaps(index, first, last, xa, xb, cg)
+    rows = np.flatnonzero((codes > 0) & (codes < 7))
+    station, face, code = station[rows], face[rows], codes[rows]
+    # the segment runs from the edge that leaves the ahead side (corner k ahead, k + 1
+    # not) to the one that enters it: counter-clockwise around the section seen along X
+    k_out = K_OUT[code]
+    e_out = index.ends[face, 3 + k_out].astype(np.int64)
+    e_in = index.ends[face, 3 + K_IN[code]].astype(np.int64)
+    # each segment's first edge (every crossed edge is the first edge of exactly one
+    # segment of its station), its ends in canonical order (lower vertex number first)
+    ka, kb = k_out, _NEXT[k_out]
+    swap = index.ends[face, ka] > index.ends[face, kb]
+    ka, kb = np.where(swap, kb, ka), np.where(swap, ka, kb)
+    perm, roots, length = _rings(_successors(station, e_out, e_in, index.n_edges))
+    f, a, b = face[perm], ka[perm], kb[perm]
+    co = index.corners
+    ends6 = np.stack([co[f, a], co[f, 6 + a], co[f, 3 + a], co[f, b], co[f, 6 + b],
+                      co[f, 3 + b]], axis=1)  # fmt: skip
+    ring_station = station[roots]
+    st_q = np.concatenate(([0], np.cumsum(np.bincount(ring_station, minlength=n_st))))
+    points = np.bincount(ring_station, weights=length, minlength=n_st).astype(np.int64)
+    st_p = np.concatenate(([0], np.cumsum(points)))
+    return (np.array(x_rel, dtype=np.float64), np.full(n_st, c), np.full(n_st, s), near, gap,
+            reach, np.stack([first, last], axis=2), code_p, codes.astype(np.int8), ends6,
+            length.astype(np.int64), st_p, st_q)  # fmt: skip
+
+
+def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray, ...]]:
+    """The closed contours of the memo's stations ``k0``, ``k0 + 1``, ... cut by the planes
+    ``x_rel`` at a pitch (``c``, ``s``), one tuple per station: each point from its edge's
+    end nearer the plane, mapped by the first two rows of ``matrix`` to the cutter's
+    ``(Y, Z)``; repeated points (closer than ``merge`` along both axes) dropped and
+    contours with no area left out."""
+    n_st = len(x_rel)
+    ends6, ring_len, st_p, st_q = memo[9], memo[10], memo[11], memo[12]
+    p0, p1 = st_p[k0], st_p[k0 + n_st]
+    e = ends6[p0:p1].reshape(-1, 2, 3)  # each point's edge: its two ends' x y z
+    xs = np.repeat(x_rel, np.diff(st_p[k0 : k0 + n_st + 1]))
+    # both ends' distances ahead of the plane and their (Y, Z), as a fresh cut takes them
+    d = (e[:, :, 0] - cg[0]) * c - (e[:, :, 2] - cg[2]) * s
+    d -= xs[:, None]
+    m = matrix[:2]
+    p = m[:, 0] * e[:, :, 0, None] + m[:, 1] * e[:, :, 1, None] + m[:, 2] * e[:, :, 2, None]
+    p += m[:, 3]
+    da, db, pa, pb = d[:, 0], d[:, 1], p[:, 0], p[:, 1]
+    near_a = (np.abs(da) <= np.abs(db))[:, None]
+    ta = (da / (da - db))[:, None]
+    tb = (db / (db - da))[:, None]
+    ordered = np.where(near_a, pa + ta * (pb - pa), pb + tb * (pa - pb))
+    length = ring_len[st_q[k0] : st_q[k0 + n_st]]
+    root_station = np.repeat(np.arange(n_st), np.diff(st_q[k0 : k0 + n_st + 1]))
+    return _finish(ordered, length, root_station, n_st, merge)
+
+
+def _combined(memo, src, fresh) -> tuple:
+    """The memo of a call's stations: each one's from ``memo`` (``src[i] >= 0``) or, in
+    turn, from the ``fresh`` stations' memo (None where there is none)."""
+    if fresh is None:
+        fresh = empty_memo(memo[6].shape[1])
+    n = len(src)
+    take = src >= 0
+    j = np.cumsum(~take) - 1  # each fresh station's row in ``fresh``
+    rows = []
+    for a, b in zip(memo[:7], fresh[:7], strict=True):  # one row a station
+        row = np.empty((n, *a.shape[1:]), dtype=a.dtype)
+        row[take] = a[src[take]]
+        row[~take] = b[j[~take]]
+        rows.append(row)
+    flat = []
+    for start, data in ((7, 8), (11, 9), (12, 10)):  # each station's run of the data
+        old, new = memo[start], fresh[start]
+        count = np.empty(n, dtype=np.int64)
+        base = np.empty(n, dtype=np.int64)
+        k, f = src[take], j[~take]
+        count[take], base[take] = old[k + 1] - old[k], old[k]
+        count[~take], base[~take] = new[f + 1] - new[f], len(memo[data]) + new[f]
+        pieces = np.concatenate((memo[data], fresh[data]))
+        flat.append((np.concatenate(([0], np.cumsum(count))), pieces[_spans(base, count)]))
+    (code_p, codes), (st_p, ends6), (st_q, ring_len) = flat
+    return (*rows, code_p, codes, ends6, ring_len, st_p, st_q)
+
+
+def _gaps(index, first, last, xa, xb, cg) -> tuple[np.ndarray, np.ndarray]:
+    """Each station's gap along ``x`` from its plane to the faces out of its ranges, m, and
+    its plane's largest ``|x - gx|`` over the bins' heights (see
+    :func:`hullslice.contour_loops.recipe_loops`)."""
+    lo, hi = np.minimum(xa, xb), np.maximum(xa, xb)
+    end, start = index.bin_start[1:], index.bin_start[:-1]
+    after = np.where(last < end, index.xmin[np.minimum(last, len(index.xmin) - 1)] - hi, np.inf)
+    before = np.where(first > start, lo - index.bin_reach - index.xmin[np.maximum(first - 1, 0)],
+                      np.inf)  # fmt: skip
+    gap = np.minimum(after, before).min(axis=1, initial=np.inf)
+    reach = np.maximum(np.abs(xa - cg[0]), np.abs(xb - cg[0])).max(axis=1, initial=0.0)
+    return gap, reach
+
+
+def _spans(start: np.ndarray, count: np.ndarray) -> np.ndarray:
+    """The indices ``start[i] .. start[i] + count[i] - 1`` for each ``i``, one after another."""
+    count = np.asarray(count, dtype=np.int64)
+    total = int(count.sum())
+    if total == 0:
+        return np.empty(0, dtype=np.int64)
+    return np.arange(total) + np.repeat(np.asarray(start) - (np.cumsum(count) - count), count)
+
+
+def _faces(first: np.ndarray, last: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The candidate faces of ranges ``(first, last)`` ((s, b) arrays): ``(station, face)``
+    pairs, station by station, bin by bin."""
+    count = np.maximum(last - first, 0)
+    face = _spans(first.ravel(), count.ravel())
+    return np.repeat(np.arange(len(first)), count.sum(axis=1)), face
+
+
+def _sides(index, station, face, x_rel, c, s, cg) -> tuple[np.ndarray, np.ndarray]:
+    """Each candidate's corners' distances ahead of its station's plane, ``(q, 3)``, and
+    its side code (bit ``k`` set for corner ``k`` ahead: a vertex on the plane counts as
+    ahead, the same for all its faces)."""
+    cx, cz = index.corners[face, 0:3], index.corners[face, 3:6]
+    d = (cx - cg[0]) * c - (cz - cg[2]) * s
+    d -= x_rel[station][:, None]
+    ahead = d >= 0.0
+    return d, ahead[:, 0] + 2 * ahead[:, 1].astype(np.int64) + 4 * ahead[:, 2]
+
+
+def _successors(station: np.ndarray, e_out: np.ndarray, e_in: np.ndarray, n_edges: int):
+    """Each segment's successor: the segment of its station leaving from the edge it
+    enters."""
+    n = len(e_out)
+    # most crossed edges are crossed at one station only: a scatter by edge finds their
+    # segments; the edges of several stations (long faces) are matched by a sort
+    slot = np.empty(n_edges, dtype=np.int64)
+    slot[e_out] = np.arange(n)
+    succ = np.clip(slot[e_in], 0, max(n - 1, 0))
+    wrong = np.flatnonzero((e_out[succ] != e_in) | (station[succ] != station))
+    if len(wrong):
+        key_out = station * n_edges + e_out
+        order = np.argsort(key_out, kind="stable")
+        key_in = station[wrong] * n_edges + e_in[wrong]
+        at = np.minimum(np.searchsorted(key_out[order], key_in), n - 1)
+        succ[wrong] = order[at]
+        if not np.array_equal(key_out[succ[wrong]], key_in):
+            raise ValueError("the mesh is not closed along a cut: a contour does not close")
+    return succ
+
+
+def _rings(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The segments' chains as rings, each from its lowest segment, the rings by it:
+    ``(perm, roots, length)``, the segments in ring order, each ring's first segment and
+    its length."""
+    n = len(succ)
+    if n == 0:
+        none = np.empty(0, dtype=np.int64)
+        return none, none, none
+    walked = _walk(succ)
+    if walked is not None:  # the rings' own order, in one depth-first walk
+        perm, first = walked
+        return perm, perm[first], np.diff(np.append(first, n))
+    return _jump(np.arange(n), succ)
+
+
+def _finish(
+    ordered: np.ndarray, length: np.ndarray, root_station: np.ndarray, n_st: int, merge: float
+) -> list[tuple[np.ndarray, ...]]:
+    """The closed contours of the points ``ordered`` ring by ring (each ring's ``length``
+    and station), one tuple per station."""
+    out: list[list[np.ndarray]] = [[] for _ in range(n_st)]
+    n = len(ordered)
+    if n == 0:
+        return [tuple(c) for c in out]
+    ring = np.repeat(np.arange(len(length)), length)
+    first = np.cumsum(length) - length
+    prev = np.arange(n) - 1
+    prev[first] = first + length - 1
+    # repeated points dropped: a vertex on the plane (reached from several edges), or
+    # points closer than ``merge`` along both axes (a plane through a ring of vertices up
+    # to rounding; manifold3d's grid joins them too)
+    far = np.abs(ordered - ordered[prev]) > merge
+    keep = far[:, 0] | far[:, 1]
+    ordered, ring = ordered[keep], ring[keep]
+    length = np.bincount(ring, minlength=len(length))
+    first = np.cumsum(length) - length
+    nxt = np.arange(len(ring)) + 1
+    full = length > 0
+    nxt[(first + length - 1)[full]] = first[full]
+    cross = ordered[:, 0] * ordered[nxt, 1] - ordered[nxt, 0] * ordered[:, 1]
+    area = np.bincount(ring, weights=cross, minlength=len(length))
+    bounds = np.concatenate([[0], np.cumsum(length)])
+    for i in np.flatnonzero((length >= 3) & (area != 0.0)):  # contours with an area
+        out[int(root_station[i])].append(ordered[bounds[i] : bounds[i + 1]])
+    return [tuple(c) for c in out]
+
+
+def _walk(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The segments ring by ring, each ring from its lowest segment number along ``succ``,
+    the rings by that number: ``(order, first)``, the order and each ring's first place in
+    it; None where that is not what a depth-first walk gave (checked: then
+    :func:`_jump` orders them).
+
+    The walk is scipy's, from a root joined to every segment in turn: it follows the
+    first segment's ring to its end, returns to the root, and the next segment it has not
+    seen is the lowest of the next ring.
+    """
+    from scipy.sparse import csr_array
+    from scipy.sparse.csgraph import depth_first_order
+
+    n = len(succ)
+    indptr = np.append(np.arange(n + 1), 2 * n)
+    graph = csr_array(
+        (np.ones(2 * n), np.concatenate((succ, np.arange(n))), indptr), shape=(n + 1, n + 1)
+    )
+    order = depth_first_order(graph, n, directed=True, return_predecessors=False)[1:]
+    if len(order) != n:
+        return None
+    first = np.flatnonzero(np.append(True, order[1:] != succ[order[:-1]]))
+    last = np.append(first[1:], n) - 1
+    heads = order[first]
+    closed = np.array_equal(succ[order[last]], heads)
+    if not (closed and np.all(np.diff(heads) > 0)):
+        return None
+    if not np.array_equal(np.minimum.reduceat(order, first), heads):
+        return None
+    return order, first
+
+
+def _jump(point: np.ndarray, succ: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The points ring by ring as :func:`_walk` orders them, by pointer jumping (windows
+    of 1, 2, 4, ... segments): ``(ordered, roots, length)``, the points, each ring's
+    lowest segment and its length."""
+    n = len(succ)
+    # each chain's lowest segment number and each segment's distance ahead to it
+    label = np.arange(n)
+    dist = np.zeros(n, dtype=np.int64)
+    jump, width = succ, 1
+    while True:
+        lab2 = label[jump]
+        if width >= 2 and np.array_equal(lab2, label) and np.array_equal(label[succ], label):
+            break
+        better = lab2 < label
+        label = np.where(better, lab2, label)
+        dist = np.where(better, dist[jump] + width, dist)
+        jump, width = jump[jump], 2 * width
+    roots = np.flatnonzero(label == np.arange(n))  # ascending: grouped by station
+    size = np.bincount(label, minlength=n)
+    length = size[roots]
+    offset = np.zeros(n, dtype=np.int64)
+    offset[roots] = np.cumsum(length) - length
+    ring_size = size[label]
+    where = offset[label] + (ring_size - dist) % ring_size
+    ordered = np.empty_like(point)
+    ordered[where] = point
+    return ordered, roots, length
