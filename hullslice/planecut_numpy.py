@@ -115,22 +115,26 @@ def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray,
     n_st = len(x_rel)
     ends6, ring_len, st_p, st_q = memo[9], memo[10], memo[11], memo[12]
     p0, p1 = st_p[k0], st_p[k0 + n_st]
-    e = ends6[p0:p1].reshape(-1, 2, 3)  # each point's edge: its two ends' x y z
+    xa, ya, za, xb, yb, zb = np.ascontiguousarray(ends6[p0:p1].T)  # each point's edge
     xs = np.repeat(x_rel, np.diff(st_p[k0 : k0 + n_st + 1]))
     # both ends' distances ahead of the plane and their (Y, Z), as a fresh cut takes them
-    d = (e[:, :, 0] - cg[0]) * c - (e[:, :, 2] - cg[2]) * s
-    d -= xs[:, None]
-    m = matrix[:2]
-    p = m[:, 0] * e[:, :, 0, None] + m[:, 1] * e[:, :, 1, None] + m[:, 2] * e[:, :, 2, None]
-    p += m[:, 3]
-    da, db, pa, pb = d[:, 0], d[:, 1], p[:, 0], p[:, 1]
-    near_a = (np.abs(da) <= np.abs(db))[:, None]
-    ta = (da / (da - db))[:, None]
-    tb = (db / (db - da))[:, None]
-    ordered = np.where(near_a, pa + ta * (pb - pa), pb + tb * (pa - pb))
+    da = (xa - cg[0]) * c - (za - cg[2]) * s
+    da -= xs
+    db = (xb - cg[0]) * c - (zb - cg[2]) * s
+    db -= xs
+    m = matrix
+    y_a = m[0, 0] * xa + m[0, 1] * ya + m[0, 2] * za + m[0, 3]
+    z_a = m[1, 0] * xa + m[1, 1] * ya + m[1, 2] * za + m[1, 3]
+    y_b = m[0, 0] * xb + m[0, 1] * yb + m[0, 2] * zb + m[0, 3]
+    z_b = m[1, 0] * xb + m[1, 1] * yb + m[1, 2] * zb + m[1, 3]
+    near_a = np.abs(da) <= np.abs(db)
+    ta = da / (da - db)
+    tb = db / (db - da)
+    y = np.where(near_a, y_a + ta * (y_b - y_a), y_b + tb * (y_a - y_b))
+    z = np.where(near_a, z_a + ta * (z_b - z_a), z_b + tb * (z_a - z_b))
     length = ring_len[st_q[k0] : st_q[k0 + n_st]]
     root_station = np.repeat(np.arange(n_st), np.diff(st_q[k0 : k0 + n_st + 1]))
-    return _finish(ordered, length, root_station, n_st, merge)
+    return _finish(y, z, length, root_station, n_st, merge)
 
 
 def _combined(memo, src, fresh) -> tuple:
@@ -240,32 +244,39 @@ def _rings(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
 
 def _finish(
-    ordered: np.ndarray, length: np.ndarray, root_station: np.ndarray, n_st: int, merge: float
+    y: np.ndarray,
+    z: np.ndarray,
+    length: np.ndarray,
+    root_station: np.ndarray,
+    n_st: int,
+    merge: float,
 ) -> list[tuple[np.ndarray, ...]]:
-    """The closed contours of the points ``ordered`` ring by ring (each ring's ``length``
+    """The closed contours of the points ``(y, z)`` ring by ring (each ring's ``length``
     and station), one tuple per station."""
     out: list[list[np.ndarray]] = [[] for _ in range(n_st)]
-    n = len(ordered)
+    n = len(y)
     if n == 0:
         return [tuple(c) for c in out]
-    ring = np.repeat(np.arange(len(length)), length)
+    rings = len(length)
+    ring = np.repeat(np.arange(rings), length)
     first = np.cumsum(length) - length
     prev = np.arange(n) - 1
     prev[first] = first + length - 1
     # repeated points dropped: a vertex on the plane (reached from several edges), or
     # points closer than ``merge`` along both axes (a plane through a ring of vertices up
     # to rounding; manifold3d's grid joins them too)
-    far = np.abs(ordered - ordered[prev]) > merge
-    keep = far[:, 0] | far[:, 1]
-    ordered, ring = ordered[keep], ring[keep]
-    length = np.bincount(ring, minlength=len(length))
-    first = np.cumsum(length) - length
+    keep = (np.abs(y - y[prev]) > merge) | (np.abs(z - z[prev]) > merge)
+    if not keep.all():
+        y, z, ring = y[keep], z[keep], ring[keep]
+        length = np.bincount(ring, minlength=rings)
+        first = np.cumsum(length) - length
     nxt = np.arange(len(ring)) + 1
     full = length > 0
     nxt[(first + length - 1)[full]] = first[full]
-    cross = ordered[:, 0] * ordered[nxt, 1] - ordered[nxt, 0] * ordered[:, 1]
-    area = np.bincount(ring, weights=cross, minlength=len(length))
+    cross = y * z[nxt] - y[nxt] * z
+    area = np.bincount(ring, weights=cross, minlength=rings)
     bounds = np.concatenate([[0], np.cumsum(length)])
+    ordered = np.stack([y, z], axis=1)
     for i in np.flatnonzero((length >= 3) & (area != 0.0)):  # contours with an area
         out[int(root_station[i])].append(ordered[bounds[i] : bounds[i + 1]])
     return [tuple(c) for c in out]
