@@ -266,17 +266,37 @@ class PlaneIndex:
         x_rel = np.asarray(x_rel, dtype=np.float64)
         c, s = np.cos(pitch), np.sin(pitch)
         loops = _loops(path)
-        if loops is not None:
-            compiled = loops is not planecut_loops.LOOPS["cut"]
-            first, last = self.ranges(x_rel, pitch, cg, compiled=compiled)
+        if loops is planecut_loops.LOOPS["cut"]:  # the Python loops, afresh
+            first, last = self.ranges(x_rel, pitch, cg)
             return self._cut_by_loops(loops, first, last, x_rel, c, s, cg, matrix, merge)
-        # numpy's: each station from this thread's memo where its recipe serves
+        # each station from this thread's memo where its recipe serves (the same memo for
+        # the compiled loops and numpy's)
         memo = getattr(self._scratch, "memo", None)
         if memo is None or not np.array_equal(memo[0], cg):
             memo = (np.array(cg, dtype=np.float64), empty_memo(len(self.bin_zlo)))
-        cuts, kept = planecut_numpy.memo_cut(self, memo[1], x_rel, pitch, cg, matrix, merge)
+        fn = None if loops is None else planecut_loops.compiled("memo_cut")
+        if fn is None:
+            cuts, kept = planecut_numpy.memo_cut(self, memo[1], x_rel, pitch, cg, matrix, merge)
+        else:
+            cuts, kept = self._cut_by_memo(fn, memo[1], x_rel, c, s, cg, matrix, merge)
         self._scratch.memo = (memo[0], kept)
         return cuts
+
+    def _cut_by_memo(self, fn, memo, x_rel, c, s, cg, matrix, merge) -> tuple[Rings, tuple]:
+        """:meth:`cut` by ``fn``, the compiled :func:`~hullslice.contour_loops.memo_cut_loops`,
+        from ``memo``: the sections and the memo of these stations."""
+        nb = len(self.bin_zlo)
+        m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
+        points, start, ring_station, status, kept = fn(
+            self.key, self.bin_start, self.bin_zlo, self.bin_zhi, self.bin_reach, self.margin,
+            self.key_span, self.key_x0, self.xmin, self.corners, self.ends, x_rel,
+            float(cg[0]), float(cg[2]), float(c), float(s), m, float(merge), self.scratch(),
+            planecut_loops.K_OUT, planecut_loops.K_IN, np.empty((0, nb, 2), dtype=np.int64), 0,
+            memo, *self.reach(cg),
+        )  # fmt: skip
+        if status:
+            raise ValueError("the mesh is not closed along a cut: a contour does not close")
+        return Rings.of(points, start, ring_station, len(x_rel)), kept
 
     def _cut_by_loops(
         self,
