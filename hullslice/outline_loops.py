@@ -15,10 +15,10 @@ import numpy as np
 #: use (see :data:`hullslice.planecut_loops.U0`).
 U1 = np.uint64(1)
 
-__all__ = ["outline_loops", "stable_order_loops"]
+__all__ = ["hinted_loops", "outline_loops", "stable_order_loops"]
 
 
-def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap):
+def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap, hint):
     """:meth:`hullslice.kernel.outline.Outline.of` of the exact cut's contours as
     :func:`~hullslice.planecut_loops.cut_loops` gives them (``points``, ``ring_start``,
     ``ring_station``; the rings grouped by station), each point divided by ``scale``
@@ -36,6 +36,12 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine)``, the
     edges in their final order (by station, then by the height of their lower end: the
     order of numpy's stable sort, found by :func:`stable_order_loops`).
+
+    ``hint`` (integers, at least one) holds an order found before (an earlier pitch's of
+    the same stations): its count ``hint[0]``, then the edges. Where it is this call's
+    stable order (:func:`hinted_loops` checks it) it is taken instead of sorting. It is
+    updated to this call's order where that fits (else ``hint[0]`` is -1); ``[-1]`` is
+    no hint.
     """
     n = ring_start[-1]
     r = len(ring_station)
@@ -139,11 +145,16 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         for j in range(m):
             i = np.uint64(order[j])
             key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
-        if not (grouped and stable_order_loops(key, kept, order)):
+        if not (grouped and (hinted_loops(key, order, hint)
+                             or stable_order_loops(key, kept, order))):  # fmt: skip
             sub = np.empty(m)
             for j in range(m):
                 sub[j] = key[order[j]]
             order = order[np.argsort(sub, kind="mergesort")]
+    hint[0] = m if len(hint) > m else -1  # this call's order, for the next
+    if len(hint) > m:
+        for j in range(m):
+            hint[j + 1] = order[j]
     n = m
     ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
@@ -157,6 +168,31 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         ok, o_station, ya, za, yb, zb, o_zlo, kept, area, o_contour, c_area,
         part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
     )  # fmt: skip
+
+
+def hinted_loops(key, order, hint):
+    """Whether the order ``hint[1:]`` (of ``hint[0]`` edges) is numpy's stable sort by
+    ``key`` of the edges ``order`` (ascending): the same edges, each once, their keys
+    ascending and equal keys in ascending edge order (no NaN). Where it is, ``order``
+    takes it."""
+    m = len(order)
+    if hint[0] != m or len(hint) <= m or m == 0:
+        return False
+    mark = np.zeros(len(key), dtype=np.bool_)
+    for j in range(m):
+        mark[order[j]] = True
+    for j in range(m):
+        i = hint[j + 1]
+        if i < 0 or i >= len(key) or not mark[i]:
+            return False
+        mark[i] = False  # each edge once
+    for j in range(1, m):
+        a, b = hint[j], hint[j + 1]
+        if not (key[a] < key[b] or (key[a] == key[b] and a < b)):
+            return False
+    for j in range(m):
+        order[j] = hint[j + 1]
+    return True
 
 
 def stable_order_loops(key, start, order):

@@ -68,7 +68,7 @@ from .keel_loops import (
     side_view_loops,
     sorted_loops,
 )
-from .outline_loops import outline_loops, stable_order_loops
+from .outline_loops import hinted_loops, outline_loops, stable_order_loops
 from .slices_loops import (
     ENTRY,
     I_MOVED,
@@ -106,7 +106,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "c9ee113eace9f979"
+STAGE_HELPERS_DIGEST = "bd3f8c7f930649e1"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -144,8 +144,8 @@ def cut_loops(
 def stage_loops(
     a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
     key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot, guess,
-    k_out_of, k_in_of, merge, tol, n, xmin, reach_x, reach_z, c, s, z_cg, w, u, q, fout, iout,
-    scal, extra, opts, a_c, v_c, memo,
+    hint, k_out_of, k_in_of, merge, tol, n, xmin, reach_x, reach_z, c, s, z_cg, w, u, q, fout,
+    iout, scal, extra, opts, a_c, v_c, memo,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
     (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line
@@ -162,7 +162,8 @@ def stage_loops(
     ``xmin`` the index's faces' lowest ``x``, ``reach_x`` and ``reach_z`` the body's reach
     from ``g``) with the cutter's map of :func:`hullslice.geometry._frame`
     (the body's ``bounds`` and ``scale``); their outline (``tol``, by
-    :func:`~hullslice.outline_loops.outline_loops`); and
+    :func:`~hullslice.outline_loops.outline_loops`, from the thread's ``hint`` of its
+    order at the last stage); and
     :func:`~hullslice.held_loops.pitch_loops` on them with
     the body's velocities ``w``, ``u`` and ``q`` (``fout`` to ``v_c`` as there). ``c`` and
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
@@ -236,7 +237,8 @@ def stage_loops(
     for k in (k0, k0 + 1, k1 - 1, k1):
         if w0 <= k < w1:
             cap[k - w0] = math.inf
-    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap)
+    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap,
+                        hint)  # fmt: skip
     if not out[0]:
         return 103, none2, none1, none1, memo
     extra[0], extra[1] = w0, n_cut
@@ -271,7 +273,8 @@ def stage_loops(
     )
     if closed != 0:
         return 102, none2, none1, none1, memo
-    o = outline_loops(p_f, rs_f, rst_f, n_f, tol, scale, oy, oz, np.full(n_f, math.inf))
+    o = outline_loops(p_f, rs_f, rst_f, n_f, tol, scale, oy, oz, np.full(n_f, math.inf),
+                      np.full(1, -1, dtype=np.int64))  # fmt: skip
     if not o[0]:
         return 103, none2, none1, none1, memo
     e_f, f_f = pitch_entries_loops((o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9],
@@ -347,7 +350,8 @@ def _inject(callee: str, jit: Callable) -> None:
             space[py.__name__] = _HELPERS[callee]
 
 
-LOOPS.update(outline=outline_loops, order=stable_order_loops, envelope=envelope_loops,
+LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loops,
+    envelope=envelope_loops,
     side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
     near=near_loops,
     sorted=sorted_loops, walk=lowest_walk_loops, lower=lower_loops, runs=runs_loops,
@@ -371,7 +375,7 @@ _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
           "keel_arrays", "gallop", "near", "ranges", "recipe", "points", "match", "sides",
-          "memo_cut", "cut", "order", "outline", *_HELD, "wetted",
+          "memo_cut", "cut", "order", "hinted", "outline", *_HELD, "wetted",
           "h_entries", "h_fcount", "h_fentries", "pitch")  # fmt: skip
 CALLS = {
     "cut": ("recipe", "points"),
@@ -389,7 +393,7 @@ CALLS = {
     "lowest_at": ("search",),
     "ranges": ("search", "gallop", "near"),
     "stage": _STAGE,
-    "outline": ("order",),
+    "outline": ("order", "hinted"),
     "keel_arrays": ("row",),
     "h_entries": ("wetted",),
 }

@@ -7,6 +7,7 @@ must have its edge counts and its areas to 1e-12 of the size squared.
 
 from __future__ import annotations
 
+import itertools
 import subprocess
 import sys
 
@@ -25,6 +26,8 @@ from .conftest import MESHES
 #: Areas to this share of the size squared (manifold3d's grid is 1e-12 of the size).
 AREA_TOL = 1e-12
 PITCHES = (-0.35, -0.05, 0.08, 0.3, 0.7)
+#: No order found before, for the outline's loops.
+NO_HINT = np.full(1, -1, dtype=np.int64)
 
 
 def _area(c: np.ndarray) -> float:
@@ -409,11 +412,12 @@ def test_the_outline_capped_keeps_the_edges_below_in_the_full_outlines_order(nam
         points, ring_start, ring_station = cut.flat
         n_st = len(cut)
         full = loops(points, ring_start, ring_station, n_st, 1e-9, scale, *origin,
-                     np.full(n_st, np.inf))  # fmt: skip
+                     np.full(n_st, np.inf), NO_HINT.copy())  # fmt: skip
         zlo, station = full[6], full[1]
         cap = rng.uniform(zlo.min(), zlo.max(), n_st)
         cap[rng.random(n_st) < 0.2] = np.inf
-        got = loops(points, ring_start, ring_station, n_st, 1e-9, scale, *origin, cap)
+        got = loops(points, ring_start, ring_station, n_st, 1e-9, scale, *origin, cap,
+                    NO_HINT.copy())  # fmt: skip
         keep = zlo < cap[station]
         assert 0 < keep.sum() < len(keep)
         for k in (1, 2, 3, 4, 5, 6, 9):  # station, the ends, the lower end, the contour
@@ -424,13 +428,53 @@ def test_the_outline_capped_keeps_the_edges_below_in_the_full_outlines_order(nam
             np.testing.assert_array_equal(got[k], full[k])
 
 
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "cylinder"])
+def test_the_outlines_order_from_a_hint_is_the_sorted_one(name, monkeypatch):
+    """An order found before (the hint) is taken only where it is the stable sort of this
+    call's edges: a stale hint (another pitch's, shuffled, or one edge twice) and none
+    give the same outline to the bit, and the call leaves its own order in the hint; the
+    right order is taken without sorting (the Python loops, their sort counted)."""
+    from hullslice import outline_loops as module
+
+    hull = BODIES[name]
+    loops = planecut_loops.compiled("outline") or planecut_loops.outline_loops
+    cuts = _kernel_cuts(hull, "numba" if planecut_loops.available() else "python")
+    rng = np.random.default_rng(5)
+    sorts: list[int] = []
+    real = module.stable_order_loops
+    monkeypatch.setattr(module, "stable_order_loops", lambda *a: sorts.append(1) or real(*a))
+    for a, b in itertools.pairwise(cuts):
+        args = (*b.flat, len(b), 1e-9, 7.5, 0.3, -1.25, np.full(len(b), np.inf))
+        want = loops(*args, NO_HINT.copy())
+        m = len(want[1])
+        assert m > 2
+        hint = np.full(m + 8, -1, dtype=np.int64)
+        loops(*a.flat, len(a), 1e-9, 7.5, 0.3, -1.25, np.full(len(a), np.inf), hint)
+        shuffled = np.concatenate([[m], rng.permutation(m), [-1]])
+        twice = np.concatenate([[m], np.arange(m - 1), [0], [-1]])
+        for given in (hint, shuffled, twice):
+            got = loops(*args, given)
+            for k in range(1, 19):
+                np.testing.assert_array_equal(got[k], want[k])
+        right = twice  # now this call's order
+        assert right[0] == m
+        del sorts[:]
+        got = planecut_loops.LOOPS["outline"](*args, right.copy())  # the Python loops
+        for k in range(1, 19):
+            np.testing.assert_array_equal(got[k], want[k])
+        assert not sorts  # taken, not sorted
+        planecut_loops.LOOPS["outline"](*args, shuffled.copy() * 0 - 1)
+        assert sorts  # no hint: sorted
+
+
 def test_a_section_with_a_hole_is_outlined_by_numpy():
     """A hole (a clockwise contour) needs numpy's containment tests: the loops decline."""
     ring = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]])
     hole = np.array([[0.5, 0.5], [0.5, 1.5], [1.5, 1.5], [1.5, 0.5]])
     points = np.concatenate([ring, hole])
     out = planecut_loops.outline_loops(points, np.array([0, 4, 8]), np.array([0, 0]), 1,
-                                       1e-9, 1.0, 0.0, 0.0, np.full(1, np.inf))  # fmt: skip
+                                       1e-9, 1.0, 0.0, 0.0, np.full(1, np.inf),
+                                       NO_HINT.copy())  # fmt: skip
     assert out[0] is False
     from hullslice.kernel.outline import Outline
     from hullslice.planecut import Rings

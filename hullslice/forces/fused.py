@@ -58,6 +58,10 @@ SEEN_PITCHES = 8
 #: :meth:`FusedEvaluation._one_call` returns in place of the contours then (numpy's path
 #: sums no section: zero, and its result has none).
 DRY_STATUS = 1
+#: The one-call stage's hint of its outline's order (see
+#: :func:`~hullslice.outline_loops.outline_loops`): room for this many edges less one, a
+#: few hundred kB a thread; a stage with more edges sorts them.
+HINT_SIZE = 1 << 15
 DRY = "dry"
 #: The loops' columns per slice: room for the entries of sections in several wetted
 #: pieces (a fuselage and its two nacelles); beyond it numpy's path serves.
@@ -346,8 +350,9 @@ class FusedEvaluation:
 
     def _kit(self) -> tuple:
         """What :func:`~hullslice.planecut_loops.stage_loops` reads of the hull, in its order
-        up to ``reach_z``, with this thread's own: the ends' order, the scratch array and
-        the candidate ranges found last, by station (its guesses). The thread's memo of
+        up to ``reach_z``, with this thread's own: the ends' order, the scratch array, the
+        candidate ranges found last, by station (its guesses), and the outline's last
+        order (its hint, :data:`HINT_SIZE` integers). The thread's memo of
         the stations cut last (:func:`~hullslice.contour_loops.memo_cut_loops`) is kept
         beside it."""
         args = self._stage_args
@@ -356,7 +361,8 @@ class FusedEvaluation:
         index = plane_index(self.hull)
         order = _side_order(self.hull, 2 * len(args[0]))
         guess = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
-        return (*args[:2], order, *args[2:18], index.scratch(), guess, *args[18:])
+        hint = np.full(HINT_SIZE, -1, dtype=np.int64)  # the outline's last order
+        return (*args[:2], order, *args[2:18], index.scratch(), guess, hint, *args[18:])
 
     def stage_totals(
         self, pitch: float, z_cg: float, w: float, u: float, q: float

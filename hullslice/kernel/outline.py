@@ -97,7 +97,8 @@ class Outline:
         if loops is not None and flat is not None:
             oy, oz = (float(v) for v in origin)
             every = np.full(len(polygons), np.inf)  # all edges of every station
-            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz, every)
+            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz, every,
+                        np.full(1, -1, dtype=np.int64))  # fmt: skip
             if out[0]:
                 return cls(*out[1:])
         s = len(polygons)
