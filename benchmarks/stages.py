@@ -103,7 +103,7 @@ def run(t_end: float, window: int) -> tuple[Clock, int]:
     clock = Clock(window)
     clock.wrap(geometry, "_frame", "frame")
     clock.wrap(planecut.PlaneIndex, "ranges", "ranges")
-    clock.wrap(planecut.PlaneIndex, "_cut_by_loops", "cut")
+    clock.wrap(planecut.PlaneIndex, "_cut_by_memo", "cut")
     clock.wrap_classmethod(outline.Outline, "of", "outline")
     clock.wrap(fixed.FixedCut, "window", "window")
     clock.wrap(fused.FusedEvaluation, "_pitch", "pitch")
