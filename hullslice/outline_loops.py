@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 #: 1, unsigned: an index from memory unsigned is not tested for a negative value at each
-#: use (see :data:`hullslice.planecut_loops.U0`).
+#: use (see :data:`hullslice.contour_loops.U0`).
 U1 = np.uint64(1)
 
 __all__ = ["hinted_loops", "outline_loops", "stable_order_loops"]

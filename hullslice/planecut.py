@@ -21,12 +21,17 @@ along ``x`` over the bin's heights, widened by the bin's longest face). On the c
 * each crossed face's segment oriented by its winding (from the edge it leaves the plane's
   far side on to the one it enters it by), so that a section's outer contours run
   counter-clockwise seen along the earth ``X``;
-* the segments chained into closed contours (pointer jumping, no loop per point), repeated
-  points (vertices on the plane) dropped and contours left with no area discarded.
+* the segments chained into closed contours, repeated points (vertices on the plane)
+  dropped and contours left with no area discarded.
+
+Each thread keeps the edges its last stations' planes crossed, contour by contour, and a
+station takes them again at a new pitch where no vertex can have changed side of its
+plane (:mod:`hullslice.contour_loops`). The loops are numpy's
+(:mod:`hullslice.planecut_numpy`) or, with numba, compiled (:mod:`hullslice.planecut_loops`).
 
 The contours come out as :meth:`hullslice.geometry.Frame.cut` gives manifold3d's: ``(k,
 2)`` arrays of the cutter's ``(Y, Z)`` (scaled and moved, see
-:attr:`~hullslice.geometry.Frame.scale`). Pure numpy.
+:attr:`~hullslice.geometry.Frame.scale`).
 """
 
 from __future__ import annotations
@@ -186,15 +191,7 @@ class PlaneIndex:
         """The faces that the planes at relative stations ``x_rel`` (m) may cross at a pitch
         (rad): ``(station, face)`` pairs, grouped by station (a superset of the crossed
         faces)."""
-        first, last = self.ranges(x_rel, pitch, cg)
-        count = np.maximum(last - first, 0).ravel()
-        total = int(count.sum())
-        if total == 0:
-            return np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
-        offsets = np.repeat(first.ravel() - (np.cumsum(count) - count), count)
-        face = np.arange(total) + offsets
-        station = np.repeat(np.arange(len(x_rel)), count.reshape(first.shape).sum(axis=1))
-        return station, face
+        return planecut_numpy.range_faces(*self.ranges(x_rel, pitch, cg))
 
     def ranges(
         self,

@@ -55,7 +55,7 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
     if len(check):  # the sign test on each candidate again, its side code compared
         kk = k[check]
         ranges = memo[6][kk]
-        station, face = _faces(ranges[:, :, 0], ranges[:, :, 1])
+        station, face = range_faces(ranges[:, :, 0], ranges[:, :, 1])
         _, code = _sides(index, station, face, x_rel[check], c, s, cg)
         want = memo[8][_spans(memo[7][kk], memo[7][kk + 1] - memo[7][kk])]
         wrong = np.bincount(station[code != want], minlength=len(check))
@@ -71,7 +71,7 @@ def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     n_st = len(x_rel)
     wide = index.margin + MEMO_WIDTH * index.key_span
     first, last, xa, xb = index.ranges(x_rel, pitch, cg, margin=wide, ends=True)
-    station, face = _faces(first, last)
+    station, face = range_faces(first, last)
     d, codes = _sides(index, station, face, x_rel, c, s, cg)
     per = np.bincount(station, minlength=n_st)
     code_p = np.concatenate(([0], np.cumsum(per)))
@@ -188,7 +188,7 @@ def _spans(start: np.ndarray, count: np.ndarray) -> np.ndarray:
     return np.arange(total) + np.repeat(np.asarray(start) - (np.cumsum(count) - count), count)
 
 
-def _faces(first: np.ndarray, last: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def range_faces(first: np.ndarray, last: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """The candidate faces of ranges ``(first, last)`` ((s, b) arrays): ``(station, face)``
     pairs, station by station, bin by bin."""
     count = np.maximum(last - first, 0)

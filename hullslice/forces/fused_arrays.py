@@ -21,22 +21,18 @@ __all__ = ["keel_arrays", "stage_arrays", "table_arrays"]
 def stage_arrays(hull, tol: float, n: int) -> tuple:
     """What :func:`~hullslice.planecut_loops.stage_loops` reads of a hull, in its order:
     all of its arguments up to ``reach_z`` but the ends' order (the third), the scratch
-    array (the twentieth) and the ranges' guesses (the twenty-first), which are each
-    thread's own."""
+    array (the twentieth), the ranges' guesses (the twenty-first) and the outline's hint
+    (the twenty-second), which are each thread's own."""
     a, b = silhouette_edges(hull)
     index = plane_index(hull)
     g = np.asarray(hull.cg, dtype=np.float64)
-    v = index.vertices
-    # the body's reach from the centre of gravity along x and z, m (the memo's bound)
-    reach_x = float(np.abs(v[:, 0] - g[0]).max()) if len(v) else 0.0
-    reach_z = float(np.abs(v[:, 2] - g[2]).max()) if len(v) else 0.0
     return (
         a, b, g,
         np.ascontiguousarray(hull.bounds, dtype=np.float64), CUTTER_SIZE / hull.size,
         TOL.keel_merge * hull.size, END_FACE_SLOPE, STEEP_SLOPE, index.key, index.bin_start,
         index.bin_zlo, index.bin_zhi, index.bin_reach, index.margin, index.key_span,
         index.key_x0, index.corners, index.ends, planecut_loops.K_OUT, planecut_loops.K_IN,
-        MERGE * CUTTER_SIZE, tol, n, index.xmin, reach_x, reach_z,
+        MERGE * CUTTER_SIZE, tol, n, index.xmin, *index.reach(g),
     )  # fmt: skip
 
 
