@@ -26,6 +26,7 @@ __all__ = [
     "lowest_loops",
     "lowest_walk_loops",
     "row_loops",
+    "run_ends_loops",
     "runs_loops",
     "search_loops",
     "side_view_loops",
@@ -228,88 +229,95 @@ def runs_loops(x, z, end_face, steep_slope):
     with the same arithmetic in the same order (each sum a running one, as numpy's
     ``cumsum``): the same arrays. ``end_face`` and ``steep_slope`` are
     :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
-    :data:`~hullslice.kernel.keel.STEEP_SLOPE`.
+    :data:`~hullslice.kernel.keel.STEEP_SLOPE`. One pass over the facets finds them all:
+    each facet's slope, its run (a finite slope after the last facet with one), the
+    slope's running offset and bend, the bottom's rise, and its runs' ends, written back
+    where a run of bottom facets ends.
 
     Returns ``(ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi)``:
     ``ok`` False where no facet has a finite slope (numpy's path holds the slope at zero
     there; nothing else is meaningful), ``bottom`` whether a bottom facet exists (then
     ``(x, height, lo, hi)`` are the chords)."""
-    n = len(x) - 1
-    slopes = np.empty(max(n, 0))
-    steep = np.zeros(max(n, 0), dtype=np.bool_)
-    bottom_facet = np.zeros(max(n, 0), dtype=np.bool_)  # a finite slope, not steep
-    fin = np.empty(max(n, 0), dtype=np.int64)
-    nf = 0
+    n = max(len(x) - 1, 0)
+    steep = np.zeros(n, dtype=np.bool_)
+    fmid, cont, bend = np.empty(n), np.empty(n), np.empty(n)
+    starts, offsets = np.empty(n), np.empty(n + 1)
+    height, lo, hi = np.empty(n + 1), np.empty(n), np.empty(n)
+    offsets[0] = 0.0
+    height[0] = 0.0
+    nf = 0  # facets with a finite slope so far
+    r = 0  # runs after the first so far
+    prev = -1  # the last facet with a finite slope, and its slope
+    s_prev = 0.0
+    offset = 0.0  # the slope's jumps between runs so far (a running sum from k = 0)
+    total = 0.0  # the turns so far (a running sum from k = 1)
+    turned = False
+    bottom = False
+    rise = 0.0
+    run = -1  # the first facet of the current run of bottom facets
     for i in range(n):
-        slopes[i] = (z[i + 1] - z[i]) / (x[i + 1] - x[i])
-        if math.isfinite(slopes[i]):
-            fin[nf] = i
+        dz = z[i + 1] - z[i]
+        sl = dz / (x[i + 1] - x[i])
+        flat = False  # a bottom facet: a finite slope, not steep
+        if math.isfinite(sl):
+            st = abs(sl) > end_face
+            steep[i] = st
+            flat = not st
+            fmid[nf] = 0.5 * (x[i + 1] + x[i])
+            new = nf > 0 and (st != steep[prev] or i - prev > 1)
+            jump = s_prev - sl if new else 0.0
+            offset = jump if nf == 0 else offset + jump
+            if new:
+                offsets[r + 1] = offset
+                starts[r] = x[prev + 1] if i - prev > 1 else x[i]
+                r += 1
+            cont[nf] = sl + offset
+            turn = 0.0
+            if nf > 0 and not new:
+                if abs(sl) > steep_slope or abs(s_prev) > steep_slope:
+                    turn = sl - s_prev
+                    turned = turned or turn != 0.0
+            if nf == 0:
+                bend[0] = cont[0] - 0.0
+            else:
+                total = turn if nf == 1 else total + turn
+                bend[nf] = cont[nf] - total
+            s_prev = sl
+            prev = i
             nf += 1
-            steep[i] = abs(slopes[i]) > end_face
-            bottom_facet[i] = not steep[i]
+        # the chords of the bottom's runs: its rise from the first break point, and each
+        # bottom facet's run's first and last break points (a facet's own first point else)
+        bottom = bottom or flat
+        step = dz if flat else 0.0
+        rise = step if i == 0 else rise + step
+        height[i + 1] = rise
+        if flat:
+            if run < 0:
+                run = i
+        else:
+            if run >= 0:
+                run_ends_loops(lo, hi, x, run, i)
+                run = -1
+            lo[i] = hi[i] = x[i]
+    if run >= 0:
+        run_ends_loops(lo, hi, x, run, n)
     empty = np.empty(0)
     if nf == 0:
         return False, empty, empty, empty, empty, steep, empty, False, empty, empty, empty
-    fmid, fslopes, cont = np.empty(nf), np.empty(nf), np.empty(nf)
-    new = np.zeros(nf, dtype=np.bool_)
-    n_new = 0
-    for k in range(nf):
-        fmid[k] = 0.5 * (x[fin[k] + 1] + x[fin[k]])
-        fslopes[k] = slopes[fin[k]]
-        if k > 0 and (steep[fin[k]] != steep[fin[k - 1]] or fin[k] - fin[k - 1] > 1):
-            new[k] = True
-            n_new += 1
-    # the slope's jumps between runs taken out, and where each run after the first starts
-    starts, offsets = np.empty(n_new), np.empty(n_new + 1)
-    offsets[0] = 0.0
-    offset = 0.0  # set at k = 0
-    r = 0
-    turned = False
-    turn = np.zeros(nf)
-    for k in range(nf):  # a running sum from the first term, as cumsum's
-        jump = fslopes[k - 1] - fslopes[k] if new[k] else 0.0
-        offset = jump if k == 0 else offset + jump
-        if new[k]:
-            offsets[r + 1] = offset
-            starts[r] = x[fin[k - 1] + 1] if fin[k] - fin[k - 1] > 1 else x[fin[k]]
-            r += 1
-        cont[k] = fslopes[k] + offset
-        if k > 0 and not new[k]:
-            if abs(fslopes[k]) > steep_slope or abs(fslopes[k - 1]) > steep_slope:
-                turn[k] = fslopes[k] - fslopes[k - 1]
-                turned = turned or turn[k] != 0.0
-    bend = cont.copy()
-    if turned:
-        bend[0] = cont[0] - 0.0
-        total = 0.0
-        for k in range(1, nf):
-            total = turn[k] if k == 1 else total + turn[k]
-            bend[k] = cont[k] - total
-    # the chords of the bottom's runs: its rise from the first break point, and each
-    # bottom facet's run's first and last break points (a facet's own first point else)
-    height, lo, hi = np.empty(n + 1), np.empty(n), np.empty(n)
-    height[0] = 0.0
-    rise = 0.0
-    bottom = False
-    for i in range(n):
-        bottom = bottom or bottom_facet[i]
-        step = (z[i + 1] - z[i]) if bottom_facet[i] else 0.0
-        rise = step if i == 0 else rise + step
-        height[i + 1] = rise
-    i = 0
-    while i < n:
-        if not bottom_facet[i]:
-            lo[i] = hi[i] = x[i]
-            i += 1
-            continue
-        j = i
-        while j < n and bottom_facet[j]:
-            j += 1
-        for k in range(i, j):  # a run of bottom facets i .. j - 1, from x[i] to x[j]
-            lo[k] = x[i]
-            hi[k] = x[j]
-        i = j
-    return True, fmid, cont, starts, offsets, steep, bend, bottom, height, lo, hi
+    if not turned:  # no turn: the slopes as they are (the sign of a zero kept)
+        for k in range(nf):
+            bend[k] = cont[k]
+    return (
+        True, fmid[:nf], cont[:nf], starts[:r], offsets[: r + 1], steep, bend[:nf], bottom,
+        height, lo, hi,
+    )  # fmt: skip
+
+
+def run_ends_loops(lo, hi, x, i, j):
+    """A run of bottom facets ``i`` to ``j - 1``: its first and last break points."""
+    for k in range(i, j):
+        lo[k] = x[i]
+        hi[k] = x[j]
 
 
 def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo, hi):
@@ -320,28 +328,29 @@ def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo,
     ``cont``, ``bend``, ``starts`` and ``offsets``, ``(5, f)``, NaN beyond; the chords'
     ``height``, ``lo`` and ``hi`` (empty arrays where the line has none), ``(3, k)``, NaN
     beyond (zeros where none). A running minimum as numpy's ``minimum.accumulate`` takes
-    it (a NaN kept, the new value on a tie)."""
+    it (a NaN kept, the new value on a tie). Each value is written once (the arrays are
+    made empty, and what lies beyond the values filled)."""
     k = len(x)
-    keel = np.zeros((5, max(k, 1)))
+    kk = max(k, 1)
+    keel = np.empty((5, kk))
+    n_steep = min(len(steep), k - 1)
+    low = 0.0
     for i in range(k):
         keel[0, i] = x[i]
         keel[1, i] = z[i]
-    for i in range(min(len(steep), k - 1)):
-        keel[2, i] = 1.0 if steep[i] else 0.0
-    for i in range(k):
-        if i == 0:
-            keel[3, 0] = z[0]
-        else:
-            a, b = keel[3, i - 1], z[i]
-            keel[3, i] = a if (a < b or a != a) else b
+        keel[2, i] = 1.0 if (i < n_steep and steep[i]) else 0.0
+        b = z[i]
+        low = b if (i == 0 or not (low < b or low != low)) else low
+        keel[3, i] = low
     for i in range(k - 1, -1, -1):
-        if i == k - 1:
-            keel[4, i] = z[i]
-        else:
-            a, b = keel[4, i + 1], z[i]
-            keel[4, i] = a if (a < b or a != a) else b
+        b = z[i]
+        low = b if (i == k - 1 or not (low < b or low != low)) else low
+        keel[4, i] = low
+    for r in range(k, kk):  # no break point: a row of zeros
+        for j in range(5):
+            keel[j, r] = 0.0
     f = max(len(mid), len(offsets))
-    runs = np.full((5, max(f, 1)), np.nan)
+    runs = np.empty((5, max(f, 1)))
     row_loops(runs, 0, mid)
     row_loops(runs, 1, cont)
     row_loops(runs, 2, bend)
@@ -350,7 +359,7 @@ def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo,
     if len(height) == 0:
         chords = np.zeros((3, k))
     else:
-        chords = np.full((3, max(k, 1)), np.nan)
+        chords = np.empty((3, kk))
         row_loops(chords, 0, height)
         row_loops(chords, 1, lo)
         row_loops(chords, 2, hi)
@@ -358,6 +367,9 @@ def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo,
 
 
 def row_loops(out, row, values):
-    """``values`` into the start of ``out``'s row ``row``."""
-    for i in range(len(values)):
+    """``values`` into the start of ``out``'s row ``row``, NaN beyond them."""
+    n = len(values)
+    for i in range(n):
         out[row, i] = values[i]
+    for i in range(n, out.shape[1]):
+        out[row, i] = np.nan

@@ -63,6 +63,7 @@ from .keel_loops import (
     lowest_loops,
     lowest_walk_loops,
     row_loops,
+    run_ends_loops,
     runs_loops,
     search_loops,
     side_view_loops,
@@ -106,7 +107,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "372d1eab22f0d33d"
+STAGE_HELPERS_DIGEST = "8c023dd99efcf62a"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -355,6 +356,7 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
     near=near_loops,
     sorted=sorted_loops, walk=lowest_walk_loops, lower=lower_loops, runs=runs_loops,
+    run_ends=run_ends_loops,
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
     crossings=crossings_loops, refine=refine_loops, extremes=extremes_loops,
@@ -373,7 +375,7 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes", "frame_keel", "row",
+_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "runs", "extremes", "frame_keel", "row",
           "keel_arrays", "gallop", "near", "ranges", "recipe", "points", "match", "sides",
           "memo_cut", "cut", "order", "hinted", "outline", *_HELD, "wetted",
           "h_entries", "h_fcount", "h_fentries", "pitch")  # fmt: skip
@@ -387,7 +389,8 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": _SIDE,
-    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "runs", "extremes"),
+    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "runs", "extremes"),
+    "runs": ("run_ends",),
     "refine": ("search", *_REFINE),
     "crossings": ("search", "lowest_at"),
     "lowest_at": ("search",),
