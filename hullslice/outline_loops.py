@@ -60,31 +60,6 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     area = np.zeros(n_st)
     c_area = np.zeros(r)
     zlo = np.empty(n)
-    grouped = True  # the rings' stations ascending: each station's edges one run
-    for j in range(r):
-        st = ring_station[j]
-        if j > 0 and st < ring_station[j - 1]:
-            grouped = False
-        sum_st = area[st]
-        sum_c = c_area[j]
-        i0, i1 = np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])  # unsigned (U1)
-        for i in range(i0, i1):
-            k = i + U1 if i + U1 < i1 else i0
-            b[i, 0] = a[k, 0]
-            b[i, 1] = a[k, 1]
-            station[i] = st
-            contour[i] = j
-            cross = a[i, 0] * b[i, 1] - b[i, 0] * a[i, 1]
-            sum_st += 0.5 * cross
-            sum_c += cross
-            zlo[i] = a[i, 1] if (a[i, 1] < b[i, 1] or a[i, 1] != a[i, 1]) else b[i, 1]
-        area[st] = sum_st
-        c_area[j] = sum_c
-    ok = True
-    for j in range(r):
-        c_area[j] = 0.5 * c_area[j]
-        if not c_area[j] > 0.0:
-            ok = False
     zmin = np.full(n_st, np.inf)
     ymin = np.full(n_st, np.inf)
     ymax = np.full(n_st, -np.inf)
@@ -92,15 +67,30 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     part_zmax = np.full(r, -np.inf)
     part_ymin = np.full(r, np.inf)
     part_ymax = np.full(r, -np.inf)
-    # the minima and maxima ring by ring, as numpy's np.minimum and np.maximum take them
-    # point by point (the second on a tie, a NaN kept)
+    grouped = True  # the rings' stations ascending: each station's edges one run
     for j in range(r):
-        s = ring_station[j]
-        part_station[j] = s
-        lo_z, lo_y, hi_y = zmin[s], ymin[s], ymax[s]
+        st = ring_station[j]
+        if j > 0 and st < ring_station[j - 1]:
+            grouped = False
+        sum_st = area[st]
+        sum_c = c_area[j]
+        # the minima and maxima ring by ring, as numpy's np.minimum and np.maximum take
+        # them point by point (the second on a tie, a NaN kept)
+        part_station[j] = st
+        lo_z, lo_y, hi_y = zmin[st], ymin[st], ymax[st]
         p_z, p_lo, p_hi = part_zmax[j], part_ymin[j], part_ymax[j]
-        for i in range(np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])):
+        i0, i1 = np.uint64(ring_start[j]), np.uint64(ring_start[j + 1])  # unsigned (U1)
+        for i in range(i0, i1):
+            k = i + U1 if i + U1 < i1 else i0
             y, z = a[i, 0], a[i, 1]
+            b[i, 0] = a[k, 0]
+            b[i, 1] = a[k, 1]
+            station[i] = st
+            contour[i] = j
+            cross = y * b[i, 1] - b[i, 0] * z
+            sum_st += 0.5 * cross
+            sum_c += cross
+            zlo[i] = z if (z < b[i, 1] or z != z) else b[i, 1]
             if not (lo_z < z or lo_z != lo_z):
                 lo_z = z
             if not (lo_y < y or lo_y != lo_y):
@@ -113,8 +103,15 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
                 p_lo = y
             if not (p_hi > y or p_hi != p_hi):
                 p_hi = y
-        zmin[s], ymin[s], ymax[s] = lo_z, lo_y, hi_y
+        area[st] = sum_st
+        c_area[j] = sum_c
+        zmin[st], ymin[st], ymax[st] = lo_z, lo_y, hi_y
         part_zmax[j], part_ymin[j], part_ymax[j] = p_z, p_lo, p_hi
+    ok = True
+    for j in range(r):
+        c_area[j] = 0.5 * c_area[j]
+        if not c_area[j] > 0.0:
+            ok = False
     z_chine = np.full(n_st, np.inf)
     for j in range(r):
         s = ring_station[j]
