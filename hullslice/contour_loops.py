@@ -53,7 +53,8 @@ def recipe_loops(
 
     Returns ``(ends6, ring_len, st_p, st_q, near, gap, reach, codes, code_p, status)``:
     each contour point's edge ends, ``x y z`` of its canonical first end then of its second
-    (``(p, 6)``, contour by contour, each from its lowest segment), each contour's length,
+    (``(6, p)``, a row a coordinate, contour by contour, each from its lowest segment), each
+    contour's length,
     each station's first point and first contour (and the ends); each station's nearest
     candidate vertex's distance to its plane (m), the gap along ``x`` from its plane to
     the faces out of its ranges (m; -inf where ``xmin``, the index's faces' lowest ``x``,
@@ -139,7 +140,7 @@ def recipe_loops(
             succ[j] = k
         a = b
     # the contours, each from its lowest segment (grouped by station, as the segments)
-    ends6 = np.empty((n, 6))
+    ends6 = np.empty((6, n))  # a row a coordinate: the points' loops run along them
     ring_len = np.empty(n, dtype=np.int64)
     st_p = np.zeros(n_st + 1, dtype=np.int64)
     st_q = np.zeros(n_st + 1, dtype=np.int64)
@@ -156,12 +157,12 @@ def recipe_loops(
             f = np.uint64(seg_face[j])
             ka = np.uint64(seg_ab[j] // 3)
             kb = np.uint64(seg_ab[j] - 3 * (seg_ab[j] // 3))
-            ends6[n_p, 0] = corners[f, ka]
-            ends6[n_p, 1] = corners[f, U6 + ka]
-            ends6[n_p, 2] = corners[f, U3 + ka]
-            ends6[n_p, 3] = corners[f, kb]
-            ends6[n_p, 4] = corners[f, U6 + kb]
-            ends6[n_p, 5] = corners[f, U3 + kb]
+            ends6[0, n_p] = corners[f, ka]
+            ends6[1, n_p] = corners[f, U6 + ka]
+            ends6[2, n_p] = corners[f, U3 + ka]
+            ends6[3, n_p] = corners[f, kb]
+            ends6[4, n_p] = corners[f, U6 + kb]
+            ends6[5, n_p] = corners[f, U3 + kb]
             n_p += 1
             length += 1
             j = succ[j]
@@ -190,27 +191,35 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
     n_rings = st_q[k0 + n_st] - q0
     m00, m01, m02, m03 = m[0, 0], m[0, 1], m[0, 2], m[0, 3]
     m10, m11, m12, m13 = m[1, 0], m[1, 1], m[1, 2], m[1, 3]
-    point = np.empty((p1 - p0, 2))
+    # each point's y and z, in loops the compiler turns into vector instructions: the
+    # recipe's ends a row a coordinate, a station's points slices of them, the nearer end
+    # chosen by selects, not branches
+    py, pz = np.empty(p1 - p0), np.empty(p1 - p0)
     for i in range(n_st):
         xs = x_rel[i]
-        for p in range(st_p[k0 + i], st_p[k0 + i + 1]):
-            xa, wa, ha = ends6[p, 0], ends6[p, 1], ends6[p, 2]
-            xb, wb, hb = ends6[p, 3], ends6[p, 4], ends6[p, 5]
+        a, b = st_p[k0 + i], st_p[k0 + i + 1]
+        xa_, wa_, ha_ = ends6[0, a:b], ends6[1, a:b], ends6[2, a:b]
+        xb_, wb_, hb_ = ends6[3, a:b], ends6[4, a:b], ends6[5, a:b]
+        out_y, out_z = py[a - p0 : b - p0], pz[a - p0 : b - p0]
+        for q in range(b - a):
+            xa, wa, ha = xa_[q], wa_[q], ha_[q]
+            xb, wb, hb = xb_[q], wb_[q], hb_[q]
             da = (xa - gx) * c - (ha - gz) * s - xs
             db = (xb - gx) * c - (hb - gz) * s - xs
             ya = m00 * xa + m01 * wa + m02 * ha + m03
             za = m10 * xa + m11 * wa + m12 * ha + m13
             yb = m00 * xb + m01 * wb + m02 * hb + m03
             zb = m10 * xb + m11 * wb + m12 * hb + m13
-            k = p - p0
-            if abs(da) <= abs(db):
-                t = da / (da - db)
-                point[k, 0] = ya + t * (yb - ya)
-                point[k, 1] = za + t * (zb - za)
-            else:
-                t = db / (db - da)
-                point[k, 0] = yb + t * (ya - yb)
-                point[k, 1] = zb + t * (za - zb)
+            near = abs(da) <= abs(db)  # from the nearer end: t = d0 / (d0 - d1)
+            d0 = da if near else db
+            d1 = db if near else da
+            y0 = ya if near else yb
+            y1 = yb if near else ya
+            z0 = za if near else zb
+            z1 = zb if near else za
+            t = d0 / (d0 - d1)
+            out_y[q] = y0 + t * (y1 - y0)
+            out_z[q] = z0 + t * (z1 - z0)
     out = np.empty((p1 - p0, 2))
     ring_start = np.empty(n_rings + 1, dtype=np.int64)
     ring_station = np.empty(n_rings, dtype=np.int64)
@@ -228,10 +237,9 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
             for k in range(length):
                 p = at + k
                 pr = p - 1 if k > 0 else at + length - 1
-                if (abs(point[p, 0] - point[pr, 0]) > merge
-                        or abs(point[p, 1] - point[pr, 1]) > merge):  # fmt: skip
-                    out[n_out, 0] = point[p, 0]
-                    out[n_out, 1] = point[p, 1]
+                if abs(py[p] - py[pr]) > merge or abs(pz[p] - pz[pr]) > merge:
+                    out[n_out, 0] = py[p]
+                    out[n_out, 1] = pz[p]
                     if n_out > first:
                         area += (out[n_out - 1, 0] * out[n_out, 1]
                                  - out[n_out, 0] * out[n_out - 1, 1])  # fmt: skip
@@ -382,7 +390,7 @@ def memo_cut_loops(
             st_q[i + 1] = st_q[i] + f_st_q[j + 1] - f_st_q[j]
             j += 1
     codes = np.empty(code_p[n], dtype=np.int8)
-    ends6 = np.empty((st_p[n], 6))
+    ends6 = np.empty((6, st_p[n]))
     ring_len = np.empty(st_q[n], dtype=np.int64)
     j = 0
     for i in range(n):
@@ -394,9 +402,9 @@ def memo_cut_loops(
             e6, rl, cd = f_ends6, f_ring_len, f_codes
             p_a, q_a, c_a = f_st_p[j], f_st_q[j], f_code_p[j]
             j += 1
-        for p in range(st_p[i + 1] - st_p[i]):
-            for col in range(6):
-                ends6[st_p[i] + p, col] = e6[p_a + p, col]
+        for col in range(6):
+            for p in range(st_p[i + 1] - st_p[i]):
+                ends6[col, st_p[i] + p] = e6[col, p_a + p]
         for r in range(st_q[i + 1] - st_q[i]):
             ring_len[st_q[i] + r] = rl[q_a + r]
         for r in range(code_p[i + 1] - code_p[i]):
@@ -413,5 +421,5 @@ def empty_memo(bins: int) -> tuple:
     none = np.empty(0)
     zero = np.zeros(1, dtype=np.int64)
     return (none, none, none, none, none, none, np.empty((0, bins, 2), dtype=np.int64), zero,
-            np.empty(0, dtype=np.int8), np.empty((0, 6)), np.empty(0, dtype=np.int64), zero,
+            np.empty(0, dtype=np.int8), np.empty((6, 0)), np.empty(0, dtype=np.int64), zero,
             zero)  # fmt: skip

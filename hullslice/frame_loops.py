@@ -32,7 +32,7 @@ __all__ = [
 #: cache of these loops goes stale when this file changes, not when that one does: a
 #: change of it changes this digest too (``tests/test_keel_runs_loops.py`` checks it), so
 #: that their cache is made again.
-FRAME_HELPERS_DIGEST = "a6ff8f9a130297b4"
+FRAME_HELPERS_DIGEST = "de1ceeb2af622dcf"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).

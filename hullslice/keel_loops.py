@@ -22,6 +22,7 @@ __all__ = [
     "abscissae_loops",
     "envelope_loops",
     "keel_arrays_loops",
+    "keel_line_loops",
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
@@ -227,34 +228,62 @@ def abscissae_loops(xs):
 def runs_loops(x, z, end_face, steep_slope):
     """:meth:`hullslice.kernel.keel._Runs.of` of the break points ``x``, ``z`` by loops,
     with the same arithmetic in the same order (each sum a running one, as numpy's
-    ``cumsum``): the same arrays. ``end_face`` and ``steep_slope`` are
-    :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
-    :data:`~hullslice.kernel.keel.STEEP_SLOPE`. One pass over the facets finds them all:
-    each facet's slope, its run (a finite slope after the last facet with one), the
-    slope's running offset and bend, the bottom's rise, and its runs' ends, written back
-    where a run of bottom facets ends.
+    ``cumsum``): the same arrays, as rows of :func:`keel_line_loops`'. ``end_face`` and
+    ``steep_slope`` are :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
+    :data:`~hullslice.kernel.keel.STEEP_SLOPE`.
 
     Returns ``(ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi)``:
     ``ok`` False where no facet has a finite slope (numpy's path holds the slope at zero
     there; nothing else is meaningful), ``bottom`` whether a bottom facet exists (then
     ``(x, height, lo, hi)`` are the chords)."""
-    n = max(len(x) - 1, 0)
+    nf, r, bottom, steep, _, runs, chords = keel_line_loops(x, z, end_face, steep_slope)
+    n = len(steep)
+    if nf == 0:
+        empty = np.empty(0)
+        return False, empty, empty, empty, empty, steep, empty, False, empty, empty, empty
+    return (
+        True, runs[0, :nf], runs[1, :nf], runs[3, :r], runs[4, : r + 1], steep,
+        runs[2, :nf], bottom, chords[0, : n + 1], chords[1, :n], chords[2, :n],
+    )  # fmt: skip
+
+
+def keel_line_loops(x, z, end_face, steep_slope):
+    """The runs of the break points ``x``, ``z`` (:meth:`hullslice.kernel.keel._Runs.of`'s,
+    with the same arithmetic in the same order, each sum a running one as numpy's
+    ``cumsum``) written straight into the fused evaluation's arrays of the keel line, as
+    :func:`keel_arrays_loops` lays them out: one pass over the facets finds each one's
+    slope, its run (a finite slope after the last facet with one), the slope's running
+    offset and bend, the bottom's rise and its runs' ends (written back where a run of
+    bottom facets ends), and the lowest height from the first point; a pass back the
+    lowest from the last. ``end_face`` and ``steep_slope`` are
+    :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
+    :data:`~hullslice.kernel.keel.STEEP_SLOPE`.
+
+    Returns ``(nf, r, bottom, steep, keel, runs, chords)``: the facets with a finite slope
+    (none: nothing else is meaningful), the runs after the first, whether a bottom facet
+    exists, the facets' steep flags, and the arrays: ``keel`` (5, k) and ``chords``
+    (3, k) as :func:`keel_arrays_loops` makes them (zeros without a bottom), ``runs``
+    (5, k) its rows with NaN beyond their values (wider than its, by NaNs only)."""
+    k = len(x)
+    n = max(k - 1, 0)
+    kk = max(k, 1)
+    keel = np.empty((5, kk))
+    runs = np.empty((5, kk))
+    chords = np.empty((3, kk))
     steep = np.zeros(n, dtype=np.bool_)
-    fmid, cont, bend = np.empty(n), np.empty(n), np.empty(n)
-    starts, offsets = np.empty(n), np.empty(n + 1)
-    height, lo, hi = np.empty(n + 1), np.empty(n), np.empty(n)
-    offsets[0] = 0.0
-    height[0] = 0.0
+    runs[4, 0] = 0.0  # the first run's offset
+    chords[0, 0] = 0.0  # the rise at the first break point
     nf = 0  # facets with a finite slope so far
     r = 0  # runs after the first so far
     prev = -1  # the last facet with a finite slope, and its slope
     s_prev = 0.0
-    offset = 0.0  # the slope's jumps between runs so far (a running sum from k = 0)
-    total = 0.0  # the turns so far (a running sum from k = 1)
+    offset = 0.0  # the slope's jumps between runs so far (a running sum from the first)
+    total = 0.0  # the turns so far (a running sum from the second)
     turned = False
     bottom = False
     rise = 0.0
     run = -1  # the first facet of the current run of bottom facets
+    low = 0.0  # the lowest height from the first point
     for i in range(n):
         dz = z[i + 1] - z[i]
         sl = dz / (x[i + 1] - x[i])
@@ -263,25 +292,26 @@ def runs_loops(x, z, end_face, steep_slope):
             st = abs(sl) > end_face
             steep[i] = st
             flat = not st
-            fmid[nf] = 0.5 * (x[i + 1] + x[i])
+            runs[0, nf] = 0.5 * (x[i + 1] + x[i])
             new = nf > 0 and (st != steep[prev] or i - prev > 1)
             jump = s_prev - sl if new else 0.0
             offset = jump if nf == 0 else offset + jump
             if new:
-                offsets[r + 1] = offset
-                starts[r] = x[prev + 1] if i - prev > 1 else x[i]
+                runs[4, r + 1] = offset
+                runs[3, r] = x[prev + 1] if i - prev > 1 else x[i]
                 r += 1
-            cont[nf] = sl + offset
+            cont = sl + offset
+            runs[1, nf] = cont
             turn = 0.0
             if nf > 0 and not new:
                 if abs(sl) > steep_slope or abs(s_prev) > steep_slope:
                     turn = sl - s_prev
                     turned = turned or turn != 0.0
             if nf == 0:
-                bend[0] = cont[0] - 0.0
+                runs[2, 0] = cont - 0.0
             else:
                 total = turn if nf == 1 else total + turn
-                bend[nf] = cont[nf] - total
+                runs[2, nf] = cont - total
             s_prev = sl
             prev = i
             nf += 1
@@ -290,34 +320,65 @@ def runs_loops(x, z, end_face, steep_slope):
         bottom = bottom or flat
         step = dz if flat else 0.0
         rise = step if i == 0 else rise + step
-        height[i + 1] = rise
+        chords[0, i + 1] = rise
         if flat:
             if run < 0:
                 run = i
         else:
             if run >= 0:
-                run_ends_loops(lo, hi, x, run, i)
+                run_ends_loops(chords, x, run, i)
                 run = -1
-            lo[i] = hi[i] = x[i]
+            chords[1, i] = chords[2, i] = x[i]
+        # the break point's own row: x, z, its facet's steepness, the lowest so far (a
+        # running minimum as numpy's minimum.accumulate: a NaN kept, the new on a tie)
+        keel[0, i] = x[i]
+        keel[1, i] = z[i]
+        keel[2, i] = 1.0 if steep[i] else 0.0
+        b = z[i]
+        low = b if (i == 0 or not (low < b or low != low)) else low
+        keel[3, i] = low
     if run >= 0:
-        run_ends_loops(lo, hi, x, run, n)
-    empty = np.empty(0)
-    if nf == 0:
-        return False, empty, empty, empty, empty, steep, empty, False, empty, empty, empty
+        run_ends_loops(chords, x, run, n)
+    if k:  # the last break point: no facet of its own
+        keel[0, n] = x[n]
+        keel[1, n] = z[n]
+        keel[2, n] = 0.0
+        b = z[n]
+        low = b if (n == 0 or not (low < b or low != low)) else low
+        keel[3, n] = low
+    for i in range(n, -1, -1):
+        if i < k:
+            b = z[i]
+            low = b if (i == n or not (low < b or low != low)) else low
+            keel[4, i] = low
+    if k == 0:  # no break point: a column of zeros
+        for j in range(5):
+            keel[j, 0] = 0.0
     if not turned:  # no turn: the slopes as they are (the sign of a zero kept)
-        for k in range(nf):
-            bend[k] = cont[k]
-    return (
-        True, fmid[:nf], cont[:nf], starts[:r], offsets[: r + 1], steep, bend[:nf], bottom,
-        height, lo, hi,
-    )  # fmt: skip
+        for j in range(nf):
+            runs[2, j] = runs[1, j]
+    for j in range(nf, kk):
+        runs[0, j] = runs[1, j] = runs[2, j] = np.nan
+    for j in range(r, kk):
+        runs[3, j] = np.nan
+    for j in range(r + 1, kk):
+        runs[4, j] = np.nan
+    if not bottom:
+        chords = np.zeros((3, k))
+    else:
+        for j in range(n, kk):
+            chords[1, j] = chords[2, j] = np.nan
+        if k == 0:
+            chords[0, 0] = np.nan
+    return nf, r, bottom, steep, keel, runs, chords
 
 
-def run_ends_loops(lo, hi, x, i, j):
-    """A run of bottom facets ``i`` to ``j - 1``: its first and last break points."""
+def run_ends_loops(chords, x, i, j):
+    """A run of bottom facets ``i`` to ``j - 1``: its first and last break points, into
+    rows 1 and 2 of ``chords``."""
     for k in range(i, j):
-        lo[k] = x[i]
-        hi[k] = x[j]
+        chords[1, k] = x[i]
+        chords[2, k] = x[j]
 
 
 def keel_arrays_loops(x, z, steep, mid, cont, bend, starts, offsets, height, lo, hi):

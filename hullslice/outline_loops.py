@@ -45,15 +45,21 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     """
     n = ring_start[-1]
     r = len(ring_station)
+    # the points moved, in loops over flat arrays that the compiler turns into vector
+    # instructions (a division a coordinate is most of their cost): the same values
     a = np.empty((n, 2))
-    for i in range(n):
-        y, z = points[i, 0], points[i, 1]
-        if scale != 1.0:
-            y, z = y / scale, z / scale
-        if oy != 0.0 or oz != 0.0:
-            y, z = y + oy, z + oz
-        a[i, 0] = y
-        a[i, 1] = z
+    flat_a = a.reshape(2 * n)
+    flat_p = np.ascontiguousarray(points[:n]).reshape(2 * n)
+    if scale != 1.0:
+        for j in range(2 * n):
+            flat_a[j] = flat_p[j] / scale
+    else:
+        for j in range(2 * n):
+            flat_a[j] = flat_p[j]
+    if oy != 0.0 or oz != 0.0:
+        for i in range(n):
+            a[i, 0] += oy
+            a[i, 1] += oz
     b = np.empty((n, 2))
     station = np.empty(n, dtype=np.int64)
     contour = np.empty(n, dtype=np.int64)
@@ -138,10 +144,12 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     if m:
         lo, hi = zlo.min(), zlo.max()
         span = hi - lo
+        # every edge's key (those not kept are not read), in a loop the compiler turns into
+        # vector divisions
         key = np.empty(n)
-        for j in range(m):
-            i = np.uint64(order[j])
-            key[i] = 2.0 * station[i] + (zlo[i] - lo) / (span * (1.0 + 1e-9) + 1e-300)
+        scale_z = span * (1.0 + 1e-9) + 1e-300
+        for i in range(n):
+            key[i] = 2.0 * station[i] + (zlo[i] - lo) / scale_z
         if not (grouped and (hinted_loops(key, order, hint)
                              or stable_order_loops(key, kept, order))):  # fmt: skip
             sub = np.empty(m)

@@ -96,7 +96,7 @@ def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     f, a, b = face[perm], ka[perm], kb[perm]
     co = index.corners
     ends6 = np.stack([co[f, a], co[f, 6 + a], co[f, 3 + a], co[f, b], co[f, 6 + b],
-                      co[f, 3 + b]], axis=1)  # fmt: skip
+                      co[f, 3 + b]])  # fmt: skip
     ring_station = station[roots]
     st_q = np.concatenate(([0], np.cumsum(np.bincount(ring_station, minlength=n_st))))
     points = np.bincount(ring_station, weights=length, minlength=n_st).astype(np.int64)
@@ -115,7 +115,7 @@ def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray,
     n_st = len(x_rel)
     ends6, ring_len, st_p, st_q = memo[9], memo[10], memo[11], memo[12]
     p0, p1 = st_p[k0], st_p[k0 + n_st]
-    xa, ya, za, xb, yb, zb = np.ascontiguousarray(ends6[p0:p1].T)  # each point's edge
+    xa, ya, za, xb, yb, zb = ends6[:, p0:p1]  # each point's edge
     xs = np.repeat(x_rel, np.diff(st_p[k0 : k0 + n_st + 1]))
     # both ends' distances ahead of the plane and their (Y, Z), as a fresh cut takes them
     da = (xa - cg[0]) * c - (za - cg[2]) * s
@@ -154,13 +154,15 @@ def _combined(memo, src, fresh) -> tuple:
     flat = []
     for start, data in ((7, 8), (11, 9), (12, 10)):  # each station's run of the data
         old, new = memo[start], fresh[start]
+        axis = 1 if data == 9 else 0  # the edge ends: a row a coordinate
         count = np.empty(n, dtype=np.int64)
         base = np.empty(n, dtype=np.int64)
         k, f = src[take], j[~take]
         count[take], base[take] = old[k + 1] - old[k], old[k]
-        count[~take], base[~take] = new[f + 1] - new[f], len(memo[data]) + new[f]
-        pieces = np.concatenate((memo[data], fresh[data]))
-        flat.append((np.concatenate(([0], np.cumsum(count))), pieces[_spans(base, count)]))
+        count[~take], base[~take] = new[f + 1] - new[f], memo[data].shape[axis] + new[f]
+        pieces = np.concatenate((memo[data], fresh[data]), axis=axis)
+        flat.append((np.concatenate(([0], np.cumsum(count))),
+                     pieces.take(_spans(base, count), axis=axis)))  # fmt: skip
     (code_p, codes), (st_p, ends6), (st_q, ring_len) = flat
     return (*rows, code_p, codes, ends6, ring_len, st_p, st_q)
 

@@ -82,6 +82,46 @@ def test_the_runs_by_loops_equal_numpy_on_made_lines(name):
         _assert_same_runs(x, z)
 
 
+def _assert_arrays_in_the_runs_pass(x: np.ndarray, z: np.ndarray) -> None:
+    """:func:`keel_line_loops`' arrays are :func:`keel_arrays_loops`' of :func:`runs_loops`'
+    arrays to the last bit (the stage's own and the frames' fused arrays), its runs
+    wider by NaNs only."""
+    for made, runs, pack in zip(_keel_loops("keel_line"), _keel_loops("runs"),
+                                _keel_loops("keel_arrays"), strict=True):  # fmt: skip
+        nf, r, bottom, steep, keel, rows, chords = made(x, z, END_FACE_SLOPE, STEEP_SLOPE)
+        ok, mid, cont, starts, offsets, steep_r, bend, bottom_r, height, lo, hi = runs(
+            x, z, END_FACE_SLOPE, STEEP_SLOPE
+        )
+        assert (nf > 0) == ok and _same(steep, steep_r)
+        if not ok:
+            continue
+        assert bottom == bottom_r and (nf, r) == (len(mid), len(starts))
+        if not bottom:
+            height, lo, hi = np.empty(0), np.empty(0), np.empty(0)
+        want = pack(x, z, steep_r, mid, cont, bend, starts, offsets, height, lo, hi)
+        assert _same(keel, want[0]) and _same(chords, want[2])
+        f = want[1].shape[1]
+        assert _same(rows[:, :f], want[1]) and np.isnan(rows[:, f:]).all()
+
+
+@pytest.mark.parametrize("name", sorted(LINES))
+def test_the_keel_arrays_in_the_runs_pass_equal_the_runs_arrays_on_made_lines(name):
+    x, z = (np.asarray(v, dtype=np.float64) for v in LINES[name])
+    with np.errstate(invalid="ignore"):
+        _assert_arrays_in_the_runs_pass(x, z)
+
+
+@pytest.mark.parametrize("name", sorted(BODIES))
+def test_the_keel_arrays_in_the_runs_pass_equal_the_runs_arrays_on_every_body(name):
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    for pitch in np.radians([-20.0, 0.0, 6.0, 40.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        line = lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s))
+        _assert_arrays_in_the_runs_pass(line.x, line.z)
+
+
 def _keel_loops(name: str):
     paths = [planecut_loops.LOOPS[name]]
     if planecut_loops.available():
