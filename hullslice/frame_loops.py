@@ -6,7 +6,7 @@
 (:func:`refine_loops`: :func:`hullslice.kernel.envelope.refined`, its gaps, jumps and
 crossings, then the merge of close break points), the line's runs
 (:func:`~hullslice.keel_loops.runs_loops`) and the turned ends' lowest and highest heights
-(:func:`extremes_loops`), with numpy's arithmetic in numpy's order: the same keel line.
+(the side view's), with numpy's arithmetic in numpy's order: the same keel line.
 """
 
 from __future__ import annotations
@@ -21,7 +21,6 @@ __all__ = [
     "FRAME_HELPERS_DIGEST",
     "above_chord_loops",
     "crossings_loops",
-    "extremes_loops",
     "frame_keel_loops",
     "lowest_at_loops",
     "refine_loops",
@@ -32,7 +31,7 @@ __all__ = [
 #: cache of these loops goes stale when this file changes, not when that one does: a
 #: change of it changes this digest too (``tests/test_keel_runs_loops.py`` checks it), so
 #: that their cache is made again.
-FRAME_HELPERS_DIGEST = "de1ceeb2af622dcf"
+FRAME_HELPERS_DIGEST = "7fbff6fcc64734aa"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
@@ -211,39 +210,20 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
     return True, out_x[:g], out_z[:g]
 
 
-def extremes_loops(za, zb):
-    """``(min(za.min(), zb.min()), max(za.max(), zb.max()))`` as numpy and Python take
-    them: each array's minimum and maximum with a NaN kept (numpy's), then Python's
-    ``min`` and ``max`` of the two (the first unless the second is lower, or higher).
-    Both arrays have at least one value."""
-    lo_a, hi_a = za[0], za[0]
-    for i in range(1, len(za)):
-        v = za[i]
-        lo_a = lo_a if (lo_a <= v or lo_a != lo_a) else v
-        hi_a = hi_a if (hi_a >= v or hi_a != hi_a) else v
-    lo_b, hi_b = zb[0], zb[0]
-    for i in range(1, len(zb)):
-        v = zb[i]
-        lo_b = lo_b if (lo_b <= v or lo_b != lo_b) else v
-        hi_b = hi_b if (hi_b >= v or hi_b != hi_b) else v
-    return (lo_b if lo_b < lo_a else lo_a), (hi_b if hi_b > hi_a else hi_a)
-
-
 def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
     """A new pitch's keel line in one call: :func:`~hullslice.keel_loops.side_view_loops`
     (its arguments the first seven), :func:`refine_loops` of its lower envelope with
     ``merge`` and :func:`~hullslice.keel_loops.runs_loops` of the refined break points
     (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
-    heights (:func:`extremes_loops`).
+    heights (the side view's).
 
-    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays of
-    :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points ``x``, ``z``
+    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays and two heights
+    of :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points ``x``, ``z``
     as :func:`refine_loops` gives them (where ``ok`` is False numpy's refinement must
     serve, and ``runs`` is not meaningful), ``runs`` the eleven values of
     :func:`~hullslice.keel_loops.runs_loops`."""
     side = side_view_loops(a, b, gx, gz, c, s, order)
-    low, high = extremes_loops(side[1], side[3])
-    xa, za, xb, zb, seg, xs, mid, z, zm = side
+    xa, za, xb, zb, seg, xs, mid, z, zm, low, high = side
     ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
     runs = runs_loops(x, z, end_face, steep_slope)
     return ok, side, low, high, x, z, runs

@@ -329,7 +329,7 @@ def _side_keel(
     compiled = planecut_loops.compiled
     if ok:  # most pitches: only close break points to merge
         return KeelLine(xr, zr, compiled("runs"), runs), float(low), float(high)
-    xa, za, xb, zb, seg, xs, mid, z, zm = side
+    xa, za, xb, zb, seg, xs, mid, z, zm, _, _ = side
     walk, none = compiled("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
         heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731

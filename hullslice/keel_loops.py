@@ -88,20 +88,37 @@ def side_view_loops(a, b, gx, gz, c, s, order):
     :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them, the
     end abscissae sorted by :func:`sorted_loops` from ``order`` (the ends' order at an
     earlier pitch, ``2 e`` integers, updated). Returns ``(xa, za, xb, zb, seg, xs, mid, z,
-    zm)``: the turned ends, the segments in the order of their lower end abscissae (for
-    :func:`lowest_walk_loops`) and the envelope's arrays."""
+    zm, low, high)``: the turned ends, the segments in the order of their lower end
+    abscissae (for :func:`lowest_walk_loops`), the envelope's arrays, and the turned ends'
+    lowest and highest heights, ``min(za.min(), zb.min())`` and ``max(za.max(),
+    zb.max())`` as numpy and Python take them (each array's own with a NaN kept, then the
+    first of the two unless the second is lower, or higher; NaN without an edge), found as
+    the edges turn."""
     e = len(a)
     xa, za, xb, zb = np.empty(e), np.empty(e), np.empty(e), np.empty(e)
     ends = np.empty(2 * e)
+    lo_a = hi_a = lo_b = hi_b = np.nan
     for i in range(e):
         rx, rz = a[i, 0] - gx, a[i, 2] - gz
         xa[i] = rx * c - rz * s
-        za[i] = rx * s + rz * c
+        va = rx * s + rz * c
+        za[i] = va
         rx, rz = b[i, 0] - gx, b[i, 2] - gz
         xb[i] = rx * c - rz * s
-        zb[i] = rx * s + rz * c
+        vb = rx * s + rz * c
+        zb[i] = vb
         ends[i] = xa[i]
         ends[e + i] = xb[i]
+        if i == 0:
+            lo_a = hi_a = va
+            lo_b = hi_b = vb
+        else:  # numpy's minimum and maximum: a NaN kept, the first on a tie
+            lo_a = lo_a if (lo_a <= va or lo_a != lo_a) else va
+            hi_a = hi_a if (hi_a >= va or hi_a != hi_a) else va
+            lo_b = lo_b if (lo_b <= vb or lo_b != lo_b) else vb
+            hi_b = hi_b if (hi_b >= vb or hi_b != hi_b) else vb
+    low = lo_b if lo_b < lo_a else lo_a  # Python's min and max of the two
+    high = hi_b if hi_b > hi_a else hi_a
     xs = sorted_loops(ends, order)
     # the segments by their lower end abscissa: each at its first end in the sorted order
     seg = np.empty(e, dtype=np.int64)
@@ -121,7 +138,7 @@ def side_view_loops(a, b, gx, gz, c, s, order):
         z, zm = lowest_walk_loops(xs, mid, xa, za, xb, zb, seg)
     else:  # a NaN: the searches of lowest_loops
         z, zm = lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
-    return xa, za, xb, zb, seg, xs, mid, z, zm
+    return xa, za, xb, zb, seg, xs, mid, z, zm, low, high
 
 
 def lowest_walk_loops(xs, mid, xa, za, xb, zb, seg):

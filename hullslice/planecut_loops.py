@@ -39,7 +39,6 @@ from .contour_loops import (
 from .frame_loops import (
     above_chord_loops,
     crossings_loops,
-    extremes_loops,
     frame_keel_loops,
     lowest_at_loops,
     refine_loops,
@@ -108,7 +107,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "5082a7ff76938edd"
+STAGE_HELPERS_DIGEST = "a06c2841fb4bac83"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -191,8 +190,7 @@ def stage_loops(
     # the keel line as frame_keel_loops makes it, its runs written straight into the
     # fused evaluation's arrays (keel_arrays_loops' of runs_loops', the runs NaN-padded)
     side = side_view_loops(a, b, gx, gz, c, s, order)
-    low, high = extremes_loops(side[1], side[3])
-    sxa, sza, sxb, szb, seg, xs, mid, z, zm = side
+    sxa, sza, sxb, szb, seg, xs, mid, z, zm, low, high = side
     ok, kx, kz = refine_loops(xs, mid, z, zm, keel_merge, sxa, sza, sxb, szb, seg)
     if not ok:
         return 100, none2, none1, none1, memo
@@ -360,7 +358,7 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     run_ends=run_ends_loops, keel_line=keel_line_loops,
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
-    crossings=crossings_loops, refine=refine_loops, extremes=extremes_loops,
+    crossings=crossings_loops, refine=refine_loops,
     frame_keel=frame_keel_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
     match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops,
 )  # fmt: skip
@@ -376,7 +374,7 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "extremes", "gallop",
+_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "gallop",
           "near", "ranges", "recipe", "points", "match", "sides", "memo_cut", "cut", "order",
           "hinted", "outline", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
           "pitch")  # fmt: skip
@@ -390,7 +388,7 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": _SIDE,
-    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "runs", "extremes"),
+    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "runs"),
     "runs": ("run_ends", "keel_line"),
     "keel_line": ("run_ends",),
     "refine": ("search", *_REFINE),

@@ -46,7 +46,7 @@ def test_the_refinement_by_the_loops_equals_numpy(name):
     for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 4.0, 6.0, 9.0, 17.0, 40.0]):
         c, s = np.cos(pitch), np.sin(pitch)
         args = (float(g[0]), float(g[2]), float(c), float(s))
-        xa, za, xb, zb, seg, xs, mid, z, zm = side(a, b, *args, np.arange(2 * len(a)))
+        xa, za, xb, zb, seg, xs, mid, z, zm, _, _ = side(a, b, *args, np.arange(2 * len(a)))
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         for merge in TOL.keel_merge * hull.size * np.array([0.0, 1.0, 1e3]):
             want = refined(xs, mid, z, zm, merge, lowest_segments(ta, tb))
@@ -74,7 +74,7 @@ def test_the_lowest_heights_by_a_search_equal_numpys():
     for pitch in np.radians([-3.0, 4.0, 17.0]):
         c, s = np.cos(pitch), np.sin(pitch)
         args = (float(g[0]), float(g[2]), float(c), float(s))
-        xa, za, xb, zb, seg, xs, _, _, _ = planecut_loops.side_view_loops(
+        xa, za, xb, zb, seg, xs, _, _, _, _, _ = planecut_loops.side_view_loops(
             a, b, *args, np.arange(2 * len(a))
         )
         q = np.concatenate([rng.uniform(xs[0] - 1.0, xs[-1] + 1.0, 400), xa, xb])

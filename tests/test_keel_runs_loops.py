@@ -210,12 +210,13 @@ def test_a_new_pitchs_keel_line_in_one_call_equals_numpys(name):
     assert ok_seen > 0  # most pitches only merge
 
 
-def test_the_extremes_by_loops_are_numpys_then_pythons():
-    """:func:`extremes_loops` gives ``min(za.min(), zb.min())`` and ``max(za.max(),
-    zb.max())``: numpy's minimum and maximum of each (a NaN kept), Python's of the two
-    (the first unless the second is lower, or higher; a NaN first stays)."""
+def test_the_side_views_extremes_are_numpys_then_pythons():
+    """:func:`side_view_loops` gives the turned ends' ``min(za.min(), zb.min())`` and
+    ``max(za.max(), zb.max())``: numpy's minimum and maximum of each (a NaN kept), Python's
+    of the two (the first unless the second is lower, or higher; a NaN first stays), NaN
+    without an edge. Edges at no pitch: the heights turn to themselves."""
     rng = np.random.default_rng(3)
-    cases = [(rng.normal(size=50), rng.normal(size=40)), (np.array([1.0]), np.array([2.0]))]
+    cases = [(rng.normal(size=50), rng.normal(size=50)), (np.array([1.0]), np.array([2.0]))]
     for where in ("a", "b", "both"):
         za, zb = rng.normal(size=30), rng.normal(size=30)
         if where in ("a", "both"):
@@ -223,9 +224,15 @@ def test_the_extremes_by_loops_are_numpys_then_pythons():
         if where in ("b", "both"):
             zb[0] = np.nan
         cases.append((za, zb))
-    for fn in _keel_loops("extremes"):
+    for side in _keel_loops("side"):
         for za, zb in cases:
-            lo, hi = fn(za, zb)
+            e = len(za)
+            a = np.stack([np.arange(e) * 1.0, np.zeros(e), za], axis=1)
+            b = np.stack([np.arange(e) + 0.5, np.zeros(e), zb], axis=1)
+            lo, hi = side(a, b, 0.0, 0.0, 1.0, 0.0, np.arange(2 * e))[9:]
             want_lo, want_hi = min(za.min(), zb.min()), max(za.max(), zb.max())
             assert _same(np.float64(lo), np.float64(want_lo))
             assert _same(np.float64(hi), np.float64(want_hi))
+        none = np.empty((0, 3))
+        lo, hi = side(none, none, 0.0, 0.0, 1.0, 0.0, np.empty(0, dtype=np.int64))[9:]
+        assert np.isnan(lo) and np.isnan(hi)

@@ -534,7 +534,7 @@ def test_the_keel_line_by_the_loops_equals_numpy(name):
             if order is None or isinstance(order, str):
                 order = np.arange(2 * len(a))[:: -1 if order else 1].copy()
             args = (float(g[0]), float(g[2]), float(c), float(s))
-            xa, za, xb, zb, seg, xs, mid, z, zm = side(a, b, *args, order)
+            xa, za, xb, zb, seg, xs, mid, z, zm, _, _ = side(a, b, *args, order)
             assert sorted(order.tolist()) == list(range(2 * len(a)))  # still a permutation
             assert _same(xa, ta[:, 0]) and _same(xb, tb[:, 0])
             assert _same(za, ta[:, 1]) and _same(zb, tb[:, 1])
