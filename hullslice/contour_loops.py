@@ -53,15 +53,14 @@ def recipe_loops(
 
     Returns ``(ends6, ring_len, st_p, st_q, near, gap, reach, codes, code_p, status)``:
     each contour point's edge ends, ``x y z`` of its canonical first end then of its second
-    (``(6, p)``, a row a coordinate, contour by contour, each from its lowest segment), each
-    contour's length,
-    each station's first point and first contour (and the ends); each station's nearest
-    candidate vertex's distance to its plane (m), the gap along ``x`` from its plane to
-    the faces out of its ranges (m; -inf where ``xmin``, the index's faces' lowest ``x``,
-    is empty) and the largest ``|x - gx|`` of its plane over the bins' heights (m); each
-    candidate face's side code (bit ``k`` set for corner ``k`` ahead), station by station
-    in range order, and each station's first code (and the end); and 0, or 1 where the
-    mesh is not closed along a cut.
+    (``(6, p)``, a row a coordinate, contour by contour, each from its lowest segment),
+    each contour's length, each station's first point and first contour (and the ends);
+    each station's nearest candidate vertex's distance to its plane (m), the gap along
+    ``x`` from its plane to the faces out of its ranges (m; -inf where ``xmin``, the
+    index's faces' lowest ``x``, is empty) and the largest ``|x - gx|`` of its plane over
+    the bins' heights (m); each candidate face's side code (bit ``k`` set for corner ``k``
+    ahead), station by station in range order, and each station's first code (and the
+    end); and 0, or 1 where the mesh is not closed along a cut.
     """
     n_st, n_bins = first.shape
     q = 0
