@@ -107,7 +107,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "dd401709e6a4e312"
+STAGE_HELPERS_DIGEST = "35c0d8817615c477"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.

@@ -37,7 +37,7 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
     """:func:`hullslice.contour_loops.match_loops` and, where it asks for it,
     :func:`~hullslice.contour_loops.same_sides_loops`, by numpy: each station's source in
     the memo, or -1."""
-    mx, mc, ms, m_near, m_gap, m_reach = memo[:6]
+    mx, mc, ms, m_near, m_gap, m_reach = memo[0]  # a row a figure
     n = len(x_rel)
     if len(mx) == 0 or n == 0:
         return np.full(n, -1, dtype=np.int64)
@@ -54,10 +54,11 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
     check = np.flatnonzero(far_ok & ~quiet)
     if len(check):  # the sign test on each candidate again, its side code compared
         kk = k[check]
-        ranges = memo[6][kk]
+        ranges = memo[1][kk]
         station, face = range_faces(ranges[:, :, 0], ranges[:, :, 1])
         _, code = _sides(index, station, face, x_rel[check], c, s, cg)
-        want = memo[8][_spans(memo[7][kk], memo[7][kk + 1] - memo[7][kk])]
+        code_p = memo[2][0]
+        want = memo[3][_spans(code_p[kk], code_p[kk + 1] - code_p[kk])]
         wrong = np.bincount(station[code != want], minlength=len(check))
         src[check[wrong > 0]] = -1
     return src
@@ -101,9 +102,10 @@ def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     st_q = np.concatenate(([0], np.cumsum(np.bincount(ring_station, minlength=n_st))))
     points = np.bincount(ring_station, weights=length, minlength=n_st).astype(np.int64)
     st_p = np.concatenate(([0], np.cumsum(points)))
-    return (np.array(x_rel, dtype=np.float64), np.full(n_st, c), np.full(n_st, s), near, gap,
-            reach, np.stack([first, last], axis=2), code_p, codes.astype(np.int8), ends6,
-            length.astype(np.int64), st_p, st_q)  # fmt: skip
+    stations = np.stack([np.asarray(x_rel, dtype=np.float64), np.full(n_st, c),
+                         np.full(n_st, s), near, gap, reach])  # fmt: skip
+    return (stations, np.stack([first, last], axis=2), np.stack([code_p, st_p, st_q]),
+            codes.astype(np.int8), ends6, length.astype(np.int64))  # fmt: skip
 
 
 def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray, ...]]:
@@ -113,7 +115,7 @@ def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray,
     ``(Y, Z)``; repeated points (closer than ``merge`` along both axes) dropped and
     contours with no area left out."""
     n_st = len(x_rel)
-    ends6, ring_len, st_p, st_q = memo[9], memo[10], memo[11], memo[12]
+    ends6, ring_len, st_p, st_q = memo[4], memo[5], memo[2][1], memo[2][2]
     p0, p1 = st_p[k0], st_p[k0 + n_st]
     xa, ya, za, xb, yb, zb = ends6[:, p0:p1]  # each point's edge
     xs = np.repeat(x_rel, np.diff(st_p[k0 : k0 + n_st + 1]))
@@ -141,30 +143,31 @@ def _combined(memo, src, fresh) -> tuple:
     """The memo of a call's stations: each one's from ``memo`` (``src[i] >= 0``) or, in
     turn, from the ``fresh`` stations' memo (None where there is none)."""
     if fresh is None:
-        fresh = empty_memo(memo[6].shape[1])
+        fresh = empty_memo(memo[1].shape[1])
     n = len(src)
     take = src >= 0
     j = np.cumsum(~take) - 1  # each fresh station's row in ``fresh``
-    rows = []
-    for a, b in zip(memo[:7], fresh[:7], strict=True):  # one row a station
-        row = np.empty((n, *a.shape[1:]), dtype=a.dtype)
-        row[take] = a[src[take]]
-        row[~take] = b[j[~take]]
-        rows.append(row)
-    flat = []
-    for start, data in ((7, 8), (11, 9), (12, 10)):  # each station's run of the data
-        old, new = memo[start], fresh[start]
-        axis = 1 if data == 9 else 0  # the edge ends: a row a coordinate
+    stations = np.empty((6, n))  # a column a station
+    stations[:, take] = memo[0][:, src[take]]
+    stations[:, ~take] = fresh[0][:, j[~take]]
+    ranges = np.empty((n, *memo[1].shape[1:]), dtype=memo[1].dtype)  # a row a station
+    ranges[take] = memo[1][src[take]]
+    ranges[~take] = fresh[1][j[~take]]
+    offsets = np.empty((3, n + 1), dtype=np.int64)
+    data = []
+    for row, at in ((0, 3), (1, 4), (2, 5)):  # each station's run of the codes, ends, rings
+        old, new = memo[2][row], fresh[2][row]
+        axis = 1 if at == 4 else 0  # the edge ends: a row a coordinate
         count = np.empty(n, dtype=np.int64)
         base = np.empty(n, dtype=np.int64)
         k, f = src[take], j[~take]
         count[take], base[take] = old[k + 1] - old[k], old[k]
-        count[~take], base[~take] = new[f + 1] - new[f], memo[data].shape[axis] + new[f]
-        pieces = np.concatenate((memo[data], fresh[data]), axis=axis)
-        flat.append((np.concatenate(([0], np.cumsum(count))),
-                     pieces.take(_spans(base, count), axis=axis)))  # fmt: skip
-    (code_p, codes), (st_p, ends6), (st_q, ring_len) = flat
-    return (*rows, code_p, codes, ends6, ring_len, st_p, st_q)
+        count[~take], base[~take] = new[f + 1] - new[f], memo[at].shape[axis] + new[f]
+        pieces = np.concatenate((memo[at], fresh[at]), axis=axis)
+        offsets[row] = np.concatenate(([0], np.cumsum(count)))
+        data.append(pieces.take(_spans(base, count), axis=axis))
+    codes, ends6, ring_len = data
+    return (stations, ranges, offsets, codes, ends6, ring_len)
 
 
 def _gaps(index, first, last, xa, xb, cg) -> tuple[np.ndarray, np.ndarray]:

@@ -72,7 +72,7 @@ class Cutter:
         src = contour_loops.match_loops(x_rel, c, s, self.memo, *self.reach, ix.margin)
         for i in np.flatnonzero(src <= -2):
             k = -2 - src[i]
-            same = contour_loops.same_sides_loops(self.memo[6][k], self.memo[8], self.memo[7][k],
+            same = contour_loops.same_sides_loops(self.memo[1][k], self.memo[3], self.memo[2][0][k],
                                                   ix.corners, x_rel[i], self.g[0], self.g[2],
                                                   c, s)  # fmt: skip
             src[i] = k if same else -1
@@ -148,7 +148,7 @@ def test_a_vertex_crossing_its_plane_is_cut_afresh(path):
     pitch = 0.05
     x_rel = np.ascontiguousarray(frame(hull, pitch).fixed_stations(40)[1][10:14])
     cutter.by_memo(x_rel, pitch)
-    near = cutter.memo[3][1]  # the second station's nearest candidate vertex, m
+    near = cutter.memo[0][3, 1]  # the second station's nearest candidate vertex, m
     assert 0.0 < near < 1e-3 * hull.size
     moved = x_rel.copy()
     for sign in (1.0, -1.0):
@@ -188,6 +188,6 @@ def test_numpys_memo_gives_a_fresh_cuts_contours_to_the_bit(name):
             assert len(a) == len(b)
             for p, q in zip(a, b, strict=True):
                 np.testing.assert_array_equal(p, q)
-        assert len(memo[0]) >= len(x_rel)  # these stations, and more where all were served
+        assert memo[0].shape[1] >= len(x_rel)  # these stations, and more where all were served
     assert served >= 0.3 * total, (served, total)
     assert served < total
