@@ -4,8 +4,8 @@
 :func:`frame_keel_loops` makes it in one call: the side view's loops
 (:func:`~hullslice.keel_loops.side_view_loops`), the refinement of their lowest points
 (:func:`refine_loops`: :func:`hullslice.kernel.envelope.refined`, its gaps, jumps and
-crossings, then the merge of close break points), the line's runs
-(:func:`~hullslice.keel_loops.runs_loops`) and the turned ends' lowest and highest heights
+crossings, then the merge of close break points), the line's runs and arrays
+(:func:`~hullslice.keel_loops.keel_line_loops`) and the turned ends' lowest and highest heights
 (the side view's), with numpy's arithmetic in numpy's order: the same keel line.
 """
 
@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from .keel_loops import runs_loops, search_loops, side_view_loops
+from .keel_loops import keel_line_loops, line_runs_loops, search_loops, side_view_loops
 
 __all__ = [
     "FRAME_HELPERS_DIGEST",
@@ -31,7 +31,7 @@ __all__ = [
 #: cache of these loops goes stale when this file changes, not when that one does: a
 #: change of it changes this digest too (``tests/test_keel_runs_loops.py`` checks it), so
 #: that their cache is made again.
-FRAME_HELPERS_DIGEST = "7fbff6fcc64734aa"
+FRAME_HELPERS_DIGEST = "6317095553aa1d79"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
@@ -213,17 +213,18 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
 def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
     """A new pitch's keel line in one call: :func:`~hullslice.keel_loops.side_view_loops`
     (its arguments the first seven), :func:`refine_loops` of its lower envelope with
-    ``merge`` and :func:`~hullslice.keel_loops.runs_loops` of the refined break points
+    ``merge`` and :func:`~hullslice.keel_loops.keel_line_loops` of the refined break points
     (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
     heights (the side view's).
 
-    Returns ``(ok, side, low, high, x, z, runs)``: ``side`` the nine arrays and two heights
-    of :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points ``x``, ``z``
-    as :func:`refine_loops` gives them (where ``ok`` is False numpy's refinement must
-    serve, and ``runs`` is not meaningful), ``runs`` the eleven values of
-    :func:`~hullslice.keel_loops.runs_loops`."""
+    Returns ``(ok, side, low, high, x, z, runs, line)``: ``side`` the nine arrays and two
+    heights of :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points
+    ``x``, ``z`` as :func:`refine_loops` gives them (where ``ok`` is False numpy's
+    refinement must serve, and the rest is not meaningful), ``line`` what
+    :func:`~hullslice.keel_loops.keel_line_loops` gives (the fused evaluation's arrays) and
+    ``runs`` its eleven values of :func:`~hullslice.keel_loops.runs_loops`."""
     side = side_view_loops(a, b, gx, gz, c, s, order)
     xa, za, xb, zb, seg, xs, mid, z, zm, low, high = side
     ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
-    runs = runs_loops(x, z, end_face, steep_slope)
-    return ok, side, low, high, x, z, runs
+    line = keel_line_loops(x, z, end_face, steep_slope)
+    return ok, side, low, high, x, z, line_runs_loops(line), line

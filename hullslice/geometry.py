@@ -322,7 +322,7 @@ def _side_keel(
     # the turn, the keel line's search, the merge of its close break points and its runs
     # in one compiled call (the loops are in use: the others too)
     order = order_of(hull, 2 * len(a))
-    ok, side, low, high, xr, zr, runs = made(
+    ok, side, low, high, xr, zr, runs, _ = made(
         a, b, float(g[0]), float(g[2]), float(c), float(s), order, merge, END_FACE_SLOPE,
         STEEP_SLOPE,
     )  # fmt: skip

@@ -23,6 +23,7 @@ __all__ = [
     "envelope_loops",
     "keel_arrays_loops",
     "keel_line_loops",
+    "line_runs_loops",
     "lower_loops",
     "lowest_loops",
     "lowest_walk_loops",
@@ -245,15 +246,20 @@ def abscissae_loops(xs):
 def runs_loops(x, z, end_face, steep_slope):
     """:meth:`hullslice.kernel.keel._Runs.of` of the break points ``x``, ``z`` by loops,
     with the same arithmetic in the same order (each sum a running one, as numpy's
-    ``cumsum``): the same arrays, as rows of :func:`keel_line_loops`'. ``end_face`` and
-    ``steep_slope`` are :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
-    :data:`~hullslice.kernel.keel.STEEP_SLOPE`.
+    ``cumsum``): the same arrays, as rows of :func:`keel_line_loops`' (see
+    :func:`line_runs_loops`). ``end_face`` and ``steep_slope`` are
+    :data:`~hullslice.kernel.keel.END_FACE_SLOPE` and
+    :data:`~hullslice.kernel.keel.STEEP_SLOPE`."""
+    return line_runs_loops(keel_line_loops(x, z, end_face, steep_slope))
 
-    Returns ``(ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi)``:
-    ``ok`` False where no facet has a finite slope (numpy's path holds the slope at zero
-    there; nothing else is meaningful), ``bottom`` whether a bottom facet exists (then
+
+def line_runs_loops(line):
+    """The runs of a keel line as :func:`keel_line_loops` gives them (``line``), as
+    ``(ok, mid, cont, starts, offsets, steep, bend, bottom, height, lo, hi)``: rows of its
+    arrays; ``ok`` False where no facet has a finite slope (numpy's path holds the slope at
+    zero there; nothing else is meaningful), ``bottom`` whether a bottom facet exists (then
     ``(x, height, lo, hi)`` are the chords)."""
-    nf, r, bottom, steep, _, runs, chords = keel_line_loops(x, z, end_face, steep_slope)
+    nf, r, bottom, steep, _, runs, chords = line
     n = len(steep)
     if nf == 0:
         empty = np.empty(0)
@@ -363,11 +369,10 @@ def keel_line_loops(x, z, end_face, steep_slope):
         b = z[n]
         low = b if (n == 0 or not (low < b or low != low)) else low
         keel[3, n] = low
-    for i in range(n, -1, -1):
-        if i < k:
-            b = z[i]
-            low = b if (i == n or not (low < b or low != low)) else low
-            keel[4, i] = low
+    for i in range(k - 1, -1, -1):
+        b = z[i]
+        low = b if (i == k - 1 or not (low < b or low != low)) else low
+        keel[4, i] = low
     if k == 0:  # no break point: a column of zeros
         for j in range(5):
             keel[j, 0] = 0.0
@@ -382,11 +387,9 @@ def keel_line_loops(x, z, end_face, steep_slope):
         runs[4, j] = np.nan
     if not bottom:
         chords = np.zeros((3, k))
-    else:
+    else:  # a bottom facet: at least two break points
         for j in range(n, kk):
             chords[1, j] = chords[2, j] = np.nan
-        if k == 0:
-            chords[0, 0] = np.nan
     return nf, r, bottom, steep, keel, runs, chords
 
 

@@ -59,6 +59,7 @@ from .keel_loops import (
     envelope_loops,
     keel_arrays_loops,
     keel_line_loops,
+    line_runs_loops,
     lower_loops,
     lowest_loops,
     lowest_walk_loops,
@@ -107,7 +108,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "35c0d8817615c477"
+STAGE_HELPERS_DIGEST = "ec4603bb7857515f"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -149,11 +150,10 @@ def stage_loops(
     iout, scal, extra, opts, a_c, v_c, memo,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
-    (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line (as
-    :func:`~hullslice.frame_loops.frame_keel_loops` makes it of the silhouette edges ``a``
+    (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line and its
+    arrays (:func:`~hullslice.frame_loops.frame_keel_loops` of the silhouette edges ``a``
     to ``b`` about the centre of gravity ``g``, ``order`` their ends' order,
-    ``keel_merge``, ``end_face`` and ``steep_slope`` as there) with its runs written
-    straight into its arrays (:func:`~hullslice.keel_loops.keel_line_loops`); the draft of
+    ``keel_merge``, ``end_face`` and ``steep_slope`` as there); the draft of
     the centre of gravity at height ``z_cg`` (m) and the water's level; the wetted slices'
     window; their fixed stations (``n`` slices over the keel line's length) cut by
     :func:`~hullslice.contour_loops.memo_cut_loops` (each from the thread's ``memo`` where
@@ -187,14 +187,11 @@ def stage_loops(
     memo returned is that of the stations cut (the one given where none was)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
-    # the keel line as frame_keel_loops makes it, its runs written straight into the
-    # fused evaluation's arrays (keel_arrays_loops' of runs_loops', the runs NaN-padded)
-    side = side_view_loops(a, b, gx, gz, c, s, order)
-    sxa, sza, sxb, szb, seg, xs, mid, z, zm, low, high = side
-    ok, kx, kz = refine_loops(xs, mid, z, zm, keel_merge, sxa, sza, sxb, szb, seg)
+    keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
+    ok, _, low, high, kx, _, _, line = keel_line
     if not ok:
         return 100, none2, none1, none1, memo
-    nf, _, bottom, _, keel, runs_arr, chords = keel_line_loops(kx, kz, end_face, steep_slope)
+    nf, _, bottom, _, keel, runs_arr, chords = line  # the runs NaN-padded
     if nf == 0:
         return 101, none2, none1, none1, memo
     draft = -(low + z_cg)  # ForceModel.draft's max(0.0, ...), _run's clip
@@ -355,7 +352,7 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
     near=near_loops,
     sorted=sorted_loops, walk=lowest_walk_loops, lower=lower_loops, runs=runs_loops,
-    run_ends=run_ends_loops, keel_line=keel_line_loops,
+    run_ends=run_ends_loops, keel_line=keel_line_loops, line_runs=line_runs_loops,
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
     crossings=crossings_loops, refine=refine_loops,
@@ -374,7 +371,8 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "gallop",
+_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "line_runs",
+          "frame_keel", "gallop",
           "near", "ranges", "recipe", "points", "match", "sides", "memo_cut", "cut", "order",
           "hinted", "outline", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
           "pitch")  # fmt: skip
@@ -388,8 +386,8 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": _SIDE,
-    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "runs"),
-    "runs": ("run_ends", "keel_line"),
+    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "line_runs"),
+    "runs": ("run_ends", "keel_line", "line_runs"),
     "keel_line": ("run_ends",),
     "refine": ("search", *_REFINE),
     "crossings": ("search", "lowest_at"),

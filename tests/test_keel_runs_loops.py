@@ -192,7 +192,7 @@ def test_a_new_pitchs_keel_line_in_one_call_equals_numpys(name):
             c, s = np.cos(pitch), np.sin(pitch)
             ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
             args = (float(g[0]), float(g[2]), float(c), float(s))
-            ok, side, low, high, x, z, runs = made(
+            ok, side, low, high, x, z, runs, _ = made(
                 a, b, *args, order, merge, END_FACE_SLOPE, STEEP_SLOPE
             )
             assert _same(side[1], ta[:, 1]) and _same(side[3], tb[:, 1])
