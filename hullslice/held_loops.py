@@ -47,6 +47,7 @@ from .slices_loops import (
     finish_loops,
     layout_loops,
     left_loops,
+    side_tan_loops,
     wet_slices_loops,
     window_loops,
 )
@@ -57,7 +58,7 @@ from .wetted_loops import wetted_loops
 #: cache of these loops goes stale when this file changes, not when the helpers' files
 #: do: a change of theirs changes this digest too (``tests/test_fused.py`` checks it), so
 #: that the cache of :func:`held_loops` and :func:`pitch_loops` is made again.
-HELPERS_DIGEST = "bc805368ee2c44fd"
+HELPERS_DIGEST = "557eee170c0d594c"
 
 __all__ = [
     "COLUMNS",
@@ -103,8 +104,8 @@ def table_entry_loops(e, k, first, count, at, s, tvals, station_vals, tol):
         pen = max(-(tvals[ent, 1] - at), 0.0)
         hbp = tvals[ent, 3] + tvals[ent, 6] * at
         hbs = tvals[ent, 4] + tvals[ent, 7] * at
-        t_port = div_loops(pen, hbp)
-        t_stbd = div_loops(pen, hbs)
+        t_port = side_tan_loops(pen, hbp)
+        t_stbd = side_tan_loops(pen, hbs)
         row[0] = tvals[ent, 11]
         row[1] = tvals[ent, 0]
         row[2] = pen

@@ -84,6 +84,7 @@ from .slices_loops import (
     left_loops_desc,
     right_loops,
     runs_of_loops,
+    side_tan_loops,
     slope_loops,
     wet_slices_loops,
     window_loops,
@@ -108,7 +109,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "ec4603bb7857515f"
+STAGE_HELPERS_DIGEST = "f7e33f70c0a9ba56"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -364,8 +365,8 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
 #: functions only; :data:`LOOPS` keeps the Python ones, though once compiled their helpers
 #: in those namespaces are numba's).
 #: What the fused evaluation's loops call, helpers before callers.
-_HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_slope", "h_runs", "h_cross",
-         "h_extent", "h_wet", "h_window", "h_layout", "h_finish")  # fmt: skip
+_HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_sidetan", "h_slope", "h_runs",
+         "h_cross", "h_extent", "h_wet", "h_window", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
 #: What the keel line's refinement calls, helpers before callers.
@@ -396,11 +397,13 @@ CALLS = {
     "stage": _STAGE,
     "outline": ("order", "hinted"),
     "keel_arrays": ("row",),
-    "h_entries": ("wetted",),
+    "h_entries": ("h_div", "h_sidetan", "wetted"),
+    "wetted": ("h_div", "h_sidetan"),
 }
 LOOPS.update(
     wetted=wetted_loops, held=held_loops, h_interp=interp_loops, h_right=right_loops,
-    h_left=left_loops, h_div=div_loops, h_desc=left_loops_desc, h_cross=crossing_loops,
+    h_left=left_loops, h_div=div_loops, h_sidetan=side_tan_loops, h_desc=left_loops_desc,
+    h_cross=crossing_loops,
     h_runs=runs_of_loops, h_extent=extent_loops, h_wet=wet_slices_loops,
     h_window=window_loops, h_layout=layout_loops,
     h_finish=finish_loops, h_interval=table_interval_loops,

@@ -99,6 +99,16 @@ def div_loops(a, b):
     return math.copysign(math.inf, a) * math.copysign(1.0, b)
 
 
+def side_tan_loops(p, c):
+    """The equivalent wedge's ``tan(beta) = p / c`` of one side (``p`` the penetration,
+    ``c`` the side's half-beam from the keel, m), as :func:`hullslice.kernel.wetted.side_tan`
+    gives it: a side whose waterline end lies at the keel or behind it (``c <= 0``, the
+    keel under an overhang) rises as a wall, ``+inf``; else :func:`div_loops`."""
+    if c <= 0.0 and p > 0.0:
+        return math.inf
+    return div_loops(p, c)
+
+
 def slope_loops(x, mid, cont, starts, offsets):
     """The keel line's continuous slope at ``x`` (``_Runs.slope``)."""
     s = interp_loops(x, mid, cont)

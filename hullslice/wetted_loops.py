@@ -18,6 +18,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .slices_loops import side_tan_loops
+
 __all__ = ["wetted_loops"]
 
 
@@ -244,7 +246,7 @@ def wetted_loops(
             if slope_estimator:
                 t_port, t_stbd = tr[q], tl[q]
             else:
-                t_port, t_stbd = p / c_port, p / c_stbd
+                t_port, t_stbd = side_tan_loops(p, c_port), side_tan_loops(p, c_stbd)
             width = yr[q] - yl[q]
             pw = part_width[part[q]]
             frac = width / pw if pw > 0.0 else 1.0

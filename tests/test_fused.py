@@ -387,3 +387,35 @@ def test_what_numpy_refuses_or_leaves_out_the_loops_do_too(path):
     want, got = slow(pose, motion), fast.fused.force(pose, motion)
     assert got is not None and got.loads.diagnostics == want.loads.diagnostics == {}
     assert_same_result(got, want)
+
+
+def test_a_keel_under_an_overhang_is_a_wall_by_the_loops_too(monkeypatch):
+    # tests/test_pitch.py's overhang: the wetted loops (as Python, and compiled) give its
+    # port side's 90 deg as numpy does, and a held pitch's fused run, its properties from
+    # the waterline table's loops, equals numpy's
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.wetted import wetted_properties
+    from hullslice.wetted_loops import wetted_loops
+
+    from .test_pitch import OVERHANG, overhang_prism
+
+    outline = Outline.of([(OVERHANG,)], 1e-9)
+    ref = wetted_properties(outline, 0.0, 1e-9, "wedge")
+    assert ref["deadrise_port"][0] == np.pi / 2
+    paths = [wetted_loops]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("wetted"))
+    for loops in paths:
+        got = wetted_properties(outline, 0.0, 1e-9, "wedge", loops)
+        for key in ("deadrise", "deadrise_port", "deadrise_stbd"):
+            assert got[key][0] == ref[key][0], key
+    if not planecut_loops.available():
+        pytest.skip("the fused run's compiled path needs numba")
+    hull = overhang_prism()
+    runs = []
+    for flag in ("0", "1"):
+        monkeypatch.setenv("HULLSLICE_NUMBA", flag)
+        runs.append(hs.simulate(hull, -2.0, 0.02, dt=0.002, slices=4, slicing="fixed",
+                                stop_on=()))  # fmt: skip
+    assert np.max(np.abs(runs[0].force)) > 0.0
+    np.testing.assert_allclose(runs[1].force, runs[0].force, rtol=1e-12, atol=0.0)

@@ -376,6 +376,36 @@ def test_a_section_leaving_the_water_keeps_its_added_mass(velocity):
     assert entering.acceleration.vertical == pytest.approx(a, rel=1e-6)
 
 
+def test_no_side_carries_a_negative_added_mass(monkeypatch):
+    # the momentum form carries the added mass of the loaded points, side by side; a side
+    # whose coefficients sum below zero carries none (as the solver's own added mass, which
+    # it clips at zero), never a negative one that would take the body's mass matrix out
+    # of positive definiteness. A level wedge at constant speed (no kinematic acceleration:
+    # its loaded points do not depend on the coefficients) with its port coefficients made
+    # negative carries its starboard side's alone: half, by symmetry
+    import dataclasses
+
+    hull = hs.Hull.from_arrays(*shapes.wedge_prism(1.0, 0.4, 25.0), mass=40.0)
+    kw = dict(slices=2, solver="mlm", fluid=hs.Fluid(RHO, 0.0))
+    whole = hs.compute_force(hull, 0.05, -4.0, **kw)
+    plain = mlm.MLM.added_mass
+
+    def port_negative(self, sections, velocity, fluid):
+        added = plain(self, sections, velocity, fluid)
+        pts = added.pressure
+        coef = np.array(pts.acceleration_coefficient)
+        coef[:, 0, :] = -1e9
+        pts = dataclasses.replace(pts, acceleration_coefficient=coef)
+        return dataclasses.replace(added, pressure=pts)
+
+    monkeypatch.setattr(mlm.MLM, "added_mass", port_negative)
+    half = hs.compute_force(hull, 0.05, -4.0, **kw)
+    carried = half.loads.diagnostics["added_mass"]
+    assert np.all(whole.loads.diagnostics["added_mass"] > 0.0)
+    np.testing.assert_allclose(carried, 0.5 * whole.loads.diagnostics["added_mass"], rtol=1e-9)
+    assert np.isfinite(half.acceleration.vertical)  # free in heave: the matrix is solved
+
+
 @pytest.mark.parametrize("acceleration", [-40.0, 0.0, 40.0])
 def test_the_load_is_continuous_as_a_section_turns_to_leave_the_water(acceleration):
     # a section whose motion turns from entering to leaving has no v^2 term left as its
@@ -469,3 +499,20 @@ def test_the_sides_sampled_rows_are_read_as_take_along_axis_reads_them():
     with np.errstate(invalid="ignore"):
         both, alone = bottom(y), bottom.slope(y)
     np.testing.assert_array_equal(both[1].view(np.uint64), alone.view(np.uint64))
+
+
+@pytest.mark.slow
+def test_an_airliner_ditching_nose_high_runs_to_its_end():
+    # the catalogued airliner (60 t) free in pitch, nose up 20 deg and rising at 1.39
+    # rad/s, 27.4 m/s forward and 1.82 m/s down: some sections have their keel at the end
+    # of their waterline, and their equivalent wedge's side there is a wall; its -90 deg
+    # deadrise once gave the mlm bottom a height hundreds of metres under the keel, a
+    # negative added mass of -7.5e5 kg/m and a stop at t = 0.049 s
+    hull = hs.load_hull(MESHES / "airliner" / "airliner.obj", mass=6e4)
+    h = hs.simulate(
+        hull, -1.82, 0.1335, dt=0.00297, pitch_rad=0.3482, pitch_rate_rad_s=1.3875,
+        forward_speed=27.42, slices=57, slicing="wetted", free_pitch=True, stop_on=(),
+        solver="mlm",
+    )  # fmt: skip
+    assert h.t[-1] == pytest.approx(0.1335, abs=0.00297)
+    assert np.all(np.isfinite(h.force)) and np.max(h.force) > 1e6  # N: the water took it

@@ -186,6 +186,40 @@ def test_asymmetric_wedge_has_a_deadrise_per_side():
     np.testing.assert_allclose(s.half_beam_stbd, p / np.tan(np.radians(40)), rtol=1e-6)
 
 
+#: A section leaning to starboard, counter-clockwise in (y, z), the water at z = 0: its
+#: lowest point, the keel at y = 0, lies beyond the port end of its waterline (y = -0.15).
+OVERHANG = np.array([[-1.0, -0.5], [0.0, -1.0], [-0.3, 1.0], [-1.3, 1.0]])
+
+
+def overhang_prism() -> hs.Hull:
+    """A 2 m prism of :data:`OVERHANG`, 500 kg."""
+    v, f = shapes.prism_from_sections(np.array([0.0, 2.0]), np.broadcast_to(OVERHANG, (2, 4, 2)))
+    return hs.Hull.from_arrays(v, f, mass=500.0)
+
+
+def test_a_keel_under_an_overhang_has_a_wall_for_its_side():
+    # p / c has c = -0.15 m there: the equivalent wedge's port side rises as a wall, 90
+    # deg, not the -81.5 deg p / c gives (a negative deadrise, a wedge going down from its
+    # keel); the starboard side is p / c = 1 / 1.1. The same from the waterline table,
+    # and in a prism of that section cut whole
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.waterline_table import WaterlineTable
+
+    props = section_properties([(OVERHANG,)], tol=1e-9)
+    np.testing.assert_allclose(props["half_beam_port"], -0.15, rtol=1e-12)
+    assert props["deadrise_port"][0] == np.pi / 2
+    np.testing.assert_allclose(np.tan(props["deadrise_stbd"]), 1.0 / 1.1, rtol=1e-12)
+    # the two sides' harmonic mean: the wall's 1 / tan is zero
+    np.testing.assert_allclose(np.tan(props["deadrise"]), 2.0 / 1.1, rtol=1e-12)
+    table = WaterlineTable.of(Outline.of([(OVERHANG,)], 1e-9), 0.0, 1e-9, "wedge")
+    at = table.at(0.0, 0, 1)
+    for key in ("deadrise", "deadrise_port", "deadrise_stbd"):
+        assert at[key][0] == props[key][0], key
+    cut = hs.cut(overhang_prism(), 0.5, 4)  # keel 0.5 m under: the port end 0.075 m behind
+    np.testing.assert_allclose(cut.half_beam_port, -0.075, rtol=1e-9)
+    np.testing.assert_allclose(cut.deadrise_port, np.pi / 2, rtol=1e-15)
+
+
 def test_two_floats_are_two_wedges(wedge_hull):
     # two 30-degree wedge prisms side by side, each of half the mass: every station has two
     # pieces, each the single wedge of half the mass per metre, so the force is twice

@@ -182,9 +182,10 @@ def momentum_terms(
         leaving = (velocity >= 0.0)[:, None, None]
         loaded = np.where(leaving, p0 >= 0.0, p0 > 0.0)
         flux = (np.where(loaded, p0, 0.0) * pts.weight).sum(axis=(1, 2))
-        carried = (np.where(loaded, pts.acceleration_coefficient, 0.0) * pts.weight).sum(
-            axis=(1, 2)
-        )
+        # no side's added mass is negative, as the solver's own (clipped at zero): on a
+        # steep side the coefficient is negative near the keel (Logvinovich's f - h term)
+        per_side = (np.where(loaded, pts.acceleration_coefficient, 0.0) * pts.weight).sum(axis=2)
+        carried = np.maximum(per_side, 0.0).sum(axis=1)
         f0 = flux + added.extra + added.vertical
     else:
         f0 = flux - added.added_mass * bias + added.extra + added.vertical

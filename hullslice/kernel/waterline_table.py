@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .outline import Outline, prefix_index
-from .wetted import wetted_properties
+from .wetted import side_tan, wetted_properties
 
 __all__ = ["AFFINE", "BUDGET", "CONSTANT", "TABULATED", "WaterlineTable"]
 
@@ -243,8 +243,8 @@ class WaterlineTable:
         p = out["penetration"] = np.maximum(-(self.keel[idx] - at), 0.0)
         if self.deadrise == "wedge":  # a dry entry's 0 / 0 gives its NaN
             with np.errstate(divide="ignore", invalid="ignore"):
-                t_port = p / out["half_beam_port"]
-                t_stbd = p / out["half_beam_stbd"]
+                t_port = side_tan(p, out["half_beam_port"])
+                t_stbd = side_tan(p, out["half_beam_stbd"])
                 t_mean = 2.0 / (1.0 / t_port + 1.0 / t_stbd)
             out["deadrise"] = np.arctan(t_mean)
             out["deadrise_port"] = np.arctan(t_port)

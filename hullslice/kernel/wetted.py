@@ -8,7 +8,8 @@ then between the wetted pieces of one part by their widths at the waterline. Pur
 Local deadrise estimators (each per side, port and starboard, of each piece):
 
 ``wedge``
-    The equivalent wedge of the wetted piece: ``tan(beta) = p / c``.
+    The equivalent wedge of the wetted piece: ``tan(beta) = p / c`` (a side whose
+    waterline end lies at the keel or behind it, under an overhang, is a wall: 90 deg).
 ``waterline-slope``
     The slope of the contour where it meets the water.
 ``keel-fit``
@@ -124,8 +125,7 @@ def wetted_properties(
     c_port = yr - yk
     c_stbd = yk - yl
     if deadrise == "wedge":
-        with np.errstate(divide="ignore", invalid="ignore"):
-            t_port, t_stbd = p / c_port, p / c_stbd
+        t_port, t_stbd = side_tan(p, c_port), side_tan(p, c_stbd)
     elif deadrise == "waterline-slope":
         t_port, t_stbd = tan_r, tan_l
     else:  # keel-fit
@@ -169,6 +169,16 @@ def wetted_properties(
         "mass_share": col(share, 1.0),
         "chine_wetted": col(chine_station[ps], False).astype(bool),
     }
+
+
+def side_tan(p: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """The equivalent wedge's ``tan(beta) = p / c`` of one side of each piece (``p`` its
+    penetration, ``c`` the side's half-beam from the keel, m). A side whose waterline end
+    lies at the keel or behind it (``c <= 0``: the lowest point under an overhang, or
+    beyond the piece's waterline interval) rises as a wall: ``+inf``, 90 deg, not the
+    negative angle ``p / c`` would give. A dry entry's ``0 / 0`` stays NaN."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.where((c <= 0.0) & (p > 0.0), np.inf, p / c)
 
 
 def _by_loops(
