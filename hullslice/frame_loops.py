@@ -15,7 +15,15 @@ import math
 
 import numpy as np
 
-from .keel_loops import keel_line_loops, line_runs_loops, search_loops, side_view_loops
+from .keel_loops import (
+    keel_line_loops,
+    line_runs_loops,
+    search_loops,
+    segments_loops,
+    side_ends_loops,
+    side_heights_loops,
+)
+from .side_loops import chain_at_loops, lower_side_loops, outline_keel_loops
 
 __all__ = [
     "FRAME_HELPERS_DIGEST",
@@ -23,15 +31,16 @@ __all__ = [
     "crossings_loops",
     "frame_keel_loops",
     "lowest_at_loops",
+    "merge_loops",
     "refine_loops",
     "segment_reach_loops",
 ]
 
-#: The digest of the source of the helpers these loops call (``keel_loops.py``). numba's
-#: cache of these loops goes stale when this file changes, not when that one does: a
-#: change of it changes this digest too (``tests/test_keel_runs_loops.py`` checks it), so
-#: that their cache is made again.
-FRAME_HELPERS_DIGEST = "6317095553aa1d79"
+#: The digest of the sources of the helpers these loops call (``keel_loops.py`` and
+#: ``side_loops.py``). numba's cache of these loops goes stale when this file changes, not
+#: when those do: a change of theirs changes this digest too
+#: (``tests/test_frame_loops.py`` checks it), so that their cache is made again.
+FRAME_HELPERS_DIGEST = "58716593b3c0513c"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
@@ -184,6 +193,16 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
                 i += 1
         xs, z = all_x, all_z
         n = len(xs)
+    return merge_loops(xs, z, merge)
+
+
+def merge_loops(xs, z, merge):
+    """The break points ``xs`` (sorted), ``z`` closer together than ``merge`` made one, at
+    their mean abscissa (numpy's ``add.reduceat``: the first plus the running sum of the
+    others) and their lowest height, as :func:`hullslice.kernel.envelope.merged`. Returns
+    ``(ok, xs, z)``; ``ok`` False where a group to merge is longer than 8 (numpy sums
+    those pairwise)."""
+    n = len(xs)
     if not (merge > 0.0 and n > 1):
         return True, xs, z
     out_x = np.empty(n)
@@ -210,12 +229,22 @@ def refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg):
     return True, out_x[:g], out_z[:g]
 
 
-def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
+def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face, steep_slope):
     """A new pitch's keel line in one call: :func:`~hullslice.keel_loops.side_view_loops`
-    (its arguments the first seven), :func:`refine_loops` of its lower envelope with
-    ``merge`` and :func:`~hullslice.keel_loops.keel_line_loops` of the refined break points
+    of the silhouette edges ``a`` to ``b`` (with ``gx`` to ``s`` and ``order``),
+    :func:`refine_loops` of its lower envelope with ``merge`` and
+    :func:`~hullslice.keel_loops.keel_line_loops` of the refined break points
     (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
-    heights (the side view's).
+    heights (the side view's). Where the lower side of the body's side ``outline``
+    (:func:`~hullslice.keel_loops.lower_side_loops`; an empty outline never serves) runs
+    forward from the first abscissa to the last, the lowest heights are read off it
+    (:func:`~hullslice.keel_loops.chain_at_loops`) instead of walked for, and the
+    refinement has nothing to add but the merge (:func:`merge_loops`); the middles'
+    heights and the segments' order are then not made (``side``'s ``zm`` and ``seg``
+    empty). Where the outline's points are all the edges' ends (``whole``), the abscissae
+    and heights come from it alone where both its sides run forward
+    (:func:`~hullslice.keel_loops.outline_keel_loops`: the same numbers), the edges not
+    turned (``side``'s arrays all empty).
 
     Returns ``(ok, side, low, high, x, z, runs, line)``: ``side`` the nine arrays and two
     heights of :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points
@@ -223,8 +252,35 @@ def frame_keel_loops(a, b, gx, gz, c, s, order, merge, end_face, steep_slope):
     refinement must serve, and the rest is not meaningful), ``line`` what
     :func:`~hullslice.keel_loops.keel_line_loops` gives (the fused evaluation's arrays) and
     ``runs`` its eleven values of :func:`~hullslice.keel_loops.runs_loops`."""
-    side = side_view_loops(a, b, gx, gz, c, s, order)
-    xa, za, xb, zb, seg, xs, mid, z, zm, low, high = side
+    none = np.empty(0)
+    if whole:
+        ok, xs, z, low, high = outline_keel_loops(outline, gx, gz, c, s)
+        if ok:
+            ok, x, zk = merge_loops(xs, z, merge)
+            if ok:
+                side = (none, none, none, none, np.empty(0, dtype=np.int64), none, none, none,
+                        none, low, high)  # fmt: skip
+                line = keel_line_loops(x, zk, end_face, steep_slope)
+                return True, side, low, high, x, zk, line_runs_loops(line), line
+    xa, za, xb, zb, xs, mid, low, high = side_ends_loops(a, b, gx, gz, c, s, order)
+    n = len(xs)
+    served = False
+    cx, cz, zm = np.empty(0), np.empty(0), np.empty(0)
+    if outline.shape[1] and n:
+        served, cx, cz = lower_side_loops(outline, gx, gz, c, s)
+        served = served and cx[0] == xs[0] and cx[len(cx) - 1] == xs[n - 1]
+    if served:  # the side runs forward over every abscissa: no gap, jump or crossing
+        z = chain_at_loops(cx, cz, xs)
+        ok, x, zk = merge_loops(xs, z, merge)
+        if ok:
+            side = (xa, za, xb, zb, np.empty(0, dtype=np.int64), xs, mid, z, none, low, high)
+            line = keel_line_loops(x, zk, end_face, steep_slope)
+            return True, side, low, high, x, zk, line_runs_loops(line), line
+        zm = chain_at_loops(cx, cz, mid)  # a long group to merge: numpy's refinement
+    seg = segments_loops(order, len(a))
+    if not served:
+        z, zm = side_heights_loops(xs, mid, xa, za, xb, zb, seg)
+    side = (xa, za, xb, zb, seg, xs, mid, z, zm, low, high)
     ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
     line = keel_line_loops(x, z, end_face, steep_slope)
     return ok, side, low, high, x, z, line_runs_loops(line), line

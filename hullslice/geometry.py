@@ -39,7 +39,7 @@ from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
 from .constants import TOL
 from .errors import InputError
-from .kernel.envelope import lower_envelope, lowest_segments, refined
+from .kernel.envelope import lower_envelope, lowest_segments, refined, side_outline
 from .kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine
 from .planecut import plane_index
 from .reduce import row_max, row_min
@@ -207,6 +207,8 @@ FACE_REACH: Entry[Once[float]] = Entry("face reach", Once, geometry=True)
 SILHOUETTE: Entry[Once[tuple[np.ndarray, np.ndarray]]] = Entry("silhouette", Once, geometry=True)
 #: The silhouette edges' end vertices (see :func:`silhouette_ends`).
 SILHOUETTE_ENDS: Entry[Once[np.ndarray]] = Entry("silhouette ends", Once, geometry=True)
+#: The body's side outline (see :func:`side_outline_points`).
+SIDE_OUTLINE: Entry[Once[tuple[np.ndarray, bool]]] = Entry("side outline", Once, geometry=True)
 #: Per thread, the silhouette edges' ends in their order along the side view at the last
 #: pitch (see :func:`_side_order`).
 SIDE_ORDER: Entry[threading.local] = Entry("side order", threading.local, geometry=True)
@@ -271,7 +273,7 @@ def _frame(hull, pitch: float) -> Frame:
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
     a, b = silhouette_edges(hull)
-    keel, lowest, highest = _side_keel(hull, a, b, pitch, _side_order)
+    keel, lowest, highest = _side_keel(hull, a, b, side_outline_points(hull), pitch, _side_order)
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
     bounds = hull.bounds
@@ -304,12 +306,19 @@ def _frame(hull, pitch: float) -> Frame:
 
 
 def _side_keel(
-    hull, a: np.ndarray, b: np.ndarray, pitch: float, order_of: Callable
+    hull,
+    a: np.ndarray,
+    b: np.ndarray,
+    outline: tuple[np.ndarray, bool],
+    pitch: float,
+    order_of: Callable,
 ) -> tuple[KeelLine, float, float]:
     """The keel line at ``pitch`` of the silhouette edges ``a`` to ``b`` (end points, m),
     and their ends' lowest and highest heights (m): by the compiled loops where they are
     in use (from the order ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower
-    envelope."""
+    envelope; its heights read off the lower side of the body's side ``outline``
+    (:func:`side_outline_points`' pair; an empty one never serves) where that side runs
+    forward."""
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
@@ -317,14 +326,18 @@ def _side_keel(
     if made is None:
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]
-        keel = lower_envelope(ta, tb, merge=merge)
+        side = None
+        if outline[0].shape[1]:  # turned as the edges' ends are
+            rx, rz = outline[0][0] - g[0], outline[0][1] - g[2]
+            side = (rx * c - rz * s, rx * s + rz * c)
+        keel = lower_envelope(ta, tb, merge=merge, side=side)
         return keel, float(min(za.min(), zb.min())), float(max(za.max(), zb.max()))
     # the turn, the keel line's search, the merge of its close break points and its runs
     # in one compiled call (the loops are in use: the others too)
     order = order_of(hull, 2 * len(a))
     ok, side, low, high, xr, zr, runs, _ = made(
-        a, b, float(g[0]), float(g[2]), float(c), float(s), order, merge, END_FACE_SLOPE,
-        STEEP_SLOPE,
+        a, b, *outline, float(g[0]), float(g[2]), float(c), float(s), order, merge,
+        END_FACE_SLOPE, STEEP_SLOPE,
     )  # fmt: skip
     compiled = planecut_loops.compiled
     if ok:  # most pitches: only close break points to merge
@@ -407,13 +420,33 @@ def silhouette_ends(hull) -> np.ndarray:
     return hull.cache[SILHOUETTE_ENDS].get(lambda: _silhouette_ends(hull))
 
 
+def side_outline_points(hull) -> tuple[np.ndarray, bool]:
+    """``(points, whole)``: the body's side view as a polygon, (2, m), the ``x`` and ``z``
+    (m, body frame) of :func:`~hullslice.kernel.envelope.side_outline` of its silhouette
+    edges, counter-clockwise, (2, 0) where that finds none (the keel line is then the
+    silhouette edges' lower envelope at every pitch); and whether its points are all the
+    silhouette edges' ends (seen from the side: none inside the polygon). Kept on the
+    hull."""
+    return hull.cache[SIDE_OUTLINE].get(lambda: _side_outline_points(hull))
+
+
+def _side_outline_points(hull) -> tuple[np.ndarray, bool]:
+    v = np.asarray(hull.vertices, dtype=np.float64)
+    ends = silhouette_ends(hull)
+    ring = side_outline(v[:, [0, 2]], ends)
+    if ring is None:
+        return np.empty((2, 0)), False
+    seen = np.unique(v[np.unique(ends.ravel())][:, [0, 2]], axis=0)
+    return np.ascontiguousarray(v[ring][:, [0, 2]].T), len(seen) == len(ring)
+
+
 def keel_line_of(hull, pitch: float, edges: np.ndarray, piece: int) -> KeelLine:
     """The keel line at ``pitch`` (relative to the centre of gravity, as
     :attr:`Frame.keel`) of the silhouette edges ``edges`` only (indices into
     :func:`silhouette_edges`): that of a body's ``piece``, made as the body's is."""
     a, b = silhouette_edges(hull)
     order_of = lambda h, n: _side_order(h, n, piece)  # noqa: E731
-    return _side_keel(hull, a[edges], b[edges], pitch, order_of)[0]
+    return _side_keel(hull, a[edges], b[edges], (np.empty((2, 0)), False), pitch, order_of)[0]
 
 
 def _silhouette_ends(hull) -> np.ndarray:

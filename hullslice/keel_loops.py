@@ -31,6 +31,9 @@ __all__ = [
     "run_ends_loops",
     "runs_loops",
     "search_loops",
+    "segments_loops",
+    "side_ends_loops",
+    "side_heights_loops",
     "side_view_loops",
     "sorted_loops",
 ]
@@ -83,18 +86,17 @@ def envelope_loops(xa, za, xb, zb):
     return xs, mid, lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
 
 
-def side_view_loops(a, b, gx, gz, c, s, order):
+def side_ends_loops(a, b, gx, gz, c, s, order):
     """The silhouette edges from ``a`` to ``b`` ((e, 3) body points) turned nose up by a
     pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, as
-    :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them, the
-    end abscissae sorted by :func:`sorted_loops` from ``order`` (the ends' order at an
-    earlier pitch, ``2 e`` integers, updated). Returns ``(xa, za, xb, zb, seg, xs, mid, z,
-    zm, low, high)``: the turned ends, the segments in the order of their lower end
-    abscissae (for :func:`lowest_walk_loops`), the envelope's arrays, and the turned ends'
-    lowest and highest heights, ``min(za.min(), zb.min())`` and ``max(za.max(),
-    zb.max())`` as numpy and Python take them (each array's own with a NaN kept, then the
-    first of the two unless the second is lower, or higher; NaN without an edge), found as
-    the edges turn."""
+    :func:`hullslice.geometry._turn` turns them, their end abscissae sorted by
+    :func:`sorted_loops` from ``order`` (the ends' order at an earlier pitch, ``2 e``
+    integers, updated), each once, with their middles (:func:`abscissae_loops`). Returns
+    ``(xa, za, xb, zb, xs, mid, low, high)``: the turned ends, the abscissae and middles,
+    and the turned ends' lowest and highest heights, ``min(za.min(), zb.min())``
+    and ``max(za.max(), zb.max())`` as numpy and Python take them (each array's own with a
+    NaN kept, then the first of the two unless the second is lower, or higher; NaN
+    without an edge), found as the edges turn."""
     e = len(a)
     xa, za, xb, zb = np.empty(e), np.empty(e), np.empty(e), np.empty(e)
     ends = np.empty(2 * e)
@@ -120,8 +122,14 @@ def side_view_loops(a, b, gx, gz, c, s, order):
             hi_b = hi_b if (hi_b >= vb or hi_b != hi_b) else vb
     low = lo_b if lo_b < lo_a else lo_a  # Python's min and max of the two
     high = hi_b if hi_b > hi_a else hi_a
-    xs = sorted_loops(ends, order)
-    # the segments by their lower end abscissa: each at its first end in the sorted order
+    xs, mid = abscissae_loops(sorted_loops(ends, order))
+    return xa, za, xb, zb, xs, mid, low, high
+
+
+def segments_loops(order, e):
+    """The ``e`` segments in the order of their lower end abscissae (for
+    :func:`lowest_walk_loops`), from ``order``, their ends' sorted order (``2 e``
+    integers, :func:`sorted_loops`'): each at its first end in that order."""
     seg = np.empty(e, dtype=np.int64)
     seen = np.zeros(e, dtype=np.bool_)
     k = 0
@@ -133,12 +141,32 @@ def side_view_loops(a, b, gx, gz, c, s, order):
             seen[j] = True
             seg[k] = j
             k += 1
-    xs, mid = abscissae_loops(xs)
+    return seg
+
+
+def side_heights_loops(xs, mid, xa, za, xb, zb, seg):
+    """The lowest heights of the turned segments (:func:`side_ends_loops`') over the sorted
+    abscissae ``xs`` and their middles ``mid``: by :func:`lowest_walk_loops`, or with a
+    NaN by the searches of :func:`lowest_loops`. Returns ``(z, zm)``."""
     finite = len(xs) == 0 or xs[len(xs) - 1] == xs[len(xs) - 1]
     if finite:
-        z, zm = lowest_walk_loops(xs, mid, xa, za, xb, zb, seg)
-    else:  # a NaN: the searches of lowest_loops
-        z, zm = lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
+        return lowest_walk_loops(xs, mid, xa, za, xb, zb, seg)
+    return lowest_loops(xs, xa, za, xb, zb), lowest_loops(mid, xa, za, xb, zb)
+
+
+def side_view_loops(a, b, gx, gz, c, s, order):
+    """The silhouette edges from ``a`` to ``b`` ((e, 3) body points) turned nose up by a
+    pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)``, as
+    :func:`hullslice.geometry._turn` turns them, and :func:`envelope_loops` on them, the
+    end abscissae sorted by :func:`sorted_loops` from ``order`` (the ends' order at an
+    earlier pitch, ``2 e`` integers, updated). Returns ``(xa, za, xb, zb, seg, xs, mid, z,
+    zm, low, high)``: the turned ends, the segments in the order of their lower end
+    abscissae (for :func:`lowest_walk_loops`), the envelope's arrays, and the turned ends'
+    lowest and highest heights (see :func:`side_ends_loops`, :func:`segments_loops`, then
+    :func:`side_heights_loops`)."""
+    xa, za, xb, zb, xs, mid, low, high = side_ends_loops(a, b, gx, gz, c, s, order)
+    seg = segments_loops(order, len(a))
+    z, zm = side_heights_loops(xs, mid, xa, za, xb, zb, seg)
     return xa, za, xb, zb, seg, xs, mid, z, zm, low, high
 
 

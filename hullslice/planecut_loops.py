@@ -41,6 +41,7 @@ from .frame_loops import (
     crossings_loops,
     frame_keel_loops,
     lowest_at_loops,
+    merge_loops,
     refine_loops,
     segment_reach_loops,
 )
@@ -67,10 +68,19 @@ from .keel_loops import (
     run_ends_loops,
     runs_loops,
     search_loops,
+    segments_loops,
+    side_ends_loops,
+    side_heights_loops,
     side_view_loops,
     sorted_loops,
 )
 from .outline_loops import hinted_loops, outline_loops, stable_order_loops
+from .side_loops import (
+    chain_at_loops,
+    lower_side_loops,
+    outline_keel_loops,
+    turned_outline_loops,
+)
 from .slices_loops import (
     ENTRY,
     I_MOVED,
@@ -103,13 +113,13 @@ __all__ = [
 ]
 
 #: The digest of the sources of :func:`stage_loops`' helpers in other files
-#: (``keel_loops.py``, ``frame_loops.py``, ``outline_loops.py``, ``index_loops.py``,
-#: ``contour_loops.py`` and ``held_loops.py``, which
+#: (``keel_loops.py``, ``side_loops.py``, ``frame_loops.py``, ``outline_loops.py``,
+#: ``index_loops.py``, ``contour_loops.py`` and ``held_loops.py``, which
 #: holds its own helpers' digest). numba's cache of the loops goes stale when this file
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "f7e33f70c0a9ba56"
+STAGE_HELPERS_DIGEST = "9b6e261ff4f437b1"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -145,14 +155,15 @@ def cut_loops(
 
 
 def stage_loops(
-    a, b, order, g, bounds, scale, keel_merge, end_face, steep_slope,
+    a, b, outline, whole, order, g, bounds, scale, keel_merge, end_face, steep_slope,
     key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, corners, ends, slot, guess,
     hint, k_out_of, k_in_of, merge, tol, n, xmin, reach_x, reach_z, c, s, z_cg, w, u, q, fout,
     iout, scal, extra, opts, a_c, v_c, memo,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
     (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line and its
-    arrays (:func:`~hullslice.frame_loops.frame_keel_loops` of the silhouette edges ``a``
+    arrays (:func:`~hullslice.frame_loops.frame_keel_loops` of the body's side ``outline``
+    (``whole`` where its points are all the edges' ends) and the silhouette edges ``a``
     to ``b`` about the centre of gravity ``g``, ``order`` their ends' order,
     ``keel_merge``, ``end_face`` and ``steep_slope`` as there); the draft of
     the centre of gravity at height ``z_cg`` (m) and the water's level; the wetted slices'
@@ -188,7 +199,8 @@ def stage_loops(
     memo returned is that of the stations cut (the one given where none was)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
-    keel_line = frame_keel_loops(a, b, gx, gz, c, s, order, keel_merge, end_face, steep_slope)
+    keel_line = frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, keel_merge,
+                                 end_face, steep_slope)  # fmt: skip
     ok, _, low, high, kx, _, _, line = keel_line
     if not ok:
         return 100, none2, none1, none1, memo
@@ -356,7 +368,10 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     run_ends=run_ends_loops, keel_line=keel_line_loops, line_runs=line_runs_loops,
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
-    crossings=crossings_loops, refine=refine_loops,
+    crossings=crossings_loops, refine=refine_loops, side_ends=side_ends_loops,
+    side_heights=side_heights_loops, lower_side=lower_side_loops, chain_at=chain_at_loops,
+    segments=segments_loops, merge=merge_loops, outline_keel=outline_keel_loops,
+    turned_outline=turned_outline_loops,
     frame_keel=frame_keel_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
     match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops,
 )  # fmt: skip
@@ -368,12 +383,17 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
 _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_sidetan", "h_slope", "h_runs",
          "h_cross", "h_extent", "h_wet", "h_window", "h_layout", "h_finish")  # fmt: skip
 #: What the side view's loops call, helpers before callers.
-_SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk")
+_SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk", "side_ends", "segments",
+         "side_heights")  # fmt: skip
+#: What the keel line's reading of the side outline calls, helpers before callers.
+_CHAIN = ("turned_outline", "lower_side", "chain_at", "outline_keel")
 #: What the keel line's refinement calls, helpers before callers.
-_REFINE = ("reach", "lowest_at", "crossings", "above_chord")
+_REFINE = ("reach", "lowest_at", "crossings", "above_chord", "merge")
+#: What the keel line's one call calls, helpers before callers.
+_FRAME_KEEL = (*_SIDE, "side", *_CHAIN, *_REFINE, "refine", "run_ends", "keel_line",
+               "line_runs")  # fmt: skip
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "line_runs",
-          "frame_keel", "gallop",
+_STAGE = (*_FRAME_KEEL, "frame_keel", "gallop",
           "near", "ranges", "recipe", "points", "match", "sides", "memo_cut", "cut", "order",
           "hinted", "outline", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
           "pitch")  # fmt: skip
@@ -387,7 +407,7 @@ CALLS = {
     "envelope": ("search", "lowest", "abscissae"),
     "walk": ("lower",),
     "side": _SIDE,
-    "frame_keel": (*_SIDE, "side", *_REFINE, "refine", "run_ends", "keel_line", "line_runs"),
+    "frame_keel": _FRAME_KEEL,
     "runs": ("run_ends", "keel_line", "line_runs"),
     "keel_line": ("run_ends",),
     "refine": ("search", *_REFINE),

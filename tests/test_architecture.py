@@ -59,6 +59,7 @@ LAYERS: dict[str, int] = {
     "hullslice.planecut_numpy": 3,
     "hullslice.wetted_loops": 3,
     "hullslice.keel_loops": 3,
+    "hullslice.side_loops": 3,
     "hullslice.frame_loops": 3,
     "hullslice.outline_loops": 3,
     "hullslice.index_loops": 3,

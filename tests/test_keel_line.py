@@ -401,3 +401,87 @@ def test_two_crossing_edges_peak_between_their_ends_and_the_line_follows():
     b = np.array([[1.0, 0.0], [1.0, 1.0], [2.0, 0.5]])
     line = lower_envelope(a, b)
     np.testing.assert_allclose(line.height(np.array([0.5, 1.01, 1.5])), [0.0, 0.5, 0.5])
+
+
+def test_the_side_outline_of_a_square_with_a_diagonal_is_the_square():
+    # the outer boundary of a plane graph, counter-clockwise from its leftmost point (the
+    # lowest of ties); the diagonal lies inside, and the point of the middle of the
+    # bottom, in line with its neighbours, stays a point of the boundary
+    from hullslice.kernel.envelope import side_outline
+
+    p = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [1.0, 0.0]])
+    edges = np.array([[0, 4], [4, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
+    assert side_outline(p, edges).tolist() == [0, 4, 1, 2, 3]
+    # a point given twice (port and starboard in the side view) is one: the first stands
+    p2 = np.vstack([p, [[2.0, 1.0]]])
+    edges2 = np.array([[0, 4], [4, 1], [1, 5], [2, 3], [3, 0]])
+    assert side_outline(p2, edges2).tolist() == [0, 4, 1, 2, 3]
+
+
+@pytest.mark.parametrize(
+    "points, edges, why",
+    [
+        ([[0, 0], [2, 0], [2, 2], [0, 2]], [[0, 2], [1, 3], [0, 1], [2, 3]], "two edges cross"),
+        ([[0, 0], [2, 0], [1, 0], [3, 0], [1, 1]], [[0, 1], [2, 3], [0, 4], [3, 4]], "overlap"),
+        ([[0, 0], [1, 0], [1, 1], [0, 1], [2, 2]], [[0, 1], [1, 2], [2, 3], [3, 0], [2, 4]],
+         "an edge leading nowhere"),
+        ([[0, 0], [1, 0], [0, 1], [3, 0], [4, 0], [3, 1]],
+         [[0, 1], [1, 2], [2, 0], [3, 4], [4, 5], [5, 3]], "two parts"),
+    ],
+)  # fmt: skip
+def test_no_side_outline_where_the_graph_is_not_one_polygon(points, edges, why):
+    from hullslice.kernel.envelope import side_outline
+
+    p = np.asarray(points, dtype=float)
+    assert side_outline(p, np.asarray(edges)) is None, why
+
+
+@pytest.mark.parametrize(
+    "name", ["fuselage_model.obj", "paper_prism.stl", "wedge", "paper prism, flipped diagonals"]
+)
+def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(name):
+    # where the silhouette edges make one polygon, its lower side is their lower envelope:
+    # the same break points (every end's abscissa), the heights within 1e-15 of the
+    # body's size, the same lowest and highest points, at every pitch from -60 to 60 deg
+    # where that side runs forward (and the envelope's at the others)
+    from hullslice import geometry
+    from hullslice.kernel.envelope import lower_envelope, lower_side
+
+    from .test_planecut import BODIES
+
+    hull = BODIES[name]
+    a, b = geometry.silhouette_edges(hull)
+    outline, whole = geometry.side_outline_points(hull)
+    assert outline.shape[1] > 3 and whole
+    g = np.asarray(hull.cg)
+    x, z = outline
+    assert 0.5 * float(x @ np.roll(z, -1) - np.roll(x, -1) @ z) > 0.0  # counter-clockwise
+    assert x[0] == x.min()
+    served = 0
+    for pitch in np.radians(np.linspace(-60.0, 60.0, 25)):
+        c, s = np.cos(pitch), np.sin(pitch)
+        ta, tb = geometry._turn(a - g, c, s), geometry._turn(b - g, c, s)
+        rx, rz = x - g[0], z - g[2]
+        side = (rx * c - rz * s, rx * s + rz * c)
+        served += lower_side(*side) is not None
+        got = lower_envelope(ta, tb, side=side)
+        want = lower_envelope(ta, tb)
+        assert np.array_equal(got.x, want.x), np.degrees(pitch)
+        np.testing.assert_allclose(got.z, want.z, rtol=0.0, atol=1e-15 * hull.size)
+        _, low, high = geometry._side_keel(hull, a, b, (outline, whole), pitch,
+                                              geometry._side_order)  # fmt: skip
+        assert low == min(ta[:, 1].min(), tb[:, 1].min())
+        assert high == max(ta[:, 1].max(), tb[:, 1].max())
+    assert served >= 5
+
+
+def test_a_body_with_wings_has_no_side_outline_and_keeps_the_envelope():
+    # the catalogued airliner's silhouette edges cross in the side view (wings, fins): no
+    # polygon, and its keel line is the edges' lower envelope at every pitch, as before
+    from hullslice import geometry
+
+    from .conftest import MESHES
+
+    hull = hs.load_hull(MESHES / "airliner" / "airliner.obj", mass=6e4)
+    outline, whole = geometry.side_outline_points(hull)
+    assert outline.shape == (2, 0) and not whole

@@ -7,11 +7,13 @@ the walk along the segments, and a new pitch's keel line made in one call."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
 from hullslice import planecut_loops
-from hullslice.geometry import _turn, silhouette_edges
+from hullslice.geometry import _turn, side_outline_points, silhouette_edges
 from hullslice.kernel.envelope import lower_envelope
 from hullslice.kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, _Runs
 
@@ -185,23 +187,31 @@ def test_a_new_pitchs_keel_line_in_one_call_equals_numpys(name):
     a, b = silhouette_edges(hull)
     g = np.asarray(hull.cg)
     merge = 1e-12 * hull.size
+    outline, whole = side_outline_points(hull)
     ok_seen = 0
-    for made in _keel_loops("frame_keel"):
+    # the silhouette edges alone (the walk), with the side outline's lower side, and from
+    # the outline alone where its points are all the ends
+    for made, (shape, full) in itertools.product(
+        _keel_loops("frame_keel"), [(np.empty((2, 0)), False), (outline, False), (outline, whole)]
+    ):
         order = np.arange(2 * len(a))
         for pitch in np.radians([-20.0, -3.0, 0.0, 0.5, 6.0, 17.0, 40.0]):
             c, s = np.cos(pitch), np.sin(pitch)
             ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
             args = (float(g[0]), float(g[2]), float(c), float(s))
             ok, side, low, high, x, z, runs, _ = made(
-                a, b, *args, order, merge, END_FACE_SLOPE, STEEP_SLOPE
+                a, b, shape, full, *args, order, merge, END_FACE_SLOPE, STEEP_SLOPE
             )
-            assert _same(side[1], ta[:, 1]) and _same(side[3], tb[:, 1])
+            if len(side[1]):  # empty where the outline alone served
+                assert _same(side[1], ta[:, 1]) and _same(side[3], tb[:, 1])
             assert low == min(ta[:, 1].min(), tb[:, 1].min())
             assert high == max(ta[:, 1].max(), tb[:, 1].max())
             if not ok:
                 continue
             ok_seen += 1
-            want = lower_envelope(ta, tb, merge=merge)
+            rx, rz = shape[0] - g[0], shape[1] - g[2]
+            turned = (rx * c - rz * s, rx * s + rz * c) if shape.shape[1] else None
+            want = lower_envelope(ta, tb, merge=merge, side=turned)
             assert _same(x, want.x) and _same(z, want.z)
             got = _Runs.from_loops(x, runs)
             assert got is not None

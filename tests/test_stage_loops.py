@@ -202,8 +202,8 @@ def test_the_one_calls_cache_sees_its_helpers():
     """numba's cache of :func:`stage_loops` is stale when its own file changes; it calls
     loops in other files, whose digest its file holds."""
     root = Path(planecut_loops.__file__).parent
-    names = ("keel_loops.py", "frame_loops.py", "outline_loops.py", "held_loops.py",
-             "index_loops.py", "contour_loops.py")  # fmt: skip
+    names = ("keel_loops.py", "side_loops.py", "frame_loops.py", "outline_loops.py",
+             "held_loops.py", "index_loops.py", "contour_loops.py")  # fmt: skip
     digest = hashlib.sha256(b"".join((root / n).read_bytes() for n in names)).hexdigest()[:16]
     assert planecut_loops.STAGE_HELPERS_DIGEST == digest, (
         f"set STAGE_HELPERS_DIGEST = {digest!r} in hullslice/planecut_loops.py (its helpers "

@@ -334,7 +334,7 @@ class FusedEvaluation:
             kit = local.kit = self._kit()
         memo = getattr(local, "memo", None)  # the stations this thread cut last
         if memo is None:
-            memo = empty_memo(len(kit[11]))  # kit[11]: the index's bins' lowest z
+            memo = empty_memo(len(kit[13]))  # kit[13]: the index's bins' lowest z
         opts, scal, _, _ = self._buffers()
         extra = np.empty(8)
         status, points, ring_start, ring_station, local.memo = stage(
@@ -362,7 +362,7 @@ class FusedEvaluation:
         order = _side_order(self.hull, 2 * len(args[0]))
         guess = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
         hint = np.full(HINT_SIZE, -1, dtype=np.int64)  # the outline's last order
-        return (*args[:2], order, *args[2:18], index.scratch(), guess, hint, *args[18:])
+        return (*args[:4], order, *args[4:20], index.scratch(), guess, hint, *args[20:])
 
     def stage_totals(
         self, pitch: float, z_cg: float, w: float, u: float, q: float

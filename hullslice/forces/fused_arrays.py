@@ -11,7 +11,7 @@ import numpy as np
 
 from .. import planecut_loops
 from ..constants import TOL
-from ..geometry import CUTTER_SIZE, MERGE, silhouette_edges
+from ..geometry import CUTTER_SIZE, MERGE, side_outline_points, silhouette_edges
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..planecut import plane_index
 
@@ -20,14 +20,14 @@ __all__ = ["keel_arrays", "stage_arrays", "table_arrays"]
 
 def stage_arrays(hull, tol: float, n: int) -> tuple:
     """What :func:`~hullslice.planecut_loops.stage_loops` reads of a hull, in its order:
-    all of its arguments up to ``reach_z`` but the ends' order (the third), the scratch
-    array (the twentieth), the ranges' guesses (the twenty-first) and the outline's hint
-    (the twenty-second), which are each thread's own."""
+    all of its arguments up to ``reach_z`` but the ends' order (the fifth), the scratch
+    array (the twenty-second), the ranges' guesses (the twenty-third) and the outline's
+    hint (the twenty-fourth), which are each thread's own."""
     a, b = silhouette_edges(hull)
     index = plane_index(hull)
     g = np.asarray(hull.cg, dtype=np.float64)
     return (
-        a, b, g,
+        a, b, *side_outline_points(hull), g,
         np.ascontiguousarray(hull.bounds, dtype=np.float64), CUTTER_SIZE / hull.size,
         TOL.keel_merge * hull.size, END_FACE_SLOPE, STEEP_SLOPE, index.key, index.bin_start,
         index.bin_zlo, index.bin_zhi, index.bin_reach, index.margin, index.key_span,

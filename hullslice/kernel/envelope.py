@@ -13,11 +13,24 @@ import numpy as np
 
 from .keel import KeelLine
 
-__all__ = ["CROSSING_PASSES", "lower_envelope", "lowest_segments", "refined"]
+__all__ = [
+    "CROSSING_PASSES",
+    "chain_at",
+    "lower_envelope",
+    "lower_side",
+    "lowest_segments",
+    "merged",
+    "refined",
+    "side_outline",
+]
 
 
 def lower_envelope(
-    a: np.ndarray, b: np.ndarray, loops: Callable | None = None, merge: float = 0.0
+    a: np.ndarray,
+    b: np.ndarray,
+    loops: Callable | None = None,
+    merge: float = 0.0,
+    side: tuple[np.ndarray, np.ndarray] | None = None,
 ) -> KeelLine:
     """The lower envelope ``z(x)`` of segments from ``a`` to ``b`` ((e, 2) arrays of x, z).
 
@@ -27,18 +40,25 @@ def lower_envelope(
     (``loops(xa, za, xb, zb) -> (xs, mid, z, zm)``, as
     :func:`hullslice.keel_loops.envelope_loops`, compiled: the same numbers).
     Break points closer than ``merge`` (m) are one (see :func:`refined`).
+
+    ``side``, when given (without ``loops``), is the polygon whose inside the segments
+    cover, turned as they are (``(x, z)``, counter-clockwise: a body's side outline,
+    :func:`side_outline`): where its lower side (:func:`lower_side`) runs forward from the
+    first end abscissa to the last, the lowest heights there are read off it
+    (:func:`chain_at`) instead of searched for among the segments, and the refinement has
+    nothing to add but the merge (:func:`merged`).
     """
+    if side is not None and loops is None:
+        xs = _abscissae(a, b)
+        chain = lower_side(*side)
+        if chain is not None and len(xs) and chain[0][0] == xs[0] and chain[0][-1] == xs[-1]:
+            # the side runs forward over every abscissa: no gap, jump or crossing
+            return KeelLine(*merged(xs, chain_at(*chain, xs), merge))
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
         return refined(xs, mid, z, zm, merge, lowest_segments(a, b))
-    xs = np.concatenate([a[:, 0], b[:, 0]])
-    xs.sort()
-    if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
-        new = xs[1:] != xs[:-1]
-        if np.isnan(xs[-1]):
-            new &= ~np.isnan(xs[:-1])
-        xs = xs[np.concatenate([[True], new])]
+    xs = _abscissae(a, b)
     segments = _Segments(a, b)
     # the end abscissae and the middles in one sorted array (each middle lies between its
     # ends): each abscissa has the same pairs in the same order as on its own
@@ -47,6 +67,48 @@ def lower_envelope(
     both[0::2], both[1::2] = xs, mid
     lowest = segments.lowest(both)
     return refined(xs, mid, lowest[0::2], lowest[1::2], merge, segments.lowest)
+
+
+def _abscissae(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """The segments' end abscissae sorted, each once."""
+    xs = np.concatenate([a[:, 0], b[:, 0]])
+    xs.sort()
+    if len(xs) > 1:  # np.unique's values, without its bookkeeping (NaNs, sorted last, as one)
+        new = xs[1:] != xs[:-1]
+        if np.isnan(xs[-1]):
+            new &= ~np.isnan(xs[:-1])
+        xs = xs[np.concatenate([[True], new])]
+    return xs
+
+
+def lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
+    """The lower side of a polygon (its points ``x``, ``z``, counter-clockwise): its points
+    from the leftmost to the rightmost, ``(x, z)``. None where that side does not run
+    forward all the way (a face leaning over an end: the envelope jumps there), the
+    leftmost or rightmost point is not one point (a face vertical in the side view), a
+    point is not finite, or there are fewer than three."""
+    m = len(x)
+    if m < 3 or not (np.isfinite(x).all() and np.isfinite(z).all()):
+        return None
+    il, ir = int(np.argmin(x)), int(np.argmax(x))
+    if np.count_nonzero(x == x[il]) != 1 or np.count_nonzero(x == x[ir]) != 1:
+        return None
+    lower = (il + np.arange((ir - il) % m + 1)) % m
+    cx, cz = x[lower], z[lower]
+    if not np.all(cx[1:] > cx[:-1]):
+        return None
+    return cx, cz
+
+
+def chain_at(cx: np.ndarray, cz: np.ndarray, x: np.ndarray) -> np.ndarray:
+    """The heights of a lower side ``cx``, ``cz`` (:func:`lower_side`) at the abscissae
+    ``x``, all within its ends: a point's own height at its abscissa, between two points
+    the arithmetic of the segments' search (``z0 + (x - x0) / dx * dz`` from the one
+    behind)."""
+    k = np.clip(np.searchsorted(cx, x, side="right") - 1, 0, len(cx) - 2)
+    x0, x1, z0, z1 = cx[k], cx[k + 1], cz[k], cz[k + 1]
+    with np.errstate(invalid="ignore"):
+        return np.where(x == x1, z1, z0 + (x - x0) / (x1 - x0) * (z1 - z0))
 
 
 def refined(
@@ -112,6 +174,12 @@ def refined(
         z = np.concatenate([z, *add_z])
         order = np.argsort(xs, kind="stable")
         xs, z = xs[order], z[order]
+    return KeelLine(*merged(xs, z, merge), runs)
+
+
+def merged(xs: np.ndarray, z: np.ndarray, merge: float) -> tuple[np.ndarray, np.ndarray]:
+    """The break points ``xs`` (sorted), ``z`` closer together than ``merge`` (m) made one,
+    at their mean abscissa and their lowest height (see :func:`refined`)."""
     if merge > 0.0 and len(xs) > 1:
         close = np.diff(xs) <= merge
         if close.any():
@@ -119,7 +187,7 @@ def refined(
             counts = np.diff(np.append(first, len(xs)))
             xs = np.add.reduceat(xs, first) / counts
             z = np.minimum.reduceat(z, first)
-    return KeelLine(xs, z, runs)
+    return xs, z
 
 
 #: How many times :func:`refined` halves an interval where two segments cross.
@@ -232,3 +300,109 @@ class _Segments:
                     z_on[up] = np.repeat(self.z_vertical[on[a:b]], c)[up]
                 np.minimum.at(z, idx, z_on)
         return z
+
+
+def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
+    """The outer boundary of the straight-line graph of ``edges`` ((e, 2) indices into the
+    points ``p``, (n, 2): a body's silhouette edges seen from the side, ``(x, z)``),
+    counter-clockwise from its leftmost point (the lowest of ties): the indices of its
+    points, each once (where points of ``p`` coincide, the first stands for them all).
+
+    Every point of the edge of the body's side view lies on a silhouette edge, and the
+    graph's outer face lies outside the body: where the graph is plane (no two edges cross
+    or overlap), the side view is this polygon and its inside, at every pitch (a pitch
+    turns the whole view), and its lower side, where it runs forward, is the silhouette
+    edges' lower envelope (see :func:`lower_envelope`'s ``side``). None where no such
+    polygon is found: two edges cross, touch or overlap other than at a shared end (or
+    come within 1e-12 of the graph's size of it), the graph is in several pieces, the
+    boundary passes a point twice (parts that touch, an edge leading nowhere), or there
+    are fewer than three edges."""
+    edges = np.asarray(edges, dtype=np.int64).reshape(-1, 2)
+    edges = edges[edges[:, 0] != edges[:, 1]]  # a vertex alone lies inside its flat face
+    if len(edges) < 3:
+        return None
+    used = np.unique(edges.ravel())
+    q, inverse = np.unique(p[used], axis=0, return_inverse=True)
+    node_of = np.full(len(p), -1, dtype=np.int64)
+    node_of[used] = inverse.ravel()
+    rep = np.full(len(q), -1, dtype=np.int64)
+    rep[node_of[used][::-1]] = used[::-1]  # each node's first point
+    e = node_of[edges]
+    e = np.unique(np.sort(e[e[:, 0] != e[:, 1]], axis=1), axis=0)
+    if len(e) < 3 or not np.isfinite(q).all():
+        return None
+    size = float(np.ptp(q, axis=0).max())
+    if not size > 0.0 or _crossed(q, e, 1e-12 * size) or not _connected(len(q), e):
+        return None
+    # the boundary's walk from the leftmost node: at each node the edge that turns least
+    # to the left from the way back (the outside kept on the right), the way back last
+    adj = np.concatenate([e, e[:, ::-1]])
+    adj = adj[np.lexsort((adj[:, 1], adj[:, 0]))]
+    start = np.searchsorted(adj[:, 0], np.arange(len(q) + 1))
+    v0 = v = int(np.lexsort((q[:, 1], q[:, 0]))[0])
+    back = np.array([-1.0, 0.0])  # as if come from the left
+    out: list[int] = []
+    seen = np.zeros(len(q), dtype=bool)
+    while not seen[v]:
+        seen[v] = True
+        out.append(v)
+        nb = adj[start[v] : start[v + 1], 1]
+        d = q[nb] - q[v]
+        turn = np.mod(np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(back[1], back[0]), 2.0 * np.pi)
+        w = int(nb[np.argmin(np.where(turn > 0.0, turn, 2.0 * np.pi))])
+        back = q[v] - q[w]
+        v = w
+    if v != v0 or len(out) < 3:
+        return None
+    return rep[np.asarray(out, dtype=np.int64)]
+
+
+def _connected(n: int, e: np.ndarray) -> bool:
+    """Whether the graph of ``n`` nodes and edges ``e`` is in one piece (a part apart from
+    the polygon would be left out of it, inside or not)."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    graph = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
+    return connected_components(graph, directed=False)[0] == 1
+
+
+def _crossed(q: np.ndarray, e: np.ndarray, tol: float) -> bool:
+    """Whether two of the segments ``e`` ((k, 2) indices) of the points ``q`` cross, touch
+    or overlap other than at an end they share, or come within ``tol`` of doing so."""
+    a, b = q[e[:, 0]], q[e[:, 1]]
+    lo_x = np.minimum(a[:, 0], b[:, 0])
+    hi_x = np.maximum(a[:, 0], b[:, 0])
+    order = np.argsort(lo_x, kind="stable")
+    stop = np.searchsorted(lo_x[order], hi_x[order] + tol, side="right")
+    count = np.maximum(stop - np.arange(len(order)) - 1, 0)  # later starts within reach
+    first = np.repeat(np.arange(len(order)), count)
+    offset = np.arange(len(first)) - np.repeat(np.cumsum(count) - count, count)
+    i, j = order[first], order[first + 1 + offset]
+    lo_z, hi_z = np.minimum(a[:, 1], b[:, 1]), np.maximum(a[:, 1], b[:, 1])
+    near = (lo_z[i] <= hi_z[j] + tol) & (lo_z[j] <= hi_z[i] + tol)
+    i, j = i[near], j[near]
+    if len(i) == 0:
+        return False
+    for x, y in ((i, j), (j, i)):  # an end of one within tol of the other, not shared
+        pa, ab = a[y], b[y] - a[y]
+        for k in (0, 1):
+            pt = q[e[x, k]]
+            t = np.clip(((pt - pa) * ab).sum(axis=1) / (ab * ab).sum(axis=1), 0.0, 1.0)
+            dist = np.hypot(*(pt - (pa + t[:, None] * ab)).T)
+            own = (e[x, k] == e[y, 0]) | (e[x, k] == e[y, 1])
+            if np.any((dist <= tol) & ~own):
+                return True
+    shared = (
+        (e[i, 0] == e[j, 0]) | (e[i, 0] == e[j, 1]) | (e[i, 1] == e[j, 0]) | (e[i, 1] == e[j, 1])
+    )
+    cross_i = _turn_sign(a[i], b[i], a[j]) * _turn_sign(a[i], b[i], b[j])
+    cross_j = _turn_sign(a[j], b[j], a[i]) * _turn_sign(a[j], b[j], b[i])
+    return bool(np.any((cross_i < 0) & (cross_j < 0) & ~shared))
+
+
+def _turn_sign(p: np.ndarray, q: np.ndarray, r: np.ndarray) -> np.ndarray:
+    """The sign of the turn ``p -> q -> r`` of each row (1 left, -1 right, 0 straight)."""
+    return np.sign(
+        (q[:, 0] - p[:, 0]) * (r[:, 1] - p[:, 1]) - (q[:, 1] - p[:, 1]) * (r[:, 0] - p[:, 0])
+    )
