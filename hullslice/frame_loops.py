@@ -205,6 +205,11 @@ def merge_loops(xs, z, merge):
     n = len(xs)
     if not (merge > 0.0 and n > 1):
         return True, xs, z
+    close = False  # a pass the compiler turns into vector compares first: most have none
+    for i in range(1, n):
+        close = close | (xs[i] - xs[i - 1] <= merge)
+    if not close:  # none closer than merge: numpy's path keeps the arrays
+        return True, xs, z
     out_x = np.empty(n)
     out_z = np.empty(n)
     g = 0
