@@ -475,6 +475,17 @@ def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(nam
     assert served >= 5
 
 
+def test_a_graph_of_too_many_edges_side_by_side_is_left_to_the_envelope(monkeypatch):
+    # the crossing test's pairs are bounded (memory): past the bound, no outline
+    from hullslice.kernel import envelope
+
+    p = np.array([[0.0, 0.0], [2.0, 0.0], [2.0, 1.0], [0.0, 1.0], [1.0, 0.0]])
+    edges = np.array([[0, 4], [4, 1], [1, 2], [2, 3], [3, 0], [0, 2]])
+    assert envelope.side_outline(p, edges) is not None
+    monkeypatch.setattr(envelope, "MAX_PAIRS", 3)
+    assert envelope.side_outline(p, edges) is None
+
+
 def test_a_body_with_wings_has_no_side_outline_and_keeps_the_envelope():
     # the catalogued airliner's silhouette edges cross in the side view (wings, fins): no
     # polygon, and its keel line is the edges' lower envelope at every pitch, as before

@@ -367,15 +367,24 @@ def _connected(n: int, e: np.ndarray) -> bool:
     return connected_components(graph, directed=False)[0] == 1
 
 
+#: Most pairs of edges side by side along ``x`` that :func:`side_outline` tests for a
+#: crossing (some 1.5 GB of arrays): a graph with more is taken as crossed (the keel line
+#: is then the edges' lower envelope, as without the outline).
+MAX_PAIRS = 20_000_000
+
+
 def _crossed(q: np.ndarray, e: np.ndarray, tol: float) -> bool:
     """Whether two of the segments ``e`` ((k, 2) indices) of the points ``q`` cross, touch
-    or overlap other than at an end they share, or come within ``tol`` of doing so."""
+    or overlap other than at an end they share, or come within ``tol`` of doing so (or
+    more than :data:`MAX_PAIRS` pairs lie side by side along ``x``)."""
     a, b = q[e[:, 0]], q[e[:, 1]]
     lo_x = np.minimum(a[:, 0], b[:, 0])
     hi_x = np.maximum(a[:, 0], b[:, 0])
     order = np.argsort(lo_x, kind="stable")
     stop = np.searchsorted(lo_x[order], hi_x[order] + tol, side="right")
     count = np.maximum(stop - np.arange(len(order)) - 1, 0)  # later starts within reach
+    if int(count.sum()) > MAX_PAIRS:  # edges stacked over one another: not worth testing
+        return True
     first = np.repeat(np.arange(len(order)), count)
     offset = np.arange(len(first)) - np.repeat(np.cumsum(count) - count, count)
     i, j = order[first], order[first + 1 + offset]
