@@ -40,7 +40,7 @@ __all__ = [
 #: ``side_loops.py``). numba's cache of these loops goes stale when this file changes, not
 #: when those do: a change of theirs changes this digest too
 #: (``tests/test_frame_loops.py`` checks it), so that their cache is made again.
-FRAME_HELPERS_DIGEST = "58716593b3c0513c"
+FRAME_HELPERS_DIGEST = "9dbc7ddc654cded3"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
@@ -258,9 +258,11 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     :func:`~hullslice.keel_loops.keel_line_loops` gives (the fused evaluation's arrays) and
     ``runs`` its eleven values of :func:`~hullslice.keel_loops.runs_loops`."""
     none = np.empty(0)
+    chain = outline.shape[1] > 0
     if whole:
-        ok, xs, z, low, high = outline_keel_loops(outline, gx, gz, c, s)
-        if ok:
+        status, xs, z, low, high = outline_keel_loops(outline, gx, gz, c, s)
+        chain = status != 1  # where its lower side does not serve, neither does the chain
+        if status == 0:
             ok, x, zk = merge_loops(xs, z, merge)
             if ok:
                 side = (none, none, none, none, np.empty(0, dtype=np.int64), none, none, none,
@@ -271,7 +273,7 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     n = len(xs)
     served = False
     cx, cz, zm = np.empty(0), np.empty(0), np.empty(0)
-    if outline.shape[1] and n:
+    if chain and n:
         served, cx, cz = lower_side_loops(outline, gx, gz, c, s)
         served = served and cx[0] == xs[0] and cx[len(cx) - 1] == xs[n - 1]
     if served:  # the side runs forward over every abscissa: no gap, jump or crossing

@@ -93,21 +93,22 @@ def outline_keel_loops(outline, gx, gz, c, s):
     :func:`~hullslice.keel_loops.sorted_loops` sorts: a few moves a point) merged, each
     once (the same as :func:`~hullslice.keel_loops.side_ends_loops`' ``xs``), the heights
     there as :func:`chain_at_loops` reads them off the lower side, and the points' lowest
-    and highest heights (the ends'). Returns ``(ok, xs, z, low, high)``; ``ok`` False
-    where the lower side does not run forward all the way, the turned outline is not
-    ``ok``, or the upper side is far from running back (more than :data:`SORT_MOVES` moves
-    a point): then the ends are turned one by one."""
+    and highest heights (the ends'). Returns ``(status, xs, z, low, high)``: status 0, or
+    1 where the turned outline is not ``ok`` or its lower side does not run forward all
+    the way (:func:`lower_side_loops` does not serve either), 2 where the upper side is far
+    from running back (more than :data:`SORT_MOVES` moves a point): then the ends are
+    turned one by one."""
     none = np.empty(0)
     ok, xt, zt, il, ir, low, high = turned_outline_loops(outline, gx, gz, c, s)
     if not ok:
-        return False, none, none, 0.0, 0.0
+        return 1, none, none, 0.0, 0.0
     m = len(xt)
     k = ir - il if ir >= il else ir - il + m  # the lower side's intervals
     j = il
     for _ in range(k):  # the lower side runs forward
         n = j + 1 if j + 1 < m else 0
         if not xt[n] > xt[j]:
-            return False, none, none, 0.0, 0.0
+            return 1, none, none, 0.0, 0.0
         j = n
     # the upper side's points between its ends, from the leftmost on (it runs back from
     # the rightmost), sorted by insertion
@@ -125,7 +126,7 @@ def outline_keel_loops(outline, gx, gz, c, s):
         up[h + 1] = x
         moves += t - 1 - h
         if moves > SORT_MOVES * nu:
-            return False, none, none, 0.0, 0.0
+            return 2, none, none, 0.0, 0.0
     xs, z = np.empty(m), np.empty(m)
     n_out = 0
     p = il  # the lower side's point
@@ -146,7 +147,7 @@ def outline_keel_loops(outline, gx, gz, c, s):
         z[n_out] = zt[p]
         n_out += 1
         p = p + 1 if p + 1 < m else 0
-    return True, xs[:n_out], z[:n_out], low, high
+    return 0, xs[:n_out], z[:n_out], low, high
 
 
 def chain_at_loops(cx, cz, x):
