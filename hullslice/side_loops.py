@@ -144,9 +144,12 @@ def outline_keel_loops(outline, gx, gz, c, s):
         while q < nu and up[q] == x_next:  # level with p: one abscissa
             q += 1
         xs[n_out] = x_next
-        z[n_out] = zt[p]
+        pn = p + 1 if p + 1 < m else 0
+        # a point's own height, as chain_at_loops reads it off the segment it starts
+        # (plus nothing, its sign of zero that sum's), the last one's as it is
+        z[n_out] = zt[p] if p == ir else zt[p] + 0.0 * (zt[pn] - zt[p])
         n_out += 1
-        p = p + 1 if p + 1 < m else 0
+        p = pn
     return 0, xs[:n_out], z[:n_out], low, high
 
 

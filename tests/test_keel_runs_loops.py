@@ -246,3 +246,24 @@ def test_the_side_views_extremes_are_numpys_then_pythons():
         none = np.empty((0, 3))
         lo, hi = side(none, none, 0.0, 0.0, 1.0, 0.0, np.empty(0, dtype=np.int64))[9:]
         assert np.isnan(lo) and np.isnan(hi)
+
+
+def test_a_height_of_minus_zero_read_off_the_outline_is_numpys():
+    # a point of the outline's lower side at a height of -0.0 (the level of the centre of
+    # gravity): read off the outline alone, its height is the sum the lower side's reading
+    # makes there (+0.0 where the side rises after it), as numpy's path reads it, to the
+    # sign of the zero
+    points = np.array([[-2.0, 0.0, 1.0], [-1.0, 0.0, -0.0], [2.0, 0.0, 0.5], [1.5, 0.0, 2.0]])
+    edges = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
+    outline = np.ascontiguousarray(points[:, [0, 2]].T)
+    a, b = points[edges[:, 0]], points[edges[:, 1]]
+    turned = _turn(a, 1.0, 0.0), _turn(b, 1.0, 0.0)
+    want = lower_envelope(*turned, merge=1e-6, side=(outline[0], outline[1]))
+    assert np.copysign(1.0, want.z[1]) == 1.0
+    for made in _keel_loops("frame_keel"):
+        for whole in (True, False):
+            ok, _, _, _, x, z, _, _ = made(
+                a, b, outline, whole, 0.0, 0.0, 1.0, 0.0, np.arange(8), 1e-6, END_FACE_SLOPE,
+                STEEP_SLOPE,
+            )  # fmt: skip
+            assert ok and _same(x, want.x) and _same(z, want.z), whole

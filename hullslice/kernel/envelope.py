@@ -340,19 +340,24 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
     adj = adj[np.lexsort((adj[:, 1], adj[:, 0]))]
     start = np.searchsorted(adj[:, 0], np.arange(len(q) + 1))
     v0 = v = int(np.lexsort((q[:, 1], q[:, 0]))[0])
-    back = np.array([-1.0, 0.0])  # as if come from the left
-    out: list[int] = []
-    seen = np.zeros(len(q), dtype=bool)
-    while not seen[v]:
-        seen[v] = True
-        out.append(v)
+
+    def step(v: int, back: np.ndarray) -> int:
         nb = adj[start[v] : start[v + 1], 1]
         d = q[nb] - q[v]
         turn = np.mod(np.arctan2(d[:, 1], d[:, 0]) - np.arctan2(back[1], back[0]), 2.0 * np.pi)
-        w = int(nb[np.argmin(np.where(turn > 0.0, turn, 2.0 * np.pi))])
-        back = q[v] - q[w]
-        v = w
-    if v != v0 or len(out) < 3:
+        return int(nb[np.argmin(np.where(turn > 0.0, turn, 2.0 * np.pi))])
+
+    first = step(v0, np.array([-1.0, 0.0]))  # as if come from the left
+    out: list[int] = []
+    seen = np.zeros(len(q), dtype=bool)
+    w = first
+    while not seen[v]:
+        seen[v] = True
+        out.append(v)
+        v, w = w, step(w, q[v] - q[w])
+    # back at the start, the boundary must go on as it began: else it passes the start
+    # twice (an edge from it leading nowhere, or two parts meeting there)
+    if v != v0 or w != first or len(out) < 3:
         return None
     return rep[np.asarray(out, dtype=np.int64)]
 
@@ -368,9 +373,10 @@ def _connected(n: int, e: np.ndarray) -> bool:
 
 
 #: Most pairs of edges side by side along ``x`` that :func:`side_outline` tests for a
-#: crossing (some 1.5 GB of arrays): a graph with more is taken as crossed (the keel line
-#: is then the edges' lower envelope, as without the outline).
-MAX_PAIRS = 20_000_000
+#: crossing (some 150 MB of arrays; a 1M-face fuselage has 34,000): a graph with more is
+#: taken as crossed (the keel line is then the edges' lower envelope, as without the
+#: outline).
+MAX_PAIRS = 2_000_000
 
 
 def _crossed(q: np.ndarray, e: np.ndarray, tol: float) -> bool:
