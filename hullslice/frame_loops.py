@@ -241,14 +241,14 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     :func:`~hullslice.keel_loops.keel_line_loops` of the refined break points
     (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
     heights (the side view's). Where the lower side of the body's side ``outline``
-    (:func:`~hullslice.keel_loops.lower_side_loops`; an empty outline never serves) runs
+    (:func:`~hullslice.side_loops.lower_side_loops`; an empty outline never serves) runs
     forward from the first abscissa to the last, the lowest heights are read off it
-    (:func:`~hullslice.keel_loops.chain_at_loops`) instead of walked for, and the
+    (:func:`~hullslice.side_loops.chain_at_loops`) instead of walked for, and the
     refinement has nothing to add but the merge (:func:`merge_loops`); the middles'
     heights and the segments' order are then not made (``side``'s ``zm`` and ``seg``
     empty). Where the outline's points are all the edges' ends (``whole``), the abscissae
     and heights come from it alone where both its sides run forward
-    (:func:`~hullslice.keel_loops.outline_keel_loops`: the same numbers), the edges not
+    (:func:`~hullslice.side_loops.outline_keel_loops`: the same numbers), the edges not
     turned (``side``'s arrays all empty).
 
     Returns ``(ok, side, low, high, x, z, runs, line)``: ``side`` the nine arrays and two
