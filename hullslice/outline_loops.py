@@ -132,12 +132,20 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     order = np.empty(n, dtype=np.int64)
     kept = np.zeros(n_st + 1, dtype=np.int64)
     m = 0
-    for i in range(n):
-        top = cap[station[i]]
-        if top == np.inf or zlo[i] < top:
-            order[m] = i
-            kept[station[i] + 1] += 1
-            m += 1
+    for j in range(r):  # ring by ring: a station's count kept in a register, not in memory
+        st = ring_station[j]
+        top = cap[st]
+        m0 = m
+        if top == np.inf:
+            for i in range(ring_start[j], ring_start[j + 1]):
+                order[m] = i
+                m += 1
+        else:
+            for i in range(ring_start[j], ring_start[j + 1]):
+                if zlo[i] < top:
+                    order[m] = i
+                    m += 1
+        kept[st + 1] += m - m0
     order = order[:m]
     for s in range(n_st):
         kept[s + 1] += kept[s]

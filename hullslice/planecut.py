@@ -45,6 +45,7 @@ import numpy as np
 from . import planecut_loops, planecut_numpy
 from .caching import Entry, Once
 from .contour_loops import empty_memo
+from .kernel.outline import ByStation
 from .reduce import row_max, row_min
 
 __all__ = ["PLANE_INDEX", "PlaneIndex", "plane_index"]
@@ -341,6 +342,25 @@ class Rings(list):
         for i, st in enumerate(ring_station.tolist()):
             out[st].append(points[start[i] : start[i + 1]])
         return cls([tuple(ring) for ring in out], (points, start, ring_station))
+
+
+class StationRings(ByStation):
+    """:class:`Rings` of the loops' contours made station by station as they are read
+    (a result whose sections are seldom drawn need not split them all): station ``i``'s
+    contours, a tuple of views of ``points``, in the rings' order."""
+
+    def __init__(self, points: np.ndarray, start: np.ndarray, ring_station: np.ndarray, n: int):
+        self.flat = (points, start, ring_station)
+        self._order = np.argsort(ring_station, kind="stable")  # the rings by station
+        self._first = np.searchsorted(ring_station[self._order], np.arange(n + 1))
+
+    def __len__(self) -> int:
+        return len(self._first) - 1
+
+    def _station(self, i: int) -> tuple[np.ndarray, ...]:
+        points, start, _ = self.flat
+        rings = self._order[self._first[i] : self._first[i + 1]].tolist()
+        return tuple(points[start[k] : start[k + 1]] for k in rings)
 
 
 #: The loops' paths (see :meth:`PlaneIndex.cut`).

@@ -645,3 +645,43 @@ def test_the_rings_walked_equal_the_rings_by_pointer_jumping(monkeypatch):
     walked = _kernel_cuts(hull, "numpy")
     monkeypatch.setattr(planecut_numpy, "_walk", lambda succ: None)
     assert _largest_difference(walked, _kernel_cuts(hull, "numpy")) == 0.0
+
+
+def test_the_station_view_of_the_contours_is_rings_of_them():
+    """The one call's contours split by station as they are read (:class:`StationRings`)
+    are those :meth:`Rings.of` splits all at once, rings out of station order included
+    (a first contact's slices come after the window's stations), each a view of the one
+    array; reading past the last station stops an iteration, and a result's polygons
+    looked up through an index are those of its list."""
+    from hullslice.planecut import Rings, StationRings
+    from hullslice.slicing.record import ShiftedPolygons
+
+    rng = np.random.default_rng(7)
+    sizes = np.array([3, 4, 5, 3, 6, 4])
+    ring_station = np.array([1, 0, 1, 3, 0, 4])  # station 2 none, 0 and 1 twice, unsorted
+    start = np.concatenate([[0], np.cumsum(sizes)])
+    points = rng.normal(size=(start[-1], 2))
+    want = Rings.of(points, start, ring_station, 5)
+    got = StationRings(points, start, ring_station, 5)
+    assert len(got) == len(want) == 5 and got.flat[0] is points
+    for i in range(-5, 5):
+        a, b = got[i], want[i]
+        assert len(a) == len(b) and all(p.base is points for p in a)
+        assert all(np.array_equal(p, q) for p, q in zip(a, b, strict=True))
+    assert all(
+        len(p) == len(q) and all(np.array_equal(u, v) for u, v in zip(p, q, strict=True))
+        for p, q in zip(got[1:4], want[1:4], strict=True)
+    )
+    assert len(list(got)) == 5
+    with pytest.raises(IndexError, match="station 5 out of range for 5 stations"):
+        got[5]
+    slices = np.array([4, 0, 0, 1, 3])  # a slice's station: read through the index
+    lift = np.array([0.0, 0.5, 0.0, 0.0, -0.25])
+    viewed = ShiftedPolygons(got, (0.1, -0.2), 2.0, lift, slices)
+    listed = ShiftedPolygons([want[k] for k in slices], (0.1, -0.2), 2.0, lift)
+    assert len(viewed) == len(listed) == 5 and len(list(viewed)) == 5
+    assert np.array_equal(viewed.contour_counts(), listed.contour_counts())
+    assert np.array_equal(viewed.extent_below(np.arange(5)), listed.extent_below(np.arange(5)),
+                          equal_nan=True)  # fmt: skip
+    for a, b in zip(viewed, listed, strict=True):
+        assert all(np.array_equal(p, q) for p, q in zip(a, b, strict=True))

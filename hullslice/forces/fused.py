@@ -32,10 +32,10 @@ import numpy as np
 from .. import planecut_loops
 from ..constants import SOUND_WATER, TOL
 from ..contour_loops import empty_memo
-from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame, keel_loops
+from ..geometry import CUTTER_SIZE, FRAMES, KERNEL_MAX_PITCH, _side_order, frame
 from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 from ..kernel.waterline_table import WaterlineTable
-from ..planecut import Rings, plane_index
+from ..planecut import StationRings, plane_index
 from ..slices_loops import COLUMNS, ENTRY, I_MOVED, I_ROWS, OPTIONS
 from ..slicing import fixed as fixed_slicing
 from ..slicing.assemble import keel_window
@@ -314,30 +314,28 @@ class FusedEvaluation:
         (its frame is made then, and its kept cut and tables serve it from there on), or
         a status of the call. Where the keel line is nowhere under the water,
         ``(DRY, None, None, extra, None)``: the pitch is not kept as met (a frame would
-        serve it no better; the two middle stages of a step in the air share a pitch)."""
+        serve it no better; the two middle stages of a step in the air share a pitch).
+
+        The stage's loops are compiled (numba, read when the model first evaluated: see
+        :func:`fused_for`), so the keel line of the steps one by one would be too
+        (:func:`~hullslice.geometry.keel_loops`): the same numbers either way."""
         stage = self.stage
         pitch = float(pitch)
         if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
             return None
-        hull = self.hull
-        if hull.cache[FRAMES].get(pitch) is not None or not keel_loops():
+        if self.hull.cache[FRAMES].get(pitch) is not None:
             return None
-        local = self._local
-        seen = getattr(local, "seen", None)
-        if seen is None:
-            seen = local.seen = deque(maxlen=SEEN_PITCHES)
+        state = getattr(self._local, "stage", None)
+        if state is None:  # this thread's: the pitches met, the call's arguments, the memo
+            kit = self._kit()  # kit[13]: the index's bins' lowest z
+            state = self._local.stage = [deque(maxlen=SEEN_PITCHES), kit, empty_memo(len(kit[13]))]
+        seen, kit, memo = state
         if pitch in seen:
             return None
         seen.append(pitch)
-        kit = getattr(local, "kit", None)  # the call's arguments but the stage's own
-        if kit is None:
-            kit = local.kit = self._kit()
-        memo = getattr(local, "memo", None)  # the stations this thread cut last
-        if memo is None:
-            memo = empty_memo(len(kit[13]))  # kit[13]: the index's bins' lowest z
         opts, scal, _, _ = self._buffers()
         extra = np.empty(8)
-        status, points, ring_start, ring_station, local.memo = stage(
+        status, points, ring_start, ring_station, state[2] = stage(
             *kit, float(np.cos(pitch)), float(np.sin(pitch)), z_cg, w, u, q, fout, iout, scal,
             extra, opts, self.a_c, self.v_c, memo,
         )  # fmt: skip
@@ -393,7 +391,7 @@ class FusedEvaluation:
             return None
         points, ring_start, ring_station, extra, scal = done
         dry = points is DRY
-        rows = () if dry else Rings.of(points, ring_start, ring_station, int(extra[1]))
+        rows = () if dry else StationRings(points, ring_start, ring_station, int(extra[1]))
         m, length = (0, 0.0) if dry else (int(scal[0]), float(scal[1]))
         pose = Pose(float(extra[6]), pitch)
         scale = CUTTER_SIZE / self.hull.size  # the frame's (geometry._frame)

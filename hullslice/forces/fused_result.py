@@ -96,10 +96,7 @@ def fused_result(
         **{name: cols[name] for name in _SECTION_COLUMNS},
         chine_wetted=ints[I_CHINE] > 0,
         polygons=ShiftedPolygons(
-            [rows[k] for k in ints[I_SOURCE, first].tolist()],
-            (origin[0], origin[1] + z_cg),
-            scale,
-            cols["lift"][first],
+            rows, (origin[0], origin[1] + z_cg), scale, cols["lift"][first], ints[I_SOURCE, first]
         ),
         deadrise_method="wedge",
         draft=draft,

@@ -14,10 +14,35 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Outline", "Polygons", "group_min", "grouped", "prefix_counts", "prefix_index"]
+__all__ = [
+    "ByStation",
+    "Outline",
+    "Polygons",
+    "group_min",
+    "grouped",
+    "prefix_counts",
+    "prefix_index",
+]
 
 #: The contours of one station's section: (k, 2) arrays of ``(y, z)``, m.
 Polygons = tuple[np.ndarray, ...]
+
+
+class ByStation(Sequence):
+    """Stations' contours made as they are read: a subclass gives ``_station(i)`` for
+    ``0 <= i < len(self)``; a negative index counts from the end, a slice gives a list,
+    and an index past the end raises IndexError (which ends an iteration)."""
+
+    def _station(self, i: int) -> Polygons:
+        raise NotImplementedError
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[j] for j in range(*i.indices(len(self)))]
+        n = len(self)
+        if not -n <= i < n:
+            raise IndexError(f"station {i} out of range for {n} stations")
+        return self._station(int(i) % n)
 
 
 @dataclass(frozen=True, eq=False)

@@ -14,12 +14,12 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..kernel.outline import Polygons
+from ..kernel.outline import ByStation, Polygons
 
 __all__ = ["Sections", "ShiftedPolygons"]
 
 
-class ShiftedPolygons(Sequence):
+class ShiftedPolygons(ByStation):
     """Station contours scaled and moved when they are read (no copy until then).
 
     Parameters
@@ -32,6 +32,9 @@ class ShiftedPolygons(Sequence):
         Every point is divided by it before the shift.
     lift : (s,) float, optional
         A further height added to each station's points, m.
+    index : (s,) int, optional
+        Station ``i``'s contours are ``polygons[index[i]]`` (default: ``polygons[i]``), so
+        that a slice's station is looked up when it is read.
     """
 
     def __init__(
@@ -40,26 +43,30 @@ class ShiftedPolygons(Sequence):
         shift: tuple[float, float],
         scale: float = 1.0,
         lift: np.ndarray | None = None,
+        index: np.ndarray | None = None,
     ) -> None:
         self._polygons = polygons
+        self._index = None if index is None else np.asarray(index, dtype=np.int64)
         self._shift = np.asarray(shift, dtype=np.float64)
         self._scale = float(scale)
         self._lift = None if lift is None or not np.any(lift) else np.asarray(lift, dtype=float)
 
     def __len__(self) -> int:
-        return len(self._polygons)
+        return len(self._polygons) if self._index is None else len(self._index)
 
-    def __getitem__(self, i):
-        if isinstance(i, slice):
-            return [self[j] for j in range(*i.indices(len(self)))]
+    def _raw(self, i: int) -> Polygons:
+        """Station ``i``'s contours as given (not moved)."""
+        return self._polygons[i] if self._index is None else self._polygons[int(self._index[i])]
+
+    def _station(self, i: int) -> Polygons:
         shift = self._shift
         if self._lift is not None:
             shift = shift + np.array([0.0, self._lift[i]])
-        return tuple(np.asarray(c) / self._scale + shift for c in self._polygons[i])
+        return tuple(np.asarray(c) / self._scale + shift for c in self._raw(i))
 
     def contour_counts(self) -> np.ndarray:
         """(s,) the number of contours of each station (none of them moved)."""
-        return np.array([len(p) for p in self._polygons], dtype=np.int64)
+        return np.array([len(self._raw(i)) for i in range(len(self))], dtype=np.int64)
 
     def extent_below(self, stations: np.ndarray) -> np.ndarray:
         """(k,) the lateral extent (largest less smallest ``Y``, m) of the points at or
@@ -68,7 +75,7 @@ class ShiftedPolygons(Sequence):
         there are none."""
         k = np.asarray(stations, dtype=np.int64)
         out = np.full(len(k), np.nan)
-        raw = [np.asarray(self._polygons[int(i)][0]) for i in k]
+        raw = [np.asarray(self._raw(int(i))[0]) for i in k]
         counts = np.array([len(c) for c in raw], dtype=np.int64)
         if not counts.any():
             return out
