@@ -39,7 +39,13 @@ from . import planecut_loops
 from .caching import LRU, Cache, Entry, Once
 from .constants import TOL
 from .errors import InputError
-from .kernel.envelope import lower_envelope, lowest_segments, refined, side_outline
+from .kernel.envelope import (
+    lower_envelope,
+    lowest_segments,
+    refined,
+    side_envelope,
+    side_outline,
+)
 from .kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine
 from .planecut import plane_index
 from .reduce import row_max, row_min
@@ -324,12 +330,17 @@ def _side_keel(
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
     made = loops_in_use("frame_keel")
     if made is None:
-        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
-        za, zb = ta[:, 1], tb[:, 1]
         side = None
         if outline[0].shape[1]:  # turned as the edges' ends are
             rx, rz = outline[0][0] - g[0], outline[0][1] - g[2]
             side = (rx * c - rz * s, rx * s + rz * c)
+            if outline[1]:  # its points are all the edges' ends: the edges not turned
+                found = side_envelope(*side, merge)
+                if found is not None:
+                    return found
+                side = None  # its lower side does not serve: the edges' envelope must
+        ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
+        za, zb = ta[:, 1], tb[:, 1]
         keel = lower_envelope(ta, tb, merge=merge, side=side)
         return keel, float(min(za.min(), zb.min())), float(max(za.max(), zb.max()))
     # the turn, the keel line's search, the merge of its close break points and its runs

@@ -440,6 +440,20 @@ def test_no_side_outline_where_the_graph_is_not_one_polygon(points, edges, why):
     assert side_outline(p, np.asarray(edges)) is None, why
 
 
+def _turned(a, b, outline, g, degrees):
+    """At each pitch (deg): the pitch (rad), the silhouette edges' ends ``a``, ``b`` and the
+    side outline's points turned about the centre of gravity ``g`` as the keel line turns
+    them."""
+    from hullslice import geometry
+
+    x, z = outline
+    for pitch in np.radians(degrees):
+        c, s = np.cos(pitch), np.sin(pitch)
+        rx, rz = x - g[0], z - g[2]
+        yield (pitch, geometry._turn(a - g, c, s), geometry._turn(b - g, c, s),
+               (rx * c - rz * s, rx * s + rz * c))  # fmt: skip
+
+
 @pytest.mark.parametrize(
     "name", ["fuselage_model.obj", "paper_prism.stl", "wedge", "paper prism, flipped diagonals"]
 )
@@ -462,11 +476,7 @@ def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(nam
     assert 0.5 * float(x @ np.roll(z, -1) - np.roll(x, -1) @ z) > 0.0  # counter-clockwise
     assert x[0] == x.min()
     served = 0
-    for pitch in np.radians(np.linspace(-60.0, 60.0, 25)):
-        c, s = np.cos(pitch), np.sin(pitch)
-        ta, tb = geometry._turn(a - g, c, s), geometry._turn(b - g, c, s)
-        rx, rz = x - g[0], z - g[2]
-        side = (rx * c - rz * s, rx * s + rz * c)
+    for pitch, ta, tb, side in _turned(a, b, outline, g, np.linspace(-60.0, 60.0, 25)):
         served += lower_side(*side) is not None
         got = lower_envelope(ta, tb, side=side)
         want = lower_envelope(ta, tb)
@@ -477,6 +487,40 @@ def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(nam
         assert low == min(ta[:, 1].min(), tb[:, 1].min())
         assert high == max(ta[:, 1].max(), tb[:, 1].max())
     assert served >= 5
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "fuselage_full.obj", "paper_prism.stl",
+                                  "wedge", "paper prism, flipped diagonals"])  # fmt: skip
+def test_the_keel_line_off_the_outline_alone_is_the_one_off_its_lower_side(name):
+    # where the side outline's points are all the silhouette edges' ends, numpy's reading
+    # of the outline alone (its two sides' abscissae merged, no edge turned) gives the
+    # keel line of the edges' envelope read off the lower side, to the bit, and their
+    # ends' lowest and highest heights, at 61 pitches in +-66 deg; it declines where the
+    # lower side does not serve, and the keel line is the edges' envelope there
+    from hullslice import geometry
+    from hullslice.kernel.envelope import lower_envelope, lower_side, side_envelope
+
+    from .test_planecut import BODIES
+
+    hull = BODIES[name]
+    a, b = geometry.silhouette_edges(hull)
+    (x, z), whole = geometry.side_outline_points(hull)
+    assert whole
+    g = np.asarray(hull.cg)
+    merge = geometry.TOL.keel_merge * hull.size
+    served = 0
+    for pitch, ta, tb, side in _turned(a, b, (x, z), g, np.linspace(-66.0, 66.0, 61)):
+        got = side_envelope(*side, merge)
+        assert (got is None) == (lower_side(*side) is None), np.degrees(pitch)
+        if got is None:
+            continue
+        served += 1
+        want = lower_envelope(ta, tb, merge=merge, side=side)
+        assert np.array_equal(got[0].x, want.x) and np.array_equal(got[0].z, want.z)
+        assert np.array_equal(np.signbit(got[0].z), np.signbit(want.z))
+        assert got[1] == min(ta[:, 1].min(), tb[:, 1].min())
+        assert got[2] == max(ta[:, 1].max(), tb[:, 1].max())
+    assert served >= 20, served
 
 
 def test_random_polygons_keel_lines_off_their_outline_are_the_walks():

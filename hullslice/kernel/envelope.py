@@ -21,6 +21,7 @@ __all__ = [
     "lowest_segments",
     "merged",
     "refined",
+    "side_envelope",
     "side_outline",
 ]
 
@@ -48,17 +49,20 @@ def lower_envelope(
     (:func:`chain_at`) instead of searched for among the segments, and the refinement has
     nothing to add but the merge (:func:`merged`).
     """
+    xs = None
     if side is not None and loops is None:
-        xs = _abscissae(a, b)
         chain = lower_side(*side)
-        if chain is not None and len(xs) and chain[0][0] == xs[0] and chain[0][-1] == xs[-1]:
-            # the side runs forward over every abscissa: no gap, jump or crossing
-            return KeelLine(*merged(xs, chain_at(*chain, xs), merge))
+        if chain is not None:
+            xs = _abscissae(a, b)
+            if len(xs) and chain[0][0] == xs[0] and chain[0][-1] == xs[-1]:
+                # the side runs forward over every abscissa: no gap, jump or crossing
+                return KeelLine(*merged(xs, chain_at(*chain, xs), merge))
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
         return refined(xs, mid, z, zm, merge, lowest_segments(a, b))
-    xs = _abscissae(a, b)
+    if xs is None:
+        xs = _abscissae(a, b)
     segments = _Segments(a, b)
     # the end abscissae and the middles in one sorted array (each middle lies between its
     # ends): each abscissa has the same pairs in the same order as on its own
@@ -67,6 +71,34 @@ def lower_envelope(
     both[0::2], both[1::2] = xs, mid
     lowest = segments.lowest(both)
     return refined(xs, mid, lowest[0::2], lowest[1::2], merge, segments.lowest)
+
+
+def side_envelope(
+    x: np.ndarray, z: np.ndarray, merge: float = 0.0
+) -> tuple[KeelLine, float, float] | None:
+    """:func:`lower_envelope` of a body's silhouette edges with its ``side`` where the side
+    outline's points (``x``, ``z``, turned as the edges are, counter-clockwise) are all the
+    edges' ends (:func:`hullslice.geometry.side_outline_points`' ``whole``), read off the
+    outline alone: the same keel line, and the ends' lowest and highest heights (m).
+
+    The end abscissae are the outline's, each once: its lower side's (from the leftmost
+    point to the rightmost, running forward) and its upper side's (running back), sorted
+    by a merge of the two runs (numpy's stable sort finds them) rather than a sort of
+    every edge's two ends; the heights are read off the lower side (:func:`chain_at`).
+    None where the lower side does not serve (:func:`lower_side`): then the edges'
+    envelope must be found."""
+    chain = lower_side(x, z)
+    if chain is None:
+        return None
+    m = len(x)
+    il, ir = int(np.argmin(x)), int(np.argmax(x))
+    upper = x[(ir + 1 + np.arange((il - ir - 1) % m)) % m]  # from the rightmost, back
+    xs = np.concatenate([chain[0], upper[::-1]])
+    xs.sort(kind="stable")  # two runs, nearly: a merge
+    if len(xs) > 1:  # each once (all finite: lower_side holds it)
+        xs = xs[np.concatenate([[True], xs[1:] != xs[:-1]])]
+    keel = KeelLine(*merged(xs, chain_at(*chain, xs), merge))
+    return keel, float(z.min()), float(z.max())
 
 
 def _abscissae(a: np.ndarray, b: np.ndarray) -> np.ndarray:
