@@ -43,7 +43,7 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
         return np.full(n, -1, dtype=np.int64)
     top = len(mx) - 1
     j = np.searchsorted(mx, x_rel)
-    lo, hi = np.clip(j - 1, 0, top), np.clip(j, 0, top)
+    lo, hi = np.minimum(np.maximum(j - 1, 0), top), np.minimum(j, top)  # j >= 0
     k = np.where(np.abs(mx[lo] - x_rel) < np.abs(mx[hi] - x_rel), lo, hi)  # the nearest
     dc, ds, dx = np.abs(c - mc[k]), np.abs(s - ms[k]), np.abs(x_rel - mx[k])
     reach_x, reach_z = index.reach(cg)
@@ -220,7 +220,7 @@ def _successors(station: np.ndarray, e_out: np.ndarray, e_in: np.ndarray, n_edge
     # segments; the edges of several stations (long faces) are matched by a sort
     slot = np.empty(n_edges, dtype=np.int64)
     slot[e_out] = np.arange(n)
-    succ = np.clip(slot[e_in], 0, max(n - 1, 0))
+    succ = np.minimum(np.maximum(slot[e_in], 0), max(n - 1, 0))
     wrong = np.flatnonzero((e_out[succ] != e_in) | (station[succ] != station))
     if len(wrong):
         key_out = station * n_edges + e_out

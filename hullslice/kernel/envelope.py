@@ -137,7 +137,7 @@ def chain_at(cx: np.ndarray, cz: np.ndarray, x: np.ndarray) -> np.ndarray:
     ``x``, all within its ends: a point's own height at its abscissa, between two points
     the arithmetic of the segments' search (``z0 + (x - x0) / dx * dz`` from the one
     behind)."""
-    k = np.clip(np.searchsorted(cx, x, side="right") - 1, 0, len(cx) - 2)
+    k = np.minimum(np.maximum(np.searchsorted(cx, x, side="right") - 1, 0), len(cx) - 2)
     x0, x1, z0, z1 = cx[k], cx[k + 1], cz[k], cz[k + 1]
     with np.errstate(invalid="ignore"):
         return np.where(x == x1, z1, z0 + (x - x0) / (x1 - x0) * (z1 - z0))

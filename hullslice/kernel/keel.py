@@ -102,7 +102,8 @@ class KeelLine:
             return self._runs.slope(x)
         xs, height, lo, hi = chords
         j = np.searchsorted(xs, x, side="right") - 1
-        np.clip(j, 0, len(lo) - 1, out=j)
+        np.maximum(j, 0, out=j)
+        np.minimum(j, len(lo) - 1, out=j)
         h = np.minimum(0.5 * np.asarray(width, dtype=np.float64), x - lo[j])
         np.minimum(h, hi[j] - x, out=h)
         ends = np.interp(np.concatenate([x + h, x - h]), xs, height)
@@ -208,11 +209,11 @@ class KeelLine:
             return None
         lo, hi = extent
         x, steep = self.x, self._runs.steep
-        i = int(np.clip(np.searchsorted(x, lo, side="right") - 1, 0, len(steep) - 1))
+        i = min(max(int(np.searchsorted(x, lo, side="right")) - 1, 0), len(steep) - 1)
         if x[i] < lo:  # the water crosses facet i: past the steep facets from there
             while steep[i] and x[i + 1] < hi:
                 lo, i = float(x[i + 1]), i + 1
-        j = int(np.clip(np.searchsorted(x, hi, side="left") - 1, 0, len(steep) - 1))
+        j = min(max(int(np.searchsorted(x, hi, side="left")) - 1, 0), len(steep) - 1)
         if hi < x[j + 1]:
             while steep[j] and x[j] > lo:
                 hi, j = float(x[j]), j - 1
@@ -332,7 +333,7 @@ class _Runs:
         k = np.diff(self.bend) / np.diff(self.mid)
         j = np.searchsorted(self.mid, x, side="right") - 1
         inside = (j >= 0) & (j < len(k))
-        return np.where(inside, k[np.clip(j, 0, len(k) - 1)], 0.0)
+        return np.where(inside, k[np.minimum(np.maximum(j, 0), len(k) - 1)], 0.0)
 
 
 def _chords(

@@ -307,7 +307,7 @@ def _assign(seg_station, seg_y, ps, yl, yr) -> np.ndarray:
         take = cand < end
         take[take] = yl[cand[take]] <= seg_y[take]
         i = np.where(take, cand, i)
-    ok = (i >= first) & (seg_y <= yr[np.clip(i, 0, None)])
+    ok = (i >= first) & (seg_y <= yr[np.maximum(i, 0)])
     return np.where(ok, i, -1)
 
 
