@@ -47,16 +47,17 @@ def wetted_loops(
             if zlo[i] < level[s]:
                 count[s] += 1
         n_below += count[s]
-    e_idx = np.empty(n_below, dtype=np.int64)
-    e_st = np.empty(n_below, dtype=np.int64)
+    # arrays of one length and type as rows of one block: one allocation each
+    e_ints = np.empty((2, n_below), dtype=np.int64)
+    e_idx, e_st = e_ints[0], e_ints[1]
     k = 0
     for s in range(n_st):
         for i in range(start[s], start[s] + count[s]):
             e_idx[k] = i
             e_st[k] = s
             k += 1
-    ea = np.empty(n_below)
-    eb = np.empty(n_below)
+    e_flt = np.empty((2, n_below))
+    ea, eb = e_flt[0], e_flt[1]
     for k in range(n_below):
         ea[k] = za[e_idx[k]] - level[e_st[k]]
         eb[k] = zb[e_idx[k]] - level[e_st[k]]
@@ -65,11 +66,10 @@ def wetted_loops(
     for k in range(n_below):
         if (ea[k] >= 0.0 and eb[k] < 0.0) or (ea[k] < 0.0 and eb[k] >= 0.0):
             n_cross += 1
-    c_st = np.empty(n_cross, dtype=np.int64)
-    c_y = np.empty(n_cross)
-    c_slope = np.empty(n_cross)
-    c_step = np.empty(n_cross, dtype=np.int64)
-    c_part = np.empty(n_cross, dtype=np.int64)
+    c_ints = np.empty((3, n_cross), dtype=np.int64)
+    c_st, c_step, c_part = c_ints[0], c_ints[1], c_ints[2]
+    c_flt = np.empty((2, n_cross))
+    c_y, c_slope = c_flt[0], c_flt[1]
     j = 0
     for k in range(n_below):
         down = ea[k] >= 0.0 and eb[k] < 0.0
@@ -95,12 +95,10 @@ def wetted_loops(
         a = b
     # the pieces: at most one per crossing and one per part under water altogether
     room = n_cross + n_parts
-    ps = np.empty(room, dtype=np.int64)
-    yl = np.empty(room)
-    yr = np.empty(room)
-    tl = np.empty(room)
-    tr = np.empty(room)
-    part = np.empty(room, dtype=np.int64)
+    p_ints = np.empty((2, room), dtype=np.int64)
+    ps, part = p_ints[0], p_ints[1]
+    p_flt = np.empty((4, room))
+    yl, yr, tl, tr = p_flt[0], p_flt[1], p_flt[2], p_flt[3]
     n_o = 0
     n_c = 0
     winding = 0
@@ -162,10 +160,8 @@ def wetted_loops(
         if n_of_part[part[q]] == 1:
             only[part[q]] = q
     seg_piece = np.empty(n_below, dtype=np.int64)
-    y1 = np.empty(n_below)
-    z1 = np.empty(n_below)
-    y2 = np.empty(n_below)
-    z2 = np.empty(n_below)
+    s_flt = np.empty((4, n_below))
+    y1, z1, y2, z2 = s_flt[0], s_flt[1], s_flt[2], s_flt[3]
     for k in range(n_below):
         i = e_idx[k]
         s = e_st[k]
@@ -190,15 +186,14 @@ def wetted_loops(
         seg_piece[k] = piece
         y1[k], z1[k], y2[k], z2[k] = ya_c, za_c, yb_c, zb_c
     # each piece's keel (its lowest point; on a flat bottom the middle of its points there)
-    zk = np.full(m, np.inf)
+    k_flt = np.full((3, m), np.inf)
+    zk, lo_y, lo_neg = k_flt[0], k_flt[1], k_flt[2]
     for k in range(n_below):
         q = seg_piece[k]
         if q >= 0:
             lowest = z1[k] if (z1[k] < z2[k] or z1[k] != z1[k]) else z2[k]
             if not (zk[q] < lowest or zk[q] != zk[q]):
                 zk[q] = lowest
-    lo_y = np.full(m, np.inf)
-    lo_neg = np.full(m, np.inf)
     for end in range(2):
         for k in range(n_below):
             q = seg_piece[k]
@@ -220,18 +215,20 @@ def wetted_loops(
             n_dry += 1
     n_e = m + n_dry
     o_st = np.empty(n_e, dtype=np.int64)
-    o_wet = np.zeros(n_e, dtype=np.bool_)
-    o_p = np.zeros(n_e)
-    o_hb = np.zeros(n_e)
-    o_port = np.zeros(n_e)
-    o_stbd = np.zeros(n_e)
-    o_tm = np.full(n_e, np.nan)
-    o_tp = np.full(n_e, np.nan)
-    o_ts = np.full(n_e, np.nan)
-    o_yk = np.full(n_e, np.nan)
-    o_phb = np.full(n_e, np.nan)
-    o_share = np.ones(n_e)
-    o_chine = np.zeros(n_e, dtype=np.bool_)
+    o_flags = np.zeros((2, n_e), dtype=np.bool_)
+    o_wet, o_chine = o_flags[0], o_flags[1]
+    o_flt = np.empty((10, n_e))  # the dry entries' values: 0, 0, 0, 0, NaN x 5, 1
+    for r in range(4):
+        for j in range(n_e):
+            o_flt[r, j] = 0.0
+    for r in range(4, 9):
+        for j in range(n_e):
+            o_flt[r, j] = np.nan
+    for j in range(n_e):
+        o_flt[9, j] = 1.0
+    o_p, o_hb, o_port, o_stbd = o_flt[0], o_flt[1], o_flt[2], o_flt[3]
+    o_tm, o_tp, o_ts, o_yk, o_phb = o_flt[4], o_flt[5], o_flt[6], o_flt[7], o_flt[8]
+    o_share = o_flt[9]
     e = 0
     for s in range(n_st):
         if first[s + 1] == first[s]:
