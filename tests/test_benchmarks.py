@@ -69,10 +69,29 @@ def test_the_step_runs_time_the_same_steps_at_held_and_free_pitch(run, tmp_path,
     monkeypatch.setattr(run, "PITCH_STEPS", 4)
     monkeypatch.setattr(run, "WARM_STEPS", 1)
     hull = hs.load_hull(run.fuselage_file(tmp_path, "10k"), mass=60000.0)
-    times, steps = run.step_runs(hull, 1)
+    times, steps, rounds = run.step_runs(hull, 1)
     assert steps == 4
-    assert set(times) == set(run.pitch_runs())
+    assert set(times) == set(rounds) == set(run.pitch_runs())
     assert all(0.0 < t < 1.0 for t in times.values())
+    assert all(rounds[k] == [t] for k, t in times.items())  # one round: its times
+
+
+def test_the_ratio_of_rounds_is_the_median_of_each_rounds_own(run):
+    """With each round's times, free over held is the median of the rounds' ratios (the
+    two runs of a round back to back: 2.5, 2.42 and 3.08 here, median 2.5), not the
+    ratio of the medians (2.9 / 1.2 = 2.42), and judged on it."""
+    import statistics
+
+    def rows(rounds):
+        table = run.Table()
+        times = {k: statistics.median(v) for k, v in rounds.items()}
+        run.pitch_rows(table, "10k", times, 100, rounds)
+        return next(r for r in table.rows if "ratio free (exact, numpy)" in r[0])
+
+    row = rows({"held": [1.0e-3, 1.2e-3, 1.2e-3], "exact, numpy": [2.5e-3, 2.9e-3, 3.7e-3]})
+    assert row[1] == "2.5" and row[3] == "met" and "median of 3 rounds' ratios" in row[0]
+    row = rows({"held": [1.0e-3, 1.0e-3, 1.0e-3], "exact, numpy": [3.2e-3, 3.5e-3, 3.1e-3]})
+    assert row[1] == "3.2" and row[3] == "NOT MET"
 
 
 def test_the_128k_size_has_about_128k_faces(run):
