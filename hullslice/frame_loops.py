@@ -30,10 +30,12 @@ __all__ = [
     "above_chord_loops",
     "crossings_loops",
     "frame_keel_loops",
+    "frame_points_loops",
     "lowest_at_loops",
     "merge_loops",
     "refine_loops",
     "segment_reach_loops",
+    "window_line_loops",
 ]
 
 #: The digest of the sources of the helpers these loops call (``keel_loops.py`` and
@@ -249,7 +251,8 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     empty). Where the outline's points are all the edges' ends (``whole``), the abscissae
     and heights come from it alone where both its sides run forward
     (:func:`~hullslice.side_loops.outline_keel_loops`: the same numbers), the edges not
-    turned (``side``'s arrays all empty).
+    turned (``side``'s arrays all empty). The break points are
+    :func:`frame_points_loops`'.
 
     Returns ``(ok, side, low, high, x, z, runs, line)``: ``side`` the nine arrays and two
     heights of :func:`~hullslice.keel_loops.side_view_loops`, ``ok`` and the break points
@@ -257,6 +260,17 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     refinement must serve, and the rest is not meaningful), ``line`` what
     :func:`~hullslice.keel_loops.keel_line_loops` gives (the fused evaluation's arrays) and
     ``runs`` its eleven values of :func:`~hullslice.keel_loops.runs_loops`."""
+    ok, side, low, high, x, z = frame_points_loops(a, b, outline, whole, gx, gz, c, s, order,
+                                                   merge)  # fmt: skip
+    line = keel_line_loops(x, z, end_face, steep_slope)
+    return ok, side, low, high, x, z, line_runs_loops(line), line
+
+
+def frame_points_loops(a, b, outline, whole, gx, gz, c, s, order, merge):
+    """The break points of :func:`frame_keel_loops` (the same arguments but the line's
+    ``end_face`` and ``steep_slope``), without its runs: ``(ok, side, low, high, x,
+    z)``. ``side``'s segments' order (its fifth array) is empty where the heights were
+    read off the side outline (all finite there)."""
     none = np.empty(0)
     chain = outline.shape[1] > 0
     if whole:
@@ -267,8 +281,7 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
             if ok:
                 side = (none, none, none, none, np.empty(0, dtype=np.int64), none, none, none,
                         none, low, high)  # fmt: skip
-                line = keel_line_loops(x, zk, end_face, steep_slope)
-                return True, side, low, high, x, zk, line_runs_loops(line), line
+                return True, side, low, high, x, zk
     xa, za, xb, zb, xs, mid, low, high = side_ends_loops(a, b, gx, gz, c, s, order)
     n = len(xs)
     served = False
@@ -281,13 +294,68 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
         ok, x, zk = merge_loops(xs, z, merge)
         if ok:
             side = (xa, za, xb, zb, np.empty(0, dtype=np.int64), xs, mid, z, none, low, high)
-            line = keel_line_loops(x, zk, end_face, steep_slope)
-            return True, side, low, high, x, zk, line_runs_loops(line), line
+            return True, side, low, high, x, zk
         zm = chain_at_loops(cx, cz, mid)  # a long group to merge: numpy's refinement
     seg = segments_loops(order, len(a))
     if not served:
         z, zm = side_heights_loops(xs, mid, xa, za, xb, zb, seg)
     side = (xa, za, xb, zb, seg, xs, mid, z, zm, low, high)
     ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
-    line = keel_line_loops(x, z, end_face, steep_slope)
-    return ok, side, low, high, x, z, line_runs_loops(line), line
+    return ok, side, low, high, x, z
+
+
+#: Break points a window of the keel line keeps beyond the reach it needs, on either side
+#: (see :func:`window_line_loops`).
+WINDOW_SPARE = 2
+
+
+def window_line_loops(x, z, finite, level, n, reach, end_face, steep_slope):
+    """:func:`~hullslice.keel_loops.keel_line_loops` of the break points ``x``, ``z`` that
+    an evaluation at the water's height ``level`` reads (``n`` fixed slices), with the
+    first and the last as they are: the line's ends, its length and its stations are the
+    whole line's.
+
+    The evaluation reads the line over the wetted extent, and from there at most ``reach``
+    (m) further: a station's middle, a slice's chord and its keel's curvature (at least a
+    slice's width, ``reach`` the larger of the station spacing and the curvature's
+    window). The wetted extent lies within the break points before the first under the
+    water and after the last. The window keeps the break points from ``reach`` before
+    the one to ``reach`` after the other, and :data:`WINDOW_SPARE` more each side; every
+    break point outside it is at the level or above, so the running lowest heights pass
+    the level where the whole line's do. Within the window the slopes, the chords and the
+    curvature are the whole line's; its running sums (the slope's offsets between runs,
+    the bend, the bottom's rise) start at the line's first point and not at the window's,
+    so that they differ by a constant and by rounding (a slope, a chord, a curvature:
+    differences of them, the same but for rounding). Where ``finite`` is False (a gap's
+    infinite heights may lie outside), no point is under the water, or the window holds
+    nearly every point, the whole line is made."""
+    k = len(x)
+    first = 0
+    while first < k and not z[first] < level:
+        first += 1
+    if not finite or first >= k or k < 8:
+        return keel_line_loops(x, z, end_face, steep_slope)
+    last = k - 1
+    while not z[last] < level:
+        last -= 1
+    reach = max(reach, (x[k - 1] - x[0]) / n)
+    lo = x[max(first - 1, 0)] - reach
+    hi = x[min(last + 1, k - 1)] + reach
+    i0 = max(first - 1, 0)
+    while i0 > 0 and x[i0] > lo:
+        i0 -= 1
+    i1 = min(last + 1, k - 1)
+    while i1 < k - 1 and x[i1] < hi:
+        i1 += 1
+    i0 = max(i0 - WINDOW_SPARE, 1)  # the first point is kept as it is
+    i1 = min(i1 + WINDOW_SPARE, k - 2)  # and the last
+    m = i1 - i0 + 3
+    if 2 * m > k:  # nearly every point: the whole line
+        return keel_line_loops(x, z, end_face, steep_slope)
+    xw, zw = np.empty(m), np.empty(m)
+    xw[0], zw[0] = x[0], z[0]
+    for i in range(i0, i1 + 1):
+        xw[i - i0 + 1] = x[i]
+        zw[i - i0 + 1] = z[i]
+    xw[m - 1], zw[m - 1] = x[k - 1], z[k - 1]
+    return keel_line_loops(xw, zw, end_face, steep_slope)

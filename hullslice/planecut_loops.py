@@ -40,10 +40,12 @@ from .frame_loops import (
     above_chord_loops,
     crossings_loops,
     frame_keel_loops,
+    frame_points_loops,
     lowest_at_loops,
     merge_loops,
     refine_loops,
     segment_reach_loops,
+    window_line_loops,
 )
 from .held_loops import (
     fresh_count_loops,
@@ -119,7 +121,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "c8762cf8a7f08ba8"
+STAGE_HELPERS_DIGEST = "cc39e9765cd88225"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -161,12 +163,14 @@ def stage_loops(
     iout, scal, extra, opts, a_c, v_c, memo,
 ):  # fmt: skip
     """A free-fall solver's sums at a new pitch in one call, as the fused evaluation
-    (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line and its
-    arrays (:func:`~hullslice.frame_loops.frame_keel_loops` of the body's side ``outline``
-    (``whole`` where its points are all the edges' ends) and the silhouette edges ``a``
-    to ``b`` about the centre of gravity ``g``, ``order`` their ends' order,
-    ``keel_merge``, ``end_face`` and ``steep_slope`` as there); the draft of
-    the centre of gravity at height ``z_cg`` (m) and the water's level; the wetted slices'
+    (:mod:`hullslice.forces.fused`) makes them with a new frame: the keel line's break
+    points (:func:`~hullslice.frame_loops.frame_points_loops` of the body's side
+    ``outline`` (``whole`` where its points are all the edges' ends) and the silhouette
+    edges ``a`` to ``b`` about the centre of gravity ``g``, ``order`` their ends' order,
+    ``keel_merge`` as there); the draft of the centre of gravity at height ``z_cg`` (m)
+    and the water's level; the line's runs and arrays over the break points the
+    evaluation reads (:func:`~hullslice.frame_loops.window_line_loops`, ``end_face`` and
+    ``steep_slope`` as there); the wetted slices'
     window; their fixed stations (``n`` slices over the keel line's length) cut by
     :func:`~hullslice.contour_loops.memo_cut_loops` (each from the thread's ``memo`` where
     its recipe serves, the others over the plane index's ranges,
@@ -180,11 +184,15 @@ def stage_loops(
     :func:`~hullslice.held_loops.pitch_loops` on them with
     the body's velocities ``w``, ``u`` and ``q`` (``fout`` to ``v_c`` as there). ``c`` and
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
-    steps made one by one: the same sums. Two things of those steps no slice reads are
-    left out: the window's station before the wetted slices, and the order of the edges
-    above the water but at a source of an end slice (which may take it moved up). A slice
+    steps made one by one, but for the keel line's running sums (below). Two things of
+    those steps no slice reads are left out: the window's station before the wetted
+    slices, and the order of the edges above the water but at a source of an end slice
+    (which may take it moved up). A slice
     of the first contact (no wetted station near it) is cut where it is, its outline and
-    wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``).
+    wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``). The
+    keel line's running sums start at its first point within the window the evaluation
+    reads, not the whole line's: the slopes, chords and curvatures it gives are the
+    steps' but for rounding, so the sums are theirs within about 1e-13 of the force.
 
     Returns ``(status, points, ring_start, ring_station, memo)``: status 0 with the sums in
     ``scal`` and the cut's contours as :func:`cut_loops` gives them (their stations from
@@ -199,14 +207,10 @@ def stage_loops(
     memo returned is that of the stations cut (the one given where none was)."""
     gx, gy, gz = g[0], g[1], g[2]
     none2, none1 = np.empty((0, 2)), np.empty(1, dtype=np.int64)
-    keel_line = frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, keel_merge,
-                                 end_face, steep_slope)  # fmt: skip
-    ok, _, low, high, kx, _, _, line = keel_line
+    ok, side, low, high, kx, kz = frame_points_loops(a, b, outline, whole, gx, gz, c, s, order,
+                                                     keel_merge)  # fmt: skip
     if not ok:
         return 100, none2, none1, none1, memo
-    nf, _, bottom, _, keel, runs_arr, chords = line  # the runs NaN-padded
-    if nf == 0:
-        return 101, none2, none1, none1, memo
     draft = -(low + z_cg)  # ForceModel.draft's max(0.0, ...), _run's clip
     if not draft > 0.0:
         draft = 0.0
@@ -214,6 +218,13 @@ def stage_loops(
     if draft > high - low:
         draft = high - low
     level = low + draft
+    # the line's runs over the break points the evaluation reads (opts[18]: the keel's
+    # curvature window; read off the side outline, every height is finite)
+    line = window_line_loops(kx, kz, len(side[4]) == 0, level, n, opts[18], end_face,
+                             steep_slope)  # fmt: skip
+    nf, _, bottom, _, keel, runs_arr, chords = line  # the runs NaN-padded
+    if nf == 0:
+        return 101, none2, none1, none1, memo
     # the cutter's origin (geometry._frame): a dry instant's result has it too
     box0 = (bounds[0, 0] + bounds[1, 0]) * 0.5 - gx
     box1 = (bounds[0, 1] + bounds[1, 1]) * 0.5 - gy
@@ -372,7 +383,8 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     side_heights=side_heights_loops, lower_side=lower_side_loops, chain_at=chain_at_loops,
     segments=segments_loops, merge=merge_loops, outline_keel=outline_keel_loops,
     turned_outline=turned_outline_loops,
-    frame_keel=frame_keel_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
+    frame_keel=frame_keel_loops, frame_points=frame_points_loops,
+    window_line=window_line_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
     match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops,
 )  # fmt: skip
 #: The loops that others call, by caller, their own helpers before them: compiled before
@@ -389,11 +401,12 @@ _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk", "side_ends"
 _CHAIN = ("turned_outline", "lower_side", "chain_at", "outline_keel")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord", "merge")
+#: What the keel line's break points call, helpers before callers.
+_FRAME_POINTS = (*_SIDE, "side", *_CHAIN, *_REFINE, "refine")
 #: What the keel line's one call calls, helpers before callers.
-_FRAME_KEEL = (*_SIDE, "side", *_CHAIN, *_REFINE, "refine", "run_ends", "keel_line",
-               "line_runs")  # fmt: skip
+_FRAME_KEEL = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "line_runs")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_FRAME_KEEL, "frame_keel", "gallop",
+_STAGE = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "window_line", "gallop",
           "near", "ranges", "recipe", "points", "match", "sides", "memo_cut", "cut", "order",
           "hinted", "outline", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
           "pitch")  # fmt: skip
@@ -408,6 +421,8 @@ CALLS = {
     "walk": ("lower",),
     "side": _SIDE,
     "frame_keel": _FRAME_KEEL,
+    "frame_points": _FRAME_POINTS,
+    "window_line": ("run_ends", "keel_line"),
     "runs": ("run_ends", "keel_line", "line_runs"),
     "keel_line": ("run_ends",),
     "refine": ("search", *_REFINE),

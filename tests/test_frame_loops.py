@@ -20,6 +20,7 @@ from hullslice.constants import TOL
 from hullslice.geometry import _turn, silhouette_edges
 from hullslice.kernel import envelope
 from hullslice.kernel.envelope import lowest_segments, refined
+from hullslice.kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
 
 from .conftest import MESHES
 from .test_planecut import BODIES, _same
@@ -113,3 +114,63 @@ def test_the_frame_loops_cache_sees_their_helpers():
     assert frame_loops.FRAME_HELPERS_DIGEST == digest, (
         f"set FRAME_HELPERS_DIGEST = {digest!r} in hullslice/frame_loops.py (its helpers changed)"
     )
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "fuselage_full.obj", "paper_prism.stl"])
+def test_a_window_of_the_keel_line_reads_as_the_whole_line(name):
+    # a new pitch's stage makes the keel line's runs over the break points its evaluation
+    # reads (frame_loops.window_line_loops): over the wetted extent and a reach beyond it
+    # (the station spacing or the curvature's window), the first and last points kept.
+    # What the evaluation reads of it is the whole line's: the wetted extent and slices
+    # (the same to the bit), the keel's height, its slope and its bend's change over the
+    # curvature's window, and the chords' rise within 1e-12 (the running sums start at
+    # the line's first point either way: they differ by a constant and rounding). Early
+    # in an impact the window holds a fraction of the points.
+    from hullslice import slices_loops as sl
+    from hullslice.keel_loops import keel_line_loops
+
+    hull = BODIES[name]
+    a, b = silhouette_edges(hull)
+    g = np.asarray(hull.cg)
+    end_face, steep = END_FACE_SLOPE, STEEP_SLOPE
+    window = planecut_loops.LOOPS["window_line"]
+    n, reach = 32, 0.25 * hull.size / 4.0
+    fewer = 0
+    for pitch in np.radians([-3.0, 2.0, 6.0, 12.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        line = envelope.lower_envelope(_turn(a - g, c, s), _turn(b - g, c, s),
+                                       merge=TOL.keel_merge * hull.size)  # fmt: skip
+        x, z = np.ascontiguousarray(line.x), np.ascontiguousarray(line.z)
+        whole = keel_line_loops(x, z, end_face, steep)
+        for share in (0.002, 0.02, 0.1, 0.4):
+            level = z.min() + share * (z.max() - z.min())
+            part = window(x, z, True, level, n, reach, end_face, steep)
+            fewer += part[4].shape[1] < whole[4].shape[1]
+            kw, kp = whole[4], part[4]
+            assert kw[0, 0] == kp[0, 0] and kw[0, -1] == kp[0, -1]  # the ends: the stations
+            assert sl.extent_loops(kw, level) == sl.extent_loops(kp, level)
+            assert sl.window_loops(kw, level, n) == sl.window_loops(kp, level, n)
+            _, x0, x1 = sl.extent_loops(kw, level)
+            d = (x[-1] - x[0]) / n
+            rw, rp = sl.runs_of_loops(whole[5]), sl.runs_of_loops(part[5])
+            for q in np.linspace(x0 - d, x1 + d, 41):
+                assert sl.interp_loops(q, kw[0], kw[1]) == sl.interp_loops(q, kp[0], kp[1])
+                sw = sl.slope_loops(q, rw[0], rw[1], rw[3], rw[4])
+                sp = sl.slope_loops(q, rp[0], rp[1], rp[3], rp[4])
+                assert abs(sw - sp) <= 1e-12 * (1.0 + abs(sw)), (q, sw, sp)
+                h = 0.5 * reach
+                bw, bp = _change(q, h, rw[0], rw[2]), _change(q, h, rp[0], rp[2])
+                assert abs(bw - bp) <= 1e-12 * (1.0 + abs(bw)), (q, bw, bp)
+                if whole[2]:  # the chords' rise over half a station either side
+                    ew = _change(q, d / 2, kw[0], whole[6][0])
+                    ep = _change(q, d / 2, kp[0], part[6][0])
+                    assert abs(ew - ep) <= 1e-12 * hull.size, (q, ew, ep)
+    assert fewer >= 4, fewer
+
+
+def _change(q: float, h: float, xp: np.ndarray, fp: np.ndarray) -> float:
+    """The change of ``fp`` (interpolated over ``xp`` as the loops do) from ``q - h`` to
+    ``q + h``."""
+    from hullslice import slices_loops as sl
+
+    return sl.interp_loops(q + h, xp, fp) - sl.interp_loops(q - h, xp, fp)

@@ -38,13 +38,26 @@ def _model(hull, slices: int = 32) -> ForceModel:
     return model
 
 
+def assert_same_sums(got, want, size: float) -> None:
+    """The vertical force, the moment about the centre of gravity and the horizontal force
+    of the one call (``got``) and of the steps one by one (``want``) within 1e-12 of their
+    scale (the largest force, or moment over the body's ``size``): the call's keel line
+    holds the break points the evaluation reads, its running sums (the slope's offsets,
+    the bend, the bottom's rise) from the line's first point there rather than the
+    whole line's, so that the slopes and curvatures it gives differ by rounding."""
+    scale = max(abs(want[0]), abs(want[2]), abs(want[1]) / size, 1e-300)
+    for i, (a, b) in enumerate(zip(got, want, strict=True)):
+        assert abs(a - b) <= 1e-12 * scale * (size if i == 1 else 1.0), (got, want)
+
+
 @needs_numba
 @pytest.mark.parametrize("name", sorted(BODIES))
 def test_a_new_pitchs_sums_in_one_call_equal_the_steps_one_by_one(name):
     """At 30 new pitches from -0.1 to 0.35 rad, each at a draft from a touch to most of
     the body's height and a motion down (sometimes up: a section leaving), the one call's
-    sums equal those of a frame of the same pitch evaluated by the fused loops, to the
-    bit; most poses are served by the call (the rest are handed back by both)."""
+    sums equal those of a frame of the same pitch evaluated by the fused loops, within
+    1e-12 (:func:`assert_same_sums`); most poses are served by the call (the rest are
+    handed back by both)."""
     hull = _massive(BODIES[name])
     twin = hull.with_mass(hull.mass)  # the same body, its own frames
     one, steps = _model(hull), _model(twin)
@@ -63,7 +76,7 @@ def test_a_new_pitchs_sums_in_one_call_equal_the_steps_one_by_one(name):
             continue
         served += 1
         assert want is not None
-        assert got == want, (pitch, draft, got, want)
+        assert_same_sums(got, want, hull.size)
     assert served >= 15, served
 
 
@@ -164,20 +177,20 @@ def test_the_first_contact_is_cut_in_one_call_as_numpys_path_cuts_it(name, monke
             want = steps.fused.force(pose, motion)
             assert want is not None
             assert_same_result(got[0], want)
-            assert (got[0].total, got[0].moment, got[0].total_x) == (want.total, want.moment,
-                                                                     want.total_x)  # fmt: skip
+            assert_same_sums((got[0].total, got[0].moment, got[0].total_x),
+                             (want.total, want.moment, want.total_x), hull.size)  # fmt: skip
             q = p + 1e-9  # the sums alone, at a pitch of its own
             sums = one.fused.stage_totals(q, z_cg, -1.5, 19.0, 0.1)
-            assert sums == steps.fused.totals_at(frame(twin, q), steps.draft(z_cg, q), -1.5,
-                                                 19.0, 0.1)  # fmt: skip
+            assert_same_sums(sums, steps.fused.totals_at(frame(twin, q), steps.draft(z_cg, q),
+                                                         -1.5, 19.0, 0.1), hull.size)  # fmt: skip
     assert len(fresh) >= 3, len(fresh)
 
 
 @needs_numba
 def test_a_free_pitch_run_takes_its_stages_from_the_one_call(monkeypatch):
     """In a free-pitch run the three later stages of a step are new pitches whose sums
-    alone are needed: the call serves them, and the history is the same to the bit as
-    with the call switched off."""
+    alone are needed: the call serves them, and the history is the same within 1e-12 of
+    its peaks as with the call switched off (see :func:`assert_same_sums`)."""
     hull = _massive(BODIES["fuselage_model.obj"])
     run = dict(pitch_deg=6.0, forward_speed=19.0, slices=32, slicing="fixed", stop_on=(),
                dt=1e-3, free_pitch=True)  # fmt: skip
@@ -195,7 +208,8 @@ def test_a_free_pitch_run_takes_its_stages_from_the_one_call(monkeypatch):
     monkeypatch.setattr(fused.FusedEvaluation, "stage_totals", lambda self, *a: None)
     want = hs.simulate(hull.with_mass(hull.mass), -1.5, 0.03, **run)
     for key in ("force", "force_x", "moment", "draft", "pitch", "pitch_rate"):
-        np.testing.assert_array_equal(getattr(got, key), getattr(want, key), err_msg=key)
+        a, b = np.asarray(getattr(got, key)), np.asarray(getattr(want, key))
+        np.testing.assert_allclose(a, b, rtol=0.0, atol=1e-12 * np.abs(b).max(), err_msg=key)
 
 
 def test_the_one_calls_cache_sees_its_helpers():
@@ -264,8 +278,9 @@ def test_a_pitch_met_again_goes_the_steps_one_by_one():
 def test_a_new_pitchs_result_in_one_call_equals_the_steps_one_by_one(name):
     """The first stage of a free-pitch step wants the whole result: made in the one call,
     it is the result of a frame of the same pitch evaluated by the fused loops (every
-    section array, the loads, the contours, the sums, to the bit), and its pose is the
-    model's (the draft :meth:`ForceModel.draft` gives that state)."""
+    section array, the loads and the sums within 1e-12, see :func:`assert_same_sums`; the
+    contours to the bit), and its pose is the model's (the draft
+    :meth:`ForceModel.draft` gives that state)."""
     from .test_fused import assert_same_result
 
     hull = _massive(BODIES[name])
@@ -286,7 +301,8 @@ def test_a_new_pitchs_result_in_one_call_equals_the_steps_one_by_one(name):
         want = steps.fused.force(pose, motion)
         assert want is not None
         assert_same_result(r, want)
-        assert (r.total, r.moment, r.total_x) == (want.total, want.moment, want.total_x)
+        assert_same_sums((r.total, r.moment, r.total_x), (want.total, want.moment, want.total_x),
+                         hull.size)  # fmt: skip
         for a, b in zip(r.sections.polygons, want.sections.polygons, strict=True):
             assert all(np.array_equal(p, q) for p, q in zip(a, b, strict=True))
     assert served >= 6, served
