@@ -601,7 +601,7 @@ def pitch_rows(
             + (" (fused, compiled" if base is fused else " (numpy's path")
             + paired
             + ")",
-            f"{ratio:.1f}",
+            f"{ratio:.2f}",
             "" if target is None else f"<= {target:g}",
             None if target is None else ratio <= target,
         )

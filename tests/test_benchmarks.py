@@ -47,10 +47,10 @@ def test_the_free_over_held_pitch_ratio_is_judged_against_3_with_numpy(run, t_fr
     run.pitch_rows(table, "10k", times, 100)
     assert [r[3] for r in table.rows] == ["", "", "", "", "", verdict, "", "met", ""]
     assert table.rows[1][1] == "250 us"  # the fused held step
-    assert table.rows[3][1] == "5.0"  # manifold3d's ratio, reported without a target
-    assert table.rows[5][1] == f"{t_free / 1e-3:.1f}"
+    assert table.rows[3][1] == "5.00"  # manifold3d's ratio, reported without a target
+    assert table.rows[5][1] == f"{t_free / 1e-3:.2f}"
     assert table.rows[5][2] == "<= 3" and "numpy's path" in table.rows[5][0]
-    assert table.rows[7][1] == "1.8" and table.rows[7][2] == "<= 2"
+    assert table.rows[7][1] == "1.84" and table.rows[7][2] == "<= 2"
     assert "fused, compiled" in table.rows[7][0]
     assert table.rows[8][1] == "0.5" and table.rows[8][2] == ""
     assert "100 steps, cut once" in table.rows[0][0]
@@ -89,9 +89,9 @@ def test_the_ratio_of_rounds_is_the_median_of_each_rounds_own(run):
         return next(r for r in table.rows if "ratio free (exact, numpy)" in r[0])
 
     row = rows({"held": [1.0e-3, 1.2e-3, 1.2e-3], "exact, numpy": [2.5e-3, 2.9e-3, 3.7e-3]})
-    assert row[1] == "2.5" and row[3] == "met" and "median of 3 rounds' ratios" in row[0]
+    assert row[1] == "2.50" and row[3] == "met" and "median of 3 rounds' ratios" in row[0]
     row = rows({"held": [1.0e-3, 1.0e-3, 1.0e-3], "exact, numpy": [3.2e-3, 3.5e-3, 3.1e-3]})
-    assert row[1] == "3.2" and row[3] == "NOT MET"
+    assert row[1] == "3.20" and row[3] == "NOT MET"
 
 
 def test_the_128k_size_has_about_128k_faces(run):
