@@ -402,7 +402,7 @@ _CHAIN = ("turned_outline", "lower_side", "chain_at", "outline_keel")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord", "merge")
 #: What the keel line's break points call, helpers before callers.
-_FRAME_POINTS = (*_SIDE, "side", *_CHAIN, *_REFINE, "refine")
+_FRAME_POINTS = (*_SIDE, *_CHAIN, *_REFINE, "refine")
 #: What the keel line's one call calls, helpers before callers.
 _FRAME_KEEL = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "line_runs")
 #: What the stage loops call, helpers before callers.

@@ -87,17 +87,17 @@ def side_envelope(
     every edge's two ends; the heights are read off the lower side (:func:`chain_at`).
     None where the lower side does not serve (:func:`lower_side`): then the edges'
     envelope must be found."""
-    chain = lower_side(x, z)
-    if chain is None:
+    found = _lower_side(x, z)
+    if found is None:
         return None
+    cx, cz, il, ir = found
     m = len(x)
-    il, ir = int(np.argmin(x)), int(np.argmax(x))
     upper = x[(ir + 1 + np.arange((il - ir - 1) % m)) % m]  # from the rightmost, back
-    xs = np.concatenate([chain[0], upper[::-1]])
+    xs = np.concatenate([cx, upper[::-1]])
     xs.sort(kind="stable")  # two runs, nearly: a merge
     if len(xs) > 1:  # each once (all finite: lower_side holds it)
         xs = xs[np.concatenate([[True], xs[1:] != xs[:-1]])]
-    keel = KeelLine(*merged(xs, chain_at(*chain, xs), merge))
+    keel = KeelLine(*merged(xs, chain_at(cx, cz, xs), merge))
     return keel, float(z.min()), float(z.max())
 
 
@@ -119,6 +119,12 @@ def lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray] | 
     forward all the way (a face leaning over an end: the envelope jumps there), the
     leftmost or rightmost point is not one point (a face vertical in the side view), a
     point is not finite, or there are fewer than three."""
+    found = _lower_side(x, z)
+    return None if found is None else (found[0], found[1])
+
+
+def _lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, int, int] | None:
+    """:func:`lower_side` with the indices of the leftmost and rightmost points."""
     m = len(x)
     if m < 3 or not (np.isfinite(x).all() and np.isfinite(z).all()):
         return None
@@ -129,7 +135,7 @@ def lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray] | 
     cx, cz = x[lower], z[lower]
     if not np.all(cx[1:] > cx[:-1]):
         return None
-    return cx, cz
+    return cx, cz, il, ir
 
 
 def chain_at(cx: np.ndarray, cz: np.ndarray, x: np.ndarray) -> np.ndarray:
