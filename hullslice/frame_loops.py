@@ -23,7 +23,7 @@ from .keel_loops import (
     side_ends_loops,
     side_heights_loops,
 )
-from .side_loops import chain_at_loops, lower_side_loops, outline_keel_loops
+from .side_loops import lower_side_loops
 
 __all__ = [
     "FRAME_HELPERS_DIGEST",
@@ -42,7 +42,7 @@ __all__ = [
 #: ``side_loops.py``). numba's cache of these loops goes stale when this file changes, not
 #: when those do: a change of theirs changes this digest too
 #: (``tests/test_frame_loops.py`` checks it), so that their cache is made again.
-FRAME_HELPERS_DIGEST = "13a9dff81086abb9"
+FRAME_HELPERS_DIGEST = "759d2a637c5251b4"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).
@@ -244,14 +244,9 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
     (``end_face`` and ``steep_slope`` as there), with the turned ends' lowest and highest
     heights (the side view's). Where the lower side of the body's side ``outline``
     (:func:`~hullslice.side_loops.lower_side_loops`; an empty outline never serves) runs
-    forward from the first abscissa to the last, the lowest heights are read off it
-    (:func:`~hullslice.side_loops.chain_at_loops`) instead of walked for, and the
-    refinement has nothing to add but the merge (:func:`merge_loops`); the middles'
-    heights and the segments' order are then not made (``side``'s ``zm`` and ``seg``
-    empty). Where the outline's points are all the edges' ends (``whole``), the abscissae
-    and heights come from it alone where both its sides run forward
-    (:func:`~hullslice.side_loops.outline_keel_loops`: the same numbers), the edges not
-    turned (``side``'s arrays all empty). The break points are
+    forward from the first abscissa to the last, it is the envelope: its points are the
+    break points, but for the merge (:func:`merge_loops`), and where the outline's points
+    are all the edges' ends (``whole``) the edges are not turned. The break points are
     :func:`frame_points_loops`'.
 
     Returns ``(ok, side, low, high, x, z, runs, line)``: ``side`` the nine arrays and two
@@ -269,36 +264,27 @@ def frame_keel_loops(a, b, outline, whole, gx, gz, c, s, order, merge, end_face,
 def frame_points_loops(a, b, outline, whole, gx, gz, c, s, order, merge):
     """The break points of :func:`frame_keel_loops` (the same arguments but the line's
     ``end_face`` and ``steep_slope``), without its runs: ``(ok, side, low, high, x,
-    z)``. ``side``'s segments' order (its fifth array) is empty where the heights were
-    read off the side outline (all finite there)."""
-    none = np.empty(0)
-    chain = outline.shape[1] > 0
-    if whole:
-        status, xs, z, low, high = outline_keel_loops(outline, gx, gz, c, s)
-        chain = status != 1  # where its lower side does not serve, neither does the chain
-        if status == 0:
-            ok, x, zk = merge_loops(xs, z, merge)
-            if ok:
-                side = (none, none, none, none, np.empty(0, dtype=np.int64), none, none, none,
-                        none, low, high)  # fmt: skip
-                return True, side, low, high, x, zk
+    z)``. Where the outline's lower side is the envelope, ``side``'s segments' order and
+    middles (its fifth and seventh arrays) are empty and its abscissae and heights (the
+    sixth and eighth) are that side's points: where ``ok`` is False there (a group of
+    points to merge longer than :func:`merge_loops` takes), numpy's merge of them serves."""
+    none, no_seg = np.empty(0), np.empty(0, dtype=np.int64)
+    served, cx, cz, low, high = False, none, none, 0.0, 0.0
+    if outline.shape[1] > 0:
+        served, cx, cz, low, high = lower_side_loops(outline, gx, gz, c, s)
+    if served and whole:  # the outline's points are the edges' ends: the edges not turned
+        ok, x, zk = merge_loops(cx, cz, merge)
+        side = (none, none, none, none, no_seg, cx, none, cz, none, low, high)
+        return ok, side, low, high, x, zk
     xa, za, xb, zb, xs, mid, low, high = side_ends_loops(a, b, gx, gz, c, s, order)
     n = len(xs)
-    served = False
-    cx, cz, zm = np.empty(0), np.empty(0), np.empty(0)
-    if chain and n:
-        served, cx, cz = lower_side_loops(outline, gx, gz, c, s)
-        served = served and cx[0] == xs[0] and cx[len(cx) - 1] == xs[n - 1]
-    if served:  # the side runs forward over every abscissa: no gap, jump or crossing
-        z = chain_at_loops(cx, cz, xs)
-        ok, x, zk = merge_loops(xs, z, merge)
-        if ok:
-            side = (xa, za, xb, zb, np.empty(0, dtype=np.int64), xs, mid, z, none, low, high)
-            return True, side, low, high, x, zk
-        zm = chain_at_loops(cx, cz, mid)  # a long group to merge: numpy's refinement
+    if served and n and cx[0] == xs[0] and cx[len(cx) - 1] == xs[n - 1]:
+        # the side runs forward over every abscissa: no gap, jump or crossing
+        ok, x, zk = merge_loops(cx, cz, merge)
+        side = (xa, za, xb, zb, no_seg, cx, none, cz, none, low, high)
+        return ok, side, low, high, x, zk
     seg = segments_loops(order, len(a))
-    if not served:
-        z, zm = side_heights_loops(xs, mid, xa, za, xb, zb, seg)
+    z, zm = side_heights_loops(xs, mid, xa, za, xb, zb, seg)
     side = (xa, za, xb, zb, seg, xs, mid, z, zm, low, high)
     ok, x, z = refine_loops(xs, mid, z, zm, merge, xa, za, xb, zb, seg)
     return ok, side, low, high, x, z

@@ -42,6 +42,7 @@ from .errors import InputError
 from .kernel.envelope import (
     lower_envelope,
     lowest_segments,
+    merged,
     refined,
     side_envelope,
     side_outline,
@@ -354,6 +355,8 @@ def _side_keel(
     if ok:  # most pitches: only close break points to merge
         return KeelLine(xr, zr, compiled("runs"), runs), float(low), float(high)
     xa, za, xb, zb, seg, xs, mid, z, zm, _, _ = side
+    if len(xs) and not len(mid):  # the side outline's lower side: a long group to merge
+        return KeelLine(*merged(xs, z, merge), compiled("runs")), float(low), float(high)
     walk, none = compiled("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops
         heights = lambda q: walk(q, none, xa, za, xb, zb, seg)[0]  # noqa: E731

@@ -77,12 +77,7 @@ from .keel_loops import (
     sorted_loops,
 )
 from .outline_loops import hinted_loops, outline_loops, stable_order_loops
-from .side_loops import (
-    chain_at_loops,
-    lower_side_loops,
-    outline_keel_loops,
-    turned_outline_loops,
-)
+from .side_loops import lower_side_loops, turned_outline_loops
 from .slices_loops import (
     ENTRY,
     I_MOVED,
@@ -121,7 +116,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "cc39e9765cd88225"
+STAGE_HELPERS_DIGEST = "d5cb3ce283085465"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -380,8 +375,8 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     abscissae=abscissae_loops, keel_arrays=keel_arrays_loops, row=row_loops,
     reach=segment_reach_loops, above_chord=above_chord_loops, lowest_at=lowest_at_loops,
     crossings=crossings_loops, refine=refine_loops, side_ends=side_ends_loops,
-    side_heights=side_heights_loops, lower_side=lower_side_loops, chain_at=chain_at_loops,
-    segments=segments_loops, merge=merge_loops, outline_keel=outline_keel_loops,
+    side_heights=side_heights_loops, lower_side=lower_side_loops,
+    segments=segments_loops, merge=merge_loops,
     turned_outline=turned_outline_loops,
     frame_keel=frame_keel_loops, frame_points=frame_points_loops,
     window_line=window_line_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
@@ -398,7 +393,7 @@ _HELD = ("h_interp", "h_right", "h_left", "h_desc", "h_div", "h_sidetan", "h_slo
 _SIDE = ("search", "lowest", "sorted", "abscissae", "lower", "walk", "side_ends", "segments",
          "side_heights")  # fmt: skip
 #: What the keel line's reading of the side outline calls, helpers before callers.
-_CHAIN = ("turned_outline", "lower_side", "chain_at", "outline_keel")
+_CHAIN = ("turned_outline", "lower_side")
 #: What the keel line's refinement calls, helpers before callers.
 _REFINE = ("reach", "lowest_at", "crossings", "above_chord", "merge")
 #: What the keel line's break points call, helpers before callers.

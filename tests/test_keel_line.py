@@ -459,9 +459,11 @@ def _turned(a, b, outline, g, degrees):
 )
 def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(name):
     # where the silhouette edges make one polygon, its lower side is their lower envelope:
-    # the same break points (every end's abscissa), the heights within 1e-15 of the
-    # body's size, the same lowest and highest points, at every pitch from -60 to 60 deg
-    # where that side runs forward (and the envelope's at the others)
+    # the keel line read off it has that side's points as its break points, and each
+    # line's heights at the other's break points are the other's within 1e-15 of the
+    # body's size (the same line: the other ends lie on its facets); the same lowest and
+    # highest points, at every pitch from -60 to 60 deg where that side runs forward
+    # (and the envelope's, to the bit, at the others)
     from hullslice import geometry
     from hullslice.kernel.envelope import lower_envelope, lower_side
 
@@ -477,16 +479,68 @@ def test_the_keel_line_read_off_the_side_outline_is_the_edges_lower_envelope(nam
     assert x[0] == x.min()
     served = 0
     for pitch, ta, tb, side in _turned(a, b, outline, g, np.linspace(-60.0, 60.0, 25)):
-        served += lower_side(*side) is not None
+        chain = lower_side(*side)
         got = lower_envelope(ta, tb, side=side)
         want = lower_envelope(ta, tb)
-        assert np.array_equal(got.x, want.x), np.degrees(pitch)
-        np.testing.assert_allclose(got.z, want.z, rtol=0.0, atol=1e-15 * hull.size)
+        if chain is None:
+            assert np.array_equal(got.x, want.x) and np.array_equal(got.z, want.z)
+        else:
+            served += 1
+            assert np.array_equal(got.x, chain[0]) and np.array_equal(got.z, chain[1])
+            assert len(got.x) < len(want.x), np.degrees(pitch)  # the upper side's ends
+            assert got.x[0] == want.x[0] and got.x[-1] == want.x[-1]
+            for one, other in ((got, want), (want, got)):
+                np.testing.assert_allclose(one.height(other.x), other.z, rtol=0.0,
+                                           atol=1e-15 * hull.size, err_msg=str(pitch))  # fmt: skip
         _, low, high = geometry._side_keel(hull, a, b, (outline, whole), pitch,
                                               geometry._side_order)  # fmt: skip
         assert low == min(ta[:, 1].min(), tb[:, 1].min())
         assert high == max(ta[:, 1].max(), tb[:, 1].max())
     assert served >= 5
+
+
+def test_the_keel_curvature_at_a_pitch_is_the_turned_bottom_lines(tmp_path):
+    # the generic fuselage's tail cone has a closed-form bottom line, z = u H s^1.6 with
+    # s = (l_t - x) / l_t (hullslice.shapes.fuselage). Turned by a pitch, the keel line's
+    # curvature averaged over the keel window and over a 0.3 m slice is that of the turned
+    # curve (sampled at 200,001 points, differentiated numerically) within 0.1 % and
+    # 0.5 %, at 0, 3 and 6 deg: the line's break points are the bottom line's vertices at
+    # every pitch. (Break points at the upper side's ends too split its facets where the
+    # upper side's mesh falls: up to 0.9 % and 5.7 % off on the 1M-face fuselage, and the
+    # local curvature zero on half the facets; the walk over every edge's ends still fails
+    # here.)
+    walked = 0
+    from hullslice import geometry, shapes
+    from hullslice.kernel.envelope import lower_envelope
+    from hullslice.slicing.assemble import keel_window
+
+    v, f = shapes.fuselage(stations=400, points=160)
+    path = tmp_path / "fuselage.stl"
+    trimesh.Trimesh(v, f).export(path)
+    hull = hs.load_hull(path, mass=6e4)
+    a, b = geometry.silhouette_edges(hull)
+    (x, z), whole = geometry.side_outline_points(hull)
+    assert whole
+    g = np.asarray(hull.cg)
+    p = shapes.NARROW_BODY
+    lt, up, height = p["tail_length"], p["tail_upsweep"], p["height"]
+    xd = np.linspace(0.02 * lt, 0.98 * lt, 200_001)
+    zd = up * height * ((lt - xd) / lt) ** 1.6
+    x0 = np.linspace(0.15 * lt, 0.85 * lt, 15)  # points of the bottom line to test at
+    z0 = up * height * ((lt - x0) / lt) ** 1.6
+    for pitch, ta, tb, side in _turned(a, b, (x, z), g, [0.0, 3.0, 6.0]):
+        c, s = np.cos(pitch), np.sin(pitch)
+        keel = lower_envelope(ta, tb, side=side)
+        tx, tz = (xd - g[0]) * c - (zd - g[2]) * s, (xd - g[0]) * s + (zd - g[2]) * c
+        slope = np.gradient(tz, tx)
+        at = (x0 - g[0]) * c - (z0 - g[2]) * s
+        for dx, tol in ((keel_window(hull), 1e-3), (0.3, 5e-3)):
+            want = (np.interp(at + dx / 2, tx, slope) - np.interp(at - dx / 2, tx, slope)) / dx
+            got = keel.mean_curvature(at, np.full_like(at, dx))
+            np.testing.assert_allclose(got, want, rtol=tol, err_msg=f"{np.degrees(pitch)} {dx}")
+            walk = lower_envelope(ta, tb).mean_curvature(at, np.full_like(at, dx))
+            walked += not np.allclose(walk, want, rtol=tol, atol=0.0)
+    assert walked >= 2  # the walk at 3 and 6 deg, where the upper side's ends interleave
 
 
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "fuselage_full.obj", "paper_prism.stl",

@@ -250,16 +250,16 @@ def test_the_side_views_extremes_are_numpys_then_pythons():
 
 def test_a_height_of_minus_zero_read_off_the_outline_is_numpys():
     # a point of the outline's lower side at a height of -0.0 (the level of the centre of
-    # gravity): read off the outline alone, its height is the sum the lower side's reading
-    # makes there (+0.0 where the side rises after it), as numpy's path reads it, to the
-    # sign of the zero
+    # gravity): the keel line's break point there has the point's own height, -0.0,
+    # read off the outline alone or with the edges turned, as numpy's path reads it, to
+    # the sign of the zero
     points = np.array([[-2.0, 0.0, 1.0], [-1.0, 0.0, -0.0], [2.0, 0.0, 0.5], [1.5, 0.0, 2.0]])
     edges = np.array([[0, 1], [1, 2], [2, 3], [3, 0]])
     outline = np.ascontiguousarray(points[:, [0, 2]].T)
     a, b = points[edges[:, 0]], points[edges[:, 1]]
     turned = _turn(a, 1.0, 0.0), _turn(b, 1.0, 0.0)
     want = lower_envelope(*turned, merge=1e-6, side=(outline[0], outline[1]))
-    assert np.copysign(1.0, want.z[1]) == 1.0
+    assert np.copysign(1.0, want.z[1]) == -1.0
     for made in _keel_loops("frame_keel"):
         for whole in (True, False):
             ok, _, _, _, x, z, _, _ = made(

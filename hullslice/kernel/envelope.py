@@ -15,7 +15,6 @@ from .keel import KeelLine
 
 __all__ = [
     "CROSSING_PASSES",
-    "chain_at",
     "lower_envelope",
     "lower_side",
     "lowest_segments",
@@ -45,9 +44,10 @@ def lower_envelope(
     ``side``, when given (without ``loops``), is the polygon whose inside the segments
     cover, turned as they are (``(x, z)``, counter-clockwise: a body's side outline,
     :func:`side_outline`): where its lower side (:func:`lower_side`) runs forward from the
-    first end abscissa to the last, the lowest heights there are read off it
-    (:func:`chain_at`) instead of searched for among the segments, and the refinement has
-    nothing to add but the merge (:func:`merged`).
+    first end abscissa to the last, that side is the envelope (no gap, jump or crossing):
+    the keel line is its points, close ones merged (:func:`merged`), instead of the
+    segments' lowest heights over every end abscissa (the same line: the others' ends lie
+    on its facets).
     """
     xs = None
     if side is not None and loops is None:
@@ -55,8 +55,7 @@ def lower_envelope(
         if chain is not None:
             xs = _abscissae(a, b)
             if len(xs) and chain[0][0] == xs[0] and chain[0][-1] == xs[-1]:
-                # the side runs forward over every abscissa: no gap, jump or crossing
-                return KeelLine(*merged(xs, chain_at(*chain, xs), merge))
+                return KeelLine(*merged(*chain, merge))
     if loops is not None:
         columns = (np.ascontiguousarray(v) for v in (a[:, 0], a[:, 1], b[:, 0], b[:, 1]))
         xs, mid, z, zm = loops(*columns)
@@ -79,26 +78,14 @@ def side_envelope(
     """:func:`lower_envelope` of a body's silhouette edges with its ``side`` where the side
     outline's points (``x``, ``z``, turned as the edges are, counter-clockwise) are all the
     edges' ends (:func:`hullslice.geometry.side_outline_points`' ``whole``), read off the
-    outline alone: the same keel line, and the ends' lowest and highest heights (m).
-
-    The end abscissae are the outline's, each once: its lower side's (from the leftmost
-    point to the rightmost, running forward) and its upper side's (running back), sorted
-    by a merge of the two runs (numpy's stable sort finds them) rather than a sort of
-    every edge's two ends; the heights are read off the lower side (:func:`chain_at`).
-    None where the lower side does not serve (:func:`lower_side`): then the edges'
-    envelope must be found."""
-    found = _lower_side(x, z)
-    if found is None:
+    outline alone: the same keel line (the points of its lower side, from the leftmost to
+    the rightmost, running forward; close ones merged), and the ends' lowest and highest
+    heights (m). None where the lower side does not serve (:func:`lower_side`): then the
+    edges' envelope must be found."""
+    chain = lower_side(x, z)
+    if chain is None:
         return None
-    cx, cz, il, ir = found
-    m = len(x)
-    upper = x[(ir + 1 + np.arange((il - ir - 1) % m)) % m]  # from the rightmost, back
-    xs = np.concatenate([cx, upper[::-1]])
-    xs.sort(kind="stable")  # two runs, nearly: a merge
-    if len(xs) > 1:  # each once (all finite: lower_side holds it)
-        xs = xs[np.concatenate([[True], xs[1:] != xs[:-1]])]
-    keel = KeelLine(*merged(xs, chain_at(cx, cz, xs), merge))
-    return keel, float(z.min()), float(z.max())
+    return KeelLine(*merged(*chain, merge)), float(z.min()), float(z.max())
 
 
 def _abscissae(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -119,12 +106,6 @@ def lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray] | 
     forward all the way (a face leaning over an end: the envelope jumps there), the
     leftmost or rightmost point is not one point (a face vertical in the side view), a
     point is not finite, or there are fewer than three."""
-    found = _lower_side(x, z)
-    return None if found is None else (found[0], found[1])
-
-
-def _lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, int, int] | None:
-    """:func:`lower_side` with the indices of the leftmost and rightmost points."""
     m = len(x)
     if m < 3 or not (np.isfinite(x).all() and np.isfinite(z).all()):
         return None
@@ -135,18 +116,7 @@ def _lower_side(x: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, i
     cx, cz = x[lower], z[lower]
     if not np.all(cx[1:] > cx[:-1]):
         return None
-    return cx, cz, il, ir
-
-
-def chain_at(cx: np.ndarray, cz: np.ndarray, x: np.ndarray) -> np.ndarray:
-    """The heights of a lower side ``cx``, ``cz`` (:func:`lower_side`) at the abscissae
-    ``x``, all within its ends: a point's own height at its abscissa, between two points
-    the arithmetic of the segments' search (``z0 + (x - x0) / dx * dz`` from the one
-    behind)."""
-    k = np.minimum(np.maximum(np.searchsorted(cx, x, side="right") - 1, 0), len(cx) - 2)
-    x0, x1, z0, z1 = cx[k], cx[k + 1], cz[k], cz[k + 1]
-    with np.errstate(invalid="ignore"):
-        return np.where(x == x1, z1, z0 + (x - x0) / (x1 - x0) * (z1 - z0))
+    return cx, cz
 
 
 def refined(
