@@ -181,8 +181,10 @@ def stage_loops(
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
     steps made one by one, but for the keel line's running sums (below). Two things of
     those steps no slice reads are left out: the window's station before the wetted
-    slices, and the order of the edges above the water but at a source of an end slice
-    (which may take it moved up). A slice
+    slices, and the order of the edges above the water, but for those an end slice's
+    source may read (it takes it moved up by at most the steep slope times 1.5 station
+    spacings, or the slice is cut afresh: the edges whose lower end is below twice that
+    are kept). A slice
     of the first contact (no wetted station near it) is cut where it is, its outline and
     wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``). The
     keel line's running sums start at its first point within the window the evaluation
@@ -248,11 +250,16 @@ def stage_loops(
     )  # fmt: skip
     if closed != 0:
         return 102, none2, none1, none1, memo
-    # edges above the water: read only by an end slice's own or inward source, moved
+    # edges above the water: read only by an end slice's own or inward source, moved up
+    # to its depth (layout_loops): at most the steep slope (opts[22]) times its distance
+    # from the source's middle, 1.5 stations, or it is cut afresh
     cap = np.full(n_cut, level)
+    top = level + 2.0 * opts[22] * d
+    if not top < math.inf:  # not finite: every edge
+        top = math.inf
     for k in (k0, k0 + 1, k1 - 1, k1):
         if w0 <= k < w1:
-            cap[k - w0] = math.inf
+            cap[k - w0] = top
     out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap,
                         hint)  # fmt: skip
     if not out[0]:
