@@ -60,12 +60,15 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         for i in range(n):
             a[i, 0] += oy
             a[i, 1] += oz
+    # the edges kept (below their station's cap), in their order, counted by station (the
+    # outline's ``start``); the edges' arrays are written for those only (the rest reads no
+    # other)
     b = np.empty((n, 2))
     station = np.empty(n, dtype=np.int64)
     contour = np.empty(n, dtype=np.int64)
+    zlo = np.empty(n)
     area = np.zeros(n_st)
     c_area = np.zeros(r)
-    zlo = np.empty(n)
     zmin = np.full(n_st, np.inf)
     ymin = np.full(n_st, np.inf)
     ymax = np.full(n_st, -np.inf)
@@ -73,6 +76,11 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     part_zmax = np.full(r, -np.inf)
     part_ymin = np.full(r, np.inf)
     part_ymax = np.full(r, -np.inf)
+    order = np.empty(n, dtype=np.int64)
+    kept = np.zeros(n_st + 1, dtype=np.int64)
+    m = 0
+    # every edge's lower end's lowest and highest (numpy's min and max: NaN if one is)
+    lo_all, hi_all, nan_seen = np.inf, -np.inf, False
     grouped = True  # the rings' stations ascending: each station's edges one run
     for j in range(r):
         st = ring_station[j]
@@ -80,6 +88,9 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
             grouped = False
         sum_st = area[st]
         sum_c = c_area[j]
+        top = cap[st]
+        every = top == np.inf
+        m0 = m
         # the minima and maxima ring by ring, as numpy's np.minimum and np.maximum take
         # them point by point (the second on a tie, a NaN kept)
         part_station[j] = st
@@ -89,14 +100,24 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         for i in range(i0, i1):
             k = i + U1 if i + U1 < i1 else i0
             y, z = a[i, 0], a[i, 1]
-            b[i, 0] = a[k, 0]
-            b[i, 1] = a[k, 1]
-            station[i] = st
-            contour[i] = j
-            cross = y * b[i, 1] - b[i, 0] * z
+            yn, zn = a[k, 0], a[k, 1]
+            cross = y * zn - yn * z
             sum_st += 0.5 * cross
             sum_c += cross
-            zlo[i] = z if (z < b[i, 1] or z != z) else b[i, 1]
+            zl = z if (z < zn or z != z) else zn
+            if zl != zl:
+                nan_seen = True
+            else:
+                lo_all = zl if zl < lo_all else lo_all
+                hi_all = zl if zl > hi_all else hi_all
+            if every or zl < top:
+                order[m] = i
+                m += 1
+                b[i, 0] = yn
+                b[i, 1] = zn
+                station[i] = st
+                contour[i] = j
+                zlo[i] = zl
             if not (lo_z < z or lo_z != lo_z):
                 lo_z = z
             if not (lo_y < y or lo_y != lo_y):
@@ -113,6 +134,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         c_area[j] = sum_c
         zmin[st], ymin[st], ymax[st] = lo_z, lo_y, hi_y
         part_zmax[j], part_ymin[j], part_ymax[j] = p_z, p_lo, p_hi
+        kept[st + 1] += m - m0
     ok = True
     for j in range(r):
         c_area[j] = 0.5 * c_area[j]
@@ -127,36 +149,16 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
                 if not (low < a[i, 1] or low != low):
                     low = a[i, 1]
         z_chine[s] = low
-    # the edges kept (below their station's cap), in their order, counted by station:
-    # each station's first (and the end), the outline's ``start``
-    order = np.empty(n, dtype=np.int64)
-    kept = np.zeros(n_st + 1, dtype=np.int64)
-    m = 0
-    for j in range(r):  # ring by ring: a station's count kept in a register, not in memory
-        st = ring_station[j]
-        top = cap[st]
-        m0 = m
-        if top == np.inf:
-            for i in range(ring_start[j], ring_start[j + 1]):
-                order[m] = i
-                m += 1
-        else:
-            for i in range(ring_start[j], ring_start[j + 1]):
-                if zlo[i] < top:
-                    order[m] = i
-                    m += 1
-        kept[st + 1] += m - m0
     order = order[:m]
     for s in range(n_st):
         kept[s + 1] += kept[s]
     if m:
-        lo, hi = zlo.min(), zlo.max()
+        lo, hi = (np.nan, np.nan) if nan_seen else (lo_all, hi_all)
         span = hi - lo
-        # every edge's key (those not kept are not read), in a loop the compiler turns into
-        # vector divisions
-        key = np.empty(n)
+        key = np.empty(n)  # the kept edges' keys (no other is read)
         scale_z = span * (1.0 + 1e-9) + 1e-300
-        for i in range(n):
+        for j in range(m):
+            i = order[j]
             key[i] = 2.0 * station[i] + (zlo[i] - lo) / scale_z
         if not (grouped and (hinted_loops(key, order, hint)
                              or stable_order_loops(key, kept, order))):  # fmt: skip
