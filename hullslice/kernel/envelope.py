@@ -330,17 +330,23 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
     if len(edges) < 3:
         return None
     used = np.unique(edges.ravel())
+    if not np.isfinite(p[used]).all():
+        return None
     q, inverse = np.unique(p[used], axis=0, return_inverse=True)
+    size = float(np.ptp(q, axis=0).max())
+    if not size > 0.0:
+        return None
+    # points within 1e-12 of the graph's size are one (port and starboard seen from the
+    # side, apart by rounding where the mesh's coordinates are doubles): the first stands
+    node = _snapped(q, 1e-12 * size)[inverse.ravel()]
     node_of = np.full(len(p), -1, dtype=np.int64)
-    node_of[used] = inverse.ravel()
-    rep = np.full(len(q), -1, dtype=np.int64)
-    rep[node_of[used][::-1]] = used[::-1]  # each node's first point
+    node_of[used] = node
+    rep = np.full(int(node.max()) + 1, -1, dtype=np.int64)
+    rep[node[::-1]] = used[::-1]  # each node's first point
+    q = p[rep]
     e = node_of[edges]
     e = np.unique(np.sort(e[e[:, 0] != e[:, 1]], axis=1), axis=0)
-    if len(e) < 3 or not np.isfinite(q).all():
-        return None
-    size = float(np.ptp(q, axis=0).max())
-    if not size > 0.0 or _crossed(q, e, 1e-12 * size) or not _connected(len(q), e):
+    if len(e) < 3 or _crossed(q, e, 1e-12 * size) or not _connected(len(q), e):
         return None
     # the boundary's walk from the leftmost node: at each node the edge that turns least
     # to the left from the way back (the outside kept on the right), the way back last
@@ -368,6 +374,23 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
     if v != v0 or w != first or len(out) < 3:
         return None
     return rep[np.asarray(out, dtype=np.int64)]
+
+
+def _snapped(q: np.ndarray, tol: float) -> np.ndarray:
+    """Each of the points ``q`` (distinct, sorted) numbered by its group of points joined
+    by steps no longer than ``tol``, the groups in the order of their first point."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+    from scipy.spatial import cKDTree
+
+    pairs = cKDTree(q).query_pairs(tol, output_type="ndarray")
+    if not len(pairs):
+        return np.arange(len(q))
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(q),) * 2)
+    label = connected_components(graph, directed=False)[1]
+    first = np.full(label.max() + 1, len(q))
+    np.minimum.at(first, label, np.arange(len(q)))
+    return np.argsort(np.argsort(first))[label]  # groups renumbered by their first point
 
 
 def _connected(n: int, e: np.ndarray) -> bool:
