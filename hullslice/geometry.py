@@ -323,9 +323,9 @@ def _side_keel(
     """The keel line at ``pitch`` of the silhouette edges ``a`` to ``b`` (end points, m),
     and their ends' lowest and highest heights (m): by the compiled loops where they are
     in use (from the order ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower
-    envelope; its heights read off the lower side of the body's side ``outline``
-    (:func:`side_outline_points`' pair; an empty one never serves) where that side runs
-    forward."""
+    envelope; where the lower side of the body's side ``outline``
+    (:func:`side_outline_points`' pair; an empty one never serves) runs forward, that
+    side's points are its break points."""
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
@@ -355,7 +355,7 @@ def _side_keel(
     if ok:  # most pitches: only close break points to merge
         return KeelLine(xr, zr, compiled("runs"), runs), float(low), float(high)
     xa, za, xb, zb, seg, xs, mid, z, zm, _, _ = side
-    if len(xs) and not len(mid):  # the side outline's lower side: a long group to merge
+    if len(xs) and not len(seg):  # the side outline's lower side: a long group to merge
         return KeelLine(*merged(xs, z, merge), compiled("runs")), float(low), float(high)
     walk, none = compiled("walk"), np.empty(0)
     if walk is not None and np.isfinite(xs[-1:]).all():  # the refinement's by the loops

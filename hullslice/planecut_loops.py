@@ -183,8 +183,9 @@ def stage_loops(
     those steps no slice reads are left out: the window's station before the wetted
     slices, and the order of the edges above the water, but for those an end slice's
     source may read (it takes it moved up by at most the steep slope times 1.5 station
-    spacings, or the slice is cut afresh: the edges whose lower end is below twice that
-    are kept). A slice
+    spacings, or the slice is cut afresh: the edges whose lower end is below the level
+    plus the steep slope times 2 station spacings are kept, a margin of half a spacing's
+    worth). A slice
     of the first contact (no wetted station near it) is cut where it is, its outline and
     wetted properties made, as numpy's path does (``slicing.fixed._with_fresh``). The
     keel line's running sums start at its first point within the window the evaluation

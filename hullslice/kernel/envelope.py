@@ -314,7 +314,9 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
     """The outer boundary of the straight-line graph of ``edges`` ((e, 2) indices into the
     points ``p``, (n, 2): a body's silhouette edges seen from the side, ``(x, z)``),
     counter-clockwise from its leftmost point (the lowest of ties): the indices of its
-    points, each once (where points of ``p`` coincide, the first stands for them all).
+    points, each once (where points of ``p`` coincide, or lie within 1e-12 of the graph's
+    size of one another, the first stands for them all; None where such a group of
+    points spans more than twice that).
 
     Every point of the edge of the body's side view lies on a silhouette edge, and the
     graph's outer face lies outside the body: where the graph is plane (no two edges cross
@@ -338,7 +340,16 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
         return None
     # points within 1e-12 of the graph's size are one (port and starboard seen from the
     # side, apart by rounding where the mesh's coordinates are doubles): the first stands
-    node = _snapped(q, 1e-12 * size)[inverse.ravel()]
+    group = _snapped(q, 1e-12 * size)
+    if len(group) and group.max() < len(q) - 1:  # some joined: each group within 2e-12
+        for axis in (0, 1):
+            lo = np.full(group.max() + 1, np.inf)
+            hi = np.full(group.max() + 1, -np.inf)
+            np.minimum.at(lo, group, q[:, axis])
+            np.maximum.at(hi, group, q[:, axis])
+            if np.any(hi - lo > 2e-12 * size):  # a chain of close points: no outline
+                return None
+    node = group[inverse.ravel()]
     node_of = np.full(len(p), -1, dtype=np.int64)
     node_of[used] = node
     rep = np.full(int(node.max()) + 1, -1, dtype=np.int64)
