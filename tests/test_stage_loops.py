@@ -425,3 +425,52 @@ def test_random_free_pitch_runs_compiled_are_numpys_to_1e_12(monkeypatch):
             peak = float(np.abs(want).max()) if want.size else 0.0
             diff = float(np.abs(got - want).max()) if want.size else 0.0
             assert diff <= 1e-12 * peak + 1e-300, (key, diff, peak, kw)
+
+
+@needs_numba
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "paper_prism.stl", "wedge"])
+def test_a_moved_slice_reads_its_source_below_the_edges_the_call_keeps(name):
+    """The call keeps an end slice's source's edges up to the water's level plus the steep
+    slope times two station spacings (what a slice moved to its depth can read: layout_loops
+    cuts one afresh where its depth is more than the steep slope times its distance from
+    its source's middle, 1.5 spacings at most). The call's Python text run by Python (its
+    helpers compiled) at 30 poses: every slice it moves reads its source at a height
+    within the steep slope times 1.5 spacings above the water, and some read above it."""
+    from hullslice import slices_loops
+    from hullslice.slices_loops import I_MOVED
+
+    hull = _massive(BODIES[name])
+    model = _model(hull)
+    stage = planecut_loops.LOOPS["stage"]
+    space = stage.__globals__
+    pitch_loops = space["pitch_loops"]  # compiled (the call's helpers are, once it is)
+    seen = []
+
+    def watched(fout, iout, scal, opts, keel, *rest):
+        status = pitch_loops(fout, iout, scal, opts, keel, *rest)
+        if status == 0:
+            steep = opts[22]
+            d = (keel[0][-1] - keel[0][0]) / opts[6]
+            for r in range(int(scal[0])):
+                if iout[I_MOVED, r] == 1:
+                    seen.append(-fout[slices_loops._LIFT, r] / (steep * d))  # at - level
+        return status
+
+    captured = []
+    real = model.fused.stage
+    model.fused.stage = lambda *a: captured.append(a) or real(*a)
+    rng = np.random.default_rng(8)
+    for pitch in rng.uniform(-0.1, 0.35, 30):
+        fr = frame(hull.with_mass(hull.mass), pitch)
+        draft = float(rng.uniform(0.002, 0.5)) * (fr.highest - fr.lowest)
+        model.fused.stage_totals(pitch, -(fr.lowest + draft), -1.0, 5.0, 0.1)
+    model.fused.stage = real
+    space["pitch_loops"] = watched
+    try:
+        for args in captured:
+            stage(*args)
+    finally:
+        space["pitch_loops"] = pitch_loops
+    assert seen, "no slice moved"
+    assert max(seen) <= 1.5 * (1.0 + 1e-9), max(seen)
+    assert max(seen) > 0.0
