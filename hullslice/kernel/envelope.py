@@ -388,30 +388,27 @@ def side_outline(p: np.ndarray, edges: np.ndarray) -> np.ndarray | None:
 
 
 def _snapped(q: np.ndarray, tol: float) -> np.ndarray:
-    """Each of the points ``q`` (distinct, sorted) numbered by its group of points joined
-    by steps no longer than ``tol``, the groups in the order of their first point."""
-    from scipy.sparse import coo_matrix
-    from scipy.sparse.csgraph import connected_components
+    """Each of the points ``q`` numbered by its group of points joined by steps no longer
+    than ``tol``."""
     from scipy.spatial import cKDTree
 
     pairs = cKDTree(q).query_pairs(tol, output_type="ndarray")
-    if not len(pairs):
-        return np.arange(len(q))
-    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(len(q),) * 2)
-    label = connected_components(graph, directed=False)[1]
-    first = np.full(label.max() + 1, len(q))
-    np.minimum.at(first, label, np.arange(len(q)))
-    return np.argsort(np.argsort(first))[label]  # groups renumbered by their first point
+    return _components(len(q), pairs) if len(pairs) else np.arange(len(q))
 
 
 def _connected(n: int, e: np.ndarray) -> bool:
     """Whether the graph of ``n`` nodes and edges ``e`` is in one piece (a part apart from
     the polygon would be left out of it, inside or not)."""
+    return bool(_components(n, e).max(initial=0) == 0)
+
+
+def _components(n: int, e: np.ndarray) -> np.ndarray:
+    """Each of the ``n`` nodes of the graph of edges ``e`` numbered by its piece."""
     from scipy.sparse import coo_matrix
     from scipy.sparse.csgraph import connected_components
 
     graph = coo_matrix((np.ones(len(e)), (e[:, 0], e[:, 1])), shape=(n, n))
-    return connected_components(graph, directed=False)[0] == 1
+    return connected_components(graph, directed=False)[1]
 
 
 #: Most pairs of edges side by side along ``x`` that :func:`side_outline` tests for a
