@@ -428,6 +428,45 @@ def test_the_outline_capped_keeps_the_edges_below_in_the_full_outlines_order(nam
             np.testing.assert_array_equal(got[k], full[k])
 
 
+@pytest.mark.parametrize("name", OUTLINED)
+def test_an_outline_with_a_top_serves_the_water_below_it_as_the_whole_one(name):
+    """An outline of the edges whose lower end is below a top (numpy's, and the loops' from
+    the cut's own array) keeps those edges in the whole outline's order, the sections' own
+    figures of all the edges, and gives the whole outline's wetted properties to the last
+    bit with the water anywhere below the top (one height, or one per station); above
+    it, it refuses."""
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.wetted import wetted_properties
+
+    hull = BODIES[name]
+    tol = 1e-9 * hull.size
+    rng = np.random.default_rng(11)
+    loops = planecut_loops.compiled("outline") or planecut_loops.outline_loops
+    for cut in _kernel_cuts(hull, "numba" if planecut_loops.available() else "python"):
+        whole = Outline.of(list(cut), tol, (0.3, -1.25), 7.5)
+        lo, hi = float(np.min(whole.zmin)), float(np.max(whole.part_zmax))
+        for f in (0.05, 0.4, 0.8):
+            top = lo + f * (hi - lo)
+            for got in (
+                Outline.of(list(cut), tol, (0.3, -1.25), 7.5, top=top),
+                Outline.of(cut, tol, (0.3, -1.25), 7.5, loops=loops, top=top),
+            ):
+                assert got.top == top
+                keep = whole.zlo < top
+                assert 0 < keep.sum() < len(keep)
+                for key in ("station", "ya", "za", "yb", "zb", "zlo", "contour"):
+                    assert _same(getattr(got, key), getattr(whole, key)[keep]), key
+                for key in ("area", "part_area", "part_station", "part_zmax", "part_ymin",
+                            "part_ymax", "zmin", "ymin", "ymax", "z_chine"):  # fmt: skip
+                    assert _same(getattr(got, key), getattr(whole, key)), key
+                for level in (lo + 0.5 * (top - lo), top, rng.uniform(lo, top, whole.n_stations)):
+                    ref = wetted_properties(whole, level, tol)
+                    out = wetted_properties(got, level, tol)
+                    assert all(_same(ref[k], out[k]) for k in ref)
+                with pytest.raises(ValueError, match="cannot serve water"):
+                    wetted_properties(got, top + 1e-9 * hull.size, tol)
+
+
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "cylinder"])
 def test_the_outlines_order_from_a_hint_is_the_sorted_one(name, monkeypatch):
     """An order found before (the hint) is taken only where it is the stable sort of this

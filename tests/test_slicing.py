@@ -172,6 +172,48 @@ def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
         assert a.moment == pytest.approx(b.moment, rel=1e-12)
 
 
+@pytest.mark.parametrize("pitch_deg", [2.0, 6.0])
+def test_a_new_pitchs_outline_of_its_low_edges_gives_the_whole_outlines_result(
+    pitch_deg, monkeypatch
+):
+    """A new pitch's first evaluation outlines only the edges below the water plus twice
+    the steep slope times a station spacing (the most a moved slice's source is read
+    above it): its forces and sections are those of the outline of every edge (the
+    fixed slicing cutting afresh), to the last bit. A second evaluation at the pitch, the
+    water higher, makes the kept outline whole, with the same result as afresh. (numpy's
+    path: the compiled one-call stage caps its own outline.)"""
+    from hullslice.kernel.keel import STEEP_SLOPE
+
+    monkeypatch.setenv("HULLSLICE_NUMBA", "0")
+    body = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
+    fresh = ForceModel(body.with_mass(60.0), slices=32, slicing="fixed", cache=False)
+    cached = ForceModel(body, slices=32, slicing="fixed")
+    motion = hs.Motion(-1.0, forward_speed=19.0)
+    partial = 0
+    for draft in (0.004, 0.012, 0.03):
+        pose = hs.Pose(draft, np.radians(pitch_deg) + draft)  # a pitch of its own
+        fr = frame(body, pose.pitch)
+        kept = fixed_slicing.fixed_cut(fr, 32, TOL.coordinate * body.size)
+        for step, depth in enumerate((draft, 1.5 * draft)):
+            at = hs.Pose(depth, pose.pitch)
+            a, b = cached(at, motion), fresh(at, motion)
+            level = fr.lowest + depth
+            top = kept.outline.top
+            if step == 0:
+                d = (fr.keel.x[-1] - fr.keel.x[0]) / 32
+                assert top == pytest.approx(level + 2.0 * STEEP_SLOPE * d, rel=1e-12)
+                assert np.any(kept.outline.zlo < top)
+                partial += int(np.count_nonzero(a.sections.dx < 0.999 * d))
+            else:
+                assert top == np.inf
+            assert np.array_equal(a.force, b.force)
+            assert (a.total, a.moment) == (b.total, b.moment)
+            for name in ("penetration", "half_beam", "deadrise", "mass_per_metre"):
+                assert np.array_equal(getattr(a.sections, name), getattr(b.sections, name),
+                                      equal_nan=True)  # fmt: skip
+    assert partial > 0  # partial slices (their sections moved) were compared
+
+
 @pytest.mark.parametrize("draft", [0.0123456789, 0.0314159265, 0.05])
 def test_sections_exact_to_rounding_not_to_the_cutters_grid(draft):
     # closed form: a wedge of deadrise beta wetted to depth p has half-beam p / tan(beta).

@@ -76,6 +76,10 @@ class Outline:
     z_chine : (s,) float
         Height of the lower of the section's widest points on the two sides (the chine: the
         lowest vertex at the extreme ``y``), m.
+    top : float
+        The height below which the edges' lower ends are (m, ``inf`` where every edge is
+        kept): the outline serves waterlines up to it. The sections' own figures above
+        (areas, extents, chines) are of all their edges.
     """
 
     station: np.ndarray
@@ -96,6 +100,7 @@ class Outline:
     ymin: np.ndarray
     ymax: np.ndarray
     z_chine: np.ndarray
+    top: float = np.inf
 
     @property
     def n_stations(self) -> int:
@@ -109,10 +114,13 @@ class Outline:
         origin: tuple[float, float] = (0.0, 0.0),
         scale: float = 1.0,
         loops: Callable | None = None,
+        top: float = np.inf,
     ) -> Outline:
         """The outline of station sections given as contours (each station's outer
         contours counter-clockwise, holes clockwise, ``(y, z)`` in m), each point divided by
-        ``scale`` and moved by ``origin``.
+        ``scale`` and moved by ``origin``; of the edges, those whose lower end is below
+        ``top`` (m, after the move; all where infinite): the edges that waterlines up to
+        ``top`` read, in the same order as with all (see :attr:`top`).
 
         ``loops``, when given (:func:`hullslice.outline_loops.outline_loops`, compiled),
         builds it from the exact cut's own array where ``polygons`` carries one (its
@@ -121,11 +129,11 @@ class Outline:
         flat = getattr(polygons, "flat", None)
         if loops is not None and flat is not None:
             oy, oz = (float(v) for v in origin)
-            every = np.full(len(polygons), np.inf)  # all edges of every station
-            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz, every,
+            cap = np.full(len(polygons), float(top))  # the edges kept, by station
+            out = loops(*flat, len(polygons), float(tol), float(scale), oy, oz, cap,
                         np.full(1, -1, dtype=np.int64))  # fmt: skip
             if out[0]:
-                return cls(*out[1:])
+                return cls(*[*out[1:], float(top)])  # the loops give all but the top
         s = len(polygons)
         contours = [c for secs in polygons for c in secs]
         if contours:
@@ -133,8 +141,9 @@ class Outline:
             a = np.concatenate(contours)
             if scale != 1.0:
                 a = a / scale
-            if origin != (0.0, 0.0):
-                a = a + np.asarray(origin)
+            if origin != (0.0, 0.0):  # a column at a time: one loop each, not one a point
+                a[:, 0] += origin[0]
+                a[:, 1] += origin[1]
             ends = np.cumsum(sizes)
             b = np.empty_like(a)  # each point's next, each contour closing on its first
             b[:-1] = a[1:]
@@ -162,9 +171,10 @@ class Outline:
         zmin = grouped(np.minimum, za, start, np.inf)
         ymax = grouped(np.maximum, ya, start, -np.inf)
         ymin = grouped(np.minimum, ya, start, np.inf)
-        side = np.concatenate([station[ya >= ymax[station] - tol],
-                               station[ya <= ymin[station] + tol]])  # fmt: skip
-        z_side = np.concatenate([za[ya >= ymax[station] - tol], za[ya <= ymin[station] + tol]])
+        wide = ya >= ymax[station] - tol  # the points at either side's extreme
+        wide_port = ya <= ymin[station] + tol
+        side = np.concatenate([station[wide], station[wide_port]])
+        z_side = np.concatenate([za[wide], za[wide_port]])
         z_chine = group_min(side, z_side, s)
         part_station = station[cstart[:-1]] if c else np.empty(0, dtype=np.int64)
         part_zmax = grouped(np.maximum, za, cstart, -np.inf)
@@ -177,7 +187,13 @@ class Outline:
         # Stable: a contour's heights come in long sorted runs, which a merge sort takes
         # whole (several times faster than quicksort here), and equal keys keep their order
         if len(zlo):
-            lo, span = zlo.min(), np.ptp(zlo)
+            lo, span = zlo.min(), np.ptp(zlo)  # of every edge: the same keys
+            if top < np.inf:  # the edges kept, before the sort (most of its cost)
+                below = np.flatnonzero(zlo < top)
+                station, ya, za, yb, zb, zlo, contour = (
+                    v[below] for v in (station, ya, za, yb, zb, zlo, contour)
+                )
+                start = np.searchsorted(station, np.arange(s + 1))
             key = 2.0 * station + (zlo - lo) / (span * (1.0 + 1e-9) + 1e-300)
             order = np.argsort(key, kind="stable")
         else:
@@ -204,6 +220,7 @@ class Outline:
             ymin=ymin,
             ymax=ymax,
             z_chine=z_chine,
+            top=float(top),
         )
 
     def window(self, k0: int, k1: int) -> Outline:
@@ -230,6 +247,7 @@ class Outline:
             ymin=self.ymin[k0:k1],
             ymax=self.ymax[k0:k1],
             z_chine=self.z_chine[k0:k1],
+            top=self.top,
         )
 
     def below(self, level: float | np.ndarray) -> tuple:
@@ -278,6 +296,7 @@ class Outline:
             ymin=self.ymin[k],
             ymax=self.ymax[k],
             z_chine=self.z_chine[k],
+            top=self.top,
         )
 
 

@@ -77,10 +77,20 @@ class FixedCut:
     _lock: threading.Lock = field(default_factory=threading.Lock, repr=False)
 
     def window(
-        self, fr: Frame, k0: int = 0, k1: int | None = None, cutter: str = "manifold3d"
+        self,
+        fr: Frame,
+        k0: int = 0,
+        k1: int | None = None,
+        cutter: str = "manifold3d",
+        top: float = np.inf,
     ) -> tuple[Outline, list, int]:
         """The outline of fixed stations ``k0`` to ``k1 - 1`` (mid-stations of equal slices
         over the body's length), cut once and kept.
+
+        ``top`` (m): a new pitch's first outline keeps only the edges whose lower end is
+        below it (:meth:`Outline.of`), the edges an evaluation with the water up to it
+        reads: most of a new pitch's outlines serve one evaluation. Any later call makes the
+        outline of all the edges (a held pitch, or its waterline table).
 
         Returns ``(outline, polygons, c0)``: the outline and contours (relative to the cg)
         of stations ``c0`` to ``c0 + len(polygons) - 1``, a range holding the ones asked
@@ -106,7 +116,17 @@ class FixedCut:
                     polys.update(zip(missing.tolist(), cuts, strict=True))
                 # all cut just now (a new pitch): the cut itself, with its own array
                 self.rows = cuts if len(missing) == hi - lo else [polys[k] for k in range(lo, hi)]
+                first = self.range is None
                 self.range = held = (lo, hi)
+                self.outline = Outline.of(
+                    self.rows,
+                    self.tol,
+                    fr.origin,
+                    fr.scale,
+                    loops=loops_in_use("outline"),
+                    top=top if first else np.inf,
+                )
+            elif self.outline.top < np.inf:  # the pitch is held after all: every edge
                 self.outline = Outline.of(
                     self.rows, self.tol, fr.origin, fr.scale, loops=loops_in_use("outline")
                 )
@@ -123,6 +143,8 @@ class FixedCut:
             if deadrise not in TABULATED or count < TABLE_AFTER:
                 return None
             table = self.tables.get(deadrise)
+            if outline.top < np.inf:  # a new pitch's outline of the low edges: no table
+                return None
             if table is None or table.outline is not outline or level > table.top:
                 # none where one was too costly for this outline at a lower water
                 too_high = self.too_high.get(deadrise)
@@ -209,7 +231,9 @@ def fixed_sections(
     props = None
     kept = fixed_cut(fr, n, tol, cutter) if cache else None
     if kept is not None:
-        outline, polys, c0 = kept.window(fr, w0, w1, cutter)
+        # a moved slice reads its source with the water up to STEEP_SLOPE times 1.5 station
+        # spacings higher (or it is cut where it is, below): the edges below twice that
+        outline, polys, c0 = kept.window(fr, w0, w1, cutter, top=level + 2.0 * STEEP_SLOPE * d)
         props = kept.tabulated(outline, level, deadrise, w0 - c0, w1 - c0)
     else:
         (outline, polys), c0 = outline_of(fr, mids, tol, cutter), 0
@@ -351,7 +375,7 @@ def _window_properties(
     table = None if kept is None else kept.tables.get(deadrise)
     if table is not None and table.outline is outline:
         guess = guess[:0]
-    guess = guess[np.isfinite(lift[guess])]
+    guess = guess[np.isfinite(lift[guess]) & (level - lift[guess] <= outline.top)]
     nwin = k1 - k0
     stations = np.concatenate([np.arange(k0, k1), source[guess]])
     levels = np.concatenate([np.full(nwin, level), level - lift[guess]])
