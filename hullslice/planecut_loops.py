@@ -116,7 +116,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "4e52bd0dbe5bbb4f"
+STAGE_HELPERS_DIGEST = "9ef90dcb60da06da"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -145,7 +145,7 @@ def cut_loops(
     none = np.empty(0)
     recipe = recipe_loops(first, last, corners, ends, x_rel, gx, gz, c, s, slot, k_out_of,
                           k_in_of, none, np.empty(0, dtype=np.int64), none, none, none)  # fmt: skip
-    ends6, ring_len, st_p, st_q, status = recipe[0], recipe[1], recipe[2], recipe[3], recipe[9]
+    ends6, ring_len, st_p, st_q, status = recipe[0], recipe[1], recipe[2], recipe[3], recipe[10]
     points, ring_start, ring_station = points_loops(ends6, ring_len, st_p, st_q, 0, x_rel, gx,
                                                     gz, c, s, m, merge)  # fmt: skip
     return points, ring_start, ring_station, status

@@ -49,17 +49,20 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
     reach_x, reach_z = index.reach(cg)
     eps = index.margin
     far_ok = (mc[k] - dc) * m_gap[k] - dc * m_reach[k] - ds * reach_z - dx > eps
-    quiet = dc * reach_x + ds * reach_z + dx < m_near[k] - eps
+    move = dc * reach_x + ds * reach_z + dx
+    quiet = move < m_near[k] - eps
     src = np.where(far_ok, k, -1)
     check = np.flatnonzero(far_ok & ~quiet)
-    if len(check):  # the sign test on each candidate again, its side code compared
+    if len(check):  # the sign test again on each candidate whose nearest corner was near
         kk = k[check]
         ranges = memo[1][kk]
         station, face = range_faces(ranges[:, :, 0], ranges[:, :, 1])
-        _, code = _sides(index, station, face, x_rel[check], c, s, cg)
         code_p = memo[2][0]
-        want = memo[3][_spans(code_p[kk], code_p[kk + 1] - code_p[kk])]
-        wrong = np.bincount(station[code != want], minlength=len(check))
+        at = _spans(code_p[kk], code_p[kk + 1] - code_p[kk])
+        test = np.flatnonzero(~(move[check][station] < memo[6][at] - eps))
+        station, face = station[test], face[test]
+        _, code = _sides(index, station, face, x_rel[check], c, s, cg)
+        wrong = np.bincount(station[code != memo[3][at[test]]], minlength=len(check))
         src[check[wrong > 0]] = -1
     return src
 
@@ -74,12 +77,13 @@ def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     first, last, xa, xb = index.ranges(x_rel, pitch, cg, margin=wide, ends=True)
     station, face = range_faces(first, last)
     d, codes = _sides(index, station, face, x_rel, c, s, cg)
+    code_near = np.abs(d).min(axis=1) if len(face) else np.empty(0)
     per = np.bincount(station, minlength=n_st)
     code_p = np.concatenate(([0], np.cumsum(per)))
     near = np.full(n_st, np.inf)
     if len(face):
         has = per > 0
-        near[has] = np.minimum.reduceat(np.abs(d).min(axis=1), code_p[:-1][has])
+        near[has] = np.minimum.reduceat(code_near, code_p[:-1][has])
     gap, reach = _gaps(index, first, last, xa, xb, cg)
     rows = np.flatnonzero((codes > 0) & (codes < 7))
     station, face, code = station[rows], face[rows], codes[rows]
@@ -105,7 +109,7 @@ def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     stations = np.stack([np.asarray(x_rel, dtype=np.float64), np.full(n_st, c),
                          np.full(n_st, s), near, gap, reach])  # fmt: skip
     return (stations, np.stack([first, last], axis=2), np.stack([code_p, st_p, st_q]),
-            codes.astype(np.int8), ends6, length.astype(np.int64))  # fmt: skip
+            codes.astype(np.int8), ends6, length.astype(np.int64), code_near)  # fmt: skip
 
 
 def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray, ...]]:
@@ -155,8 +159,8 @@ def _combined(memo, src, fresh) -> tuple:
     ranges[~take] = fresh[1][j[~take]]
     offsets = np.empty((3, n + 1), dtype=np.int64)
     data = []
-    for row, at in ((0, 3), (1, 4), (2, 5)):  # each station's run of the codes, ends, rings
-        old, new = memo[2][row], fresh[2][row]
+    for row, at in ((0, 3), (1, 4), (2, 5), (0, 6)):  # each station's run of the codes,
+        old, new = memo[2][row], fresh[2][row]  # ends, rings, and the codes' distances
         axis = 1 if at == 4 else 0  # the edge ends: a row a coordinate
         count = np.empty(n, dtype=np.int64)
         base = np.empty(n, dtype=np.int64)
@@ -166,8 +170,8 @@ def _combined(memo, src, fresh) -> tuple:
         pieces = np.concatenate((memo[at], fresh[at]), axis=axis)
         offsets[row] = np.concatenate(([0], np.cumsum(count)))
         data.append(pieces.take(_spans(base, count), axis=axis))
-    codes, ends6, ring_len = data
-    return (stations, ranges, offsets, codes, ends6, ring_len)
+    codes, ends6, ring_len, code_near = data
+    return (stations, ranges, offsets, codes, ends6, ring_len, code_near)
 
 
 def _gaps(index, first, last, xa, xb, cg) -> tuple[np.ndarray, np.ndarray]:

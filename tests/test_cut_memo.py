@@ -72,9 +72,13 @@ class Cutter:
         src = contour_loops.match_loops(x_rel, c, s, self.memo, *self.reach, ix.margin)
         for i in np.flatnonzero(src <= -2):
             k = -2 - src[i]
-            same = contour_loops.same_sides_loops(self.memo[1][k], self.memo[3], self.memo[2][0][k],
-                                                  ix.corners, x_rel[i], self.g[0], self.g[2],
-                                                  c, s)  # fmt: skip
+            st = self.memo[0]
+            move = (abs(c - st[1, k]) * self.reach[0] + abs(s - st[2, k]) * self.reach[1]
+                    + abs(x_rel[i] - st[0, k]))  # fmt: skip
+            same = contour_loops.same_sides_loops(self.memo[1][k], self.memo[3], self.memo[6],
+                                                  self.memo[2][0][k], ix.corners, x_rel[i],
+                                                  self.g[0], self.g[2], c, s, move,
+                                                  ix.margin)  # fmt: skip
             src[i] = k if same else -1
         return src
 
@@ -191,3 +195,44 @@ def test_numpys_memo_gives_a_fresh_cuts_contours_to_the_bit(name):
         assert memo[0].shape[1] >= len(x_rel)  # these stations, and more where all were served
     assert served >= 0.3 * total, (served, total)
     assert served < total
+
+
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "fuselage"])
+def test_a_check_tests_again_only_the_faces_near_the_plane(name):
+    """Over the walk, wherever a station's candidates are checked: the faces whose
+    nearest corner was farther from the recipe's plane than a vertex can have moved (by
+    more than rounding's room) are taken as they were, and the answer is that of the sign
+    test on every candidate; on these meshes a small share of the candidates is tested
+    again. numpy's memo keeps the same distances as the loops'."""
+    hull = BODIES[name]
+    fns = dict(PATHS)["numba" if planecut_loops.available() else "python"]
+    cutter = Cutter(hull, fns)
+    index = plane_index(hull)
+    g = np.asarray(hull.cg, dtype=np.float64)
+    numpy_memo = contour_loops.empty_memo(len(index.bin_zlo))
+    checks = tested = candidates = 0
+    for pitch, x_rel in _walk(hull):
+        c, s = float(np.cos(pitch)), float(np.sin(pitch))
+        src = contour_loops.match_loops(x_rel, c, s, cutter.memo, *cutter.reach, index.margin)
+        memo = cutter.memo
+        for i in np.flatnonzero(src <= -2):
+            k = -2 - src[i]
+            st = memo[0]
+            move = (abs(c - st[1, k]) * cutter.reach[0] + abs(s - st[2, k]) * cutter.reach[1]
+                    + abs(x_rel[i] - st[0, k]))  # fmt: skip
+            args = (memo[1][k], memo[3], memo[6], memo[2][0][k], index.corners, x_rel[i], g[0],
+                    g[2], c, s)  # fmt: skip
+            quick = contour_loops.same_sides_loops(*args, move, index.margin)
+            assert quick == contour_loops.same_sides_loops(*args, np.inf, index.margin)
+            near = memo[6][memo[2][0][k] : memo[2][0][k + 1]]
+            checks += 1
+            candidates += len(near)
+            tested += int(np.count_nonzero(~(move < near - index.margin)))
+        cutter.by_memo(x_rel, pitch)
+        m = frame(hull, pitch)._matrix
+        _, numpy_memo = planecut_numpy.memo_cut(index, numpy_memo, x_rel, pitch, g, m,
+                                                MERGE * CUTTER_SIZE)  # fmt: skip
+        assert np.array_equal(numpy_memo[6], cutter.memo[6])
+        assert np.array_equal(numpy_memo[3], cutter.memo[3])
+    assert checks > 5
+    assert tested < 0.2 * candidates, (tested, candidates)
