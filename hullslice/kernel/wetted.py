@@ -80,11 +80,14 @@ def wetted_properties(
     :func:`section_properties` for the result.
     """
     s = outline.n_stations
-    if outline.top < np.inf and np.max(level, initial=-np.inf) > outline.top:
-        raise ValueError(
-            f"an outline of the edges below {outline.top:.6g} m cannot serve water at "
-            f"{np.max(level):.6g} m: make it with a higher top"
-        )
+    top = outline.top
+    if top < np.inf:  # the outline of the low edges only: the water below them
+        high = float(np.asarray(level).max(initial=-np.inf))
+        if high > top:
+            raise ValueError(
+                f"an outline of the edges below {top:.6g} m cannot serve water at "
+                f"{high:.6g} m: make it with a higher top"
+            )
     if loops is not None and deadrise in ("wedge", "waterline-slope"):
         return _by_loops(loops, outline, level, tol, deadrise)
     station, ya, za, yb, zb, contour = outline.below(level)
