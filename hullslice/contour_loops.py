@@ -23,8 +23,8 @@ station's place). It is shown:
   the change anywhere on the body, or else face by face: by the face's own nearest
   vertex's distance where that is larger, and by the sign test on the face again (its
   side code compared with the recipe's) where not. On a fine mesh a station's nearest
-  vertex is always close to its plane, a face's seldom: about one candidate in a hundred
-  is tested again.
+  vertex is nearly always close to its plane, a face's seldom: on the 1M-face fuselage of
+  the benchmark, one candidate in 140 is tested again.
 """
 
 from __future__ import annotations

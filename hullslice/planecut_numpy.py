@@ -70,7 +70,8 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
 def recipe(index, x_rel: np.ndarray, pitch: float, cg: np.ndarray) -> tuple:
     """The memo of stations ``x_rel`` cut afresh at a pitch (rad): their places, pitch,
     nearest candidate vertex, gap and reach, ranges (widened by :data:`MEMO_WIDTH`), side
-    codes and recipe, as :func:`hullslice.contour_loops.memo_cut_loops` keeps them."""
+    codes, recipe and each candidate's nearest corner's distance to its plane, as
+    :func:`hullslice.contour_loops.memo_cut_loops` keeps them."""
     c, s = np.cos(pitch), np.sin(pitch)
     n_st = len(x_rel)
     wide = index.margin + MEMO_WIDTH * index.key_span

@@ -205,7 +205,7 @@ def test_a_check_tests_again_only_the_faces_near_the_plane(name):
     test on every candidate; on these meshes a small share of the candidates is tested
     again. numpy's memo keeps the same distances as the loops'."""
     hull = BODIES[name]
-    fns = dict(PATHS)["numba" if planecut_loops.available() else "python"]
+    fns = PATHS[-1][1]  # compiled where numba is installed
     cutter = Cutter(hull, fns)
     index = plane_index(hull)
     g = np.asarray(hull.cg, dtype=np.float64)

@@ -465,6 +465,31 @@ def test_an_outline_with_a_top_serves_the_water_below_it_as_the_whole_one(name):
                     assert all(_same(ref[k], out[k]) for k in ref)
                 with pytest.raises(ValueError, match="cannot serve water"):
                     wetted_properties(got, top + 1e-9 * hull.size, tol)
+                levels = np.full(whole.n_stations, lo)
+                levels[0], levels[-1] = np.nan, top + 1e-9 * hull.size
+                with pytest.raises(ValueError, match="cannot serve water"):
+                    wetted_properties(got, levels, tol)  # a NaN does not hide it
+        for top in (np.inf, np.nan):  # no top: every edge, by either path
+            for got in (
+                Outline.of(list(cut), tol, (0.3, -1.25), 7.5, top=top),
+                Outline.of(cut, tol, (0.3, -1.25), 7.5, loops=loops, top=top),
+            ):
+                assert got.top == np.inf
+                assert _same(got.zlo, whole.zlo)
+
+
+def test_an_outline_of_integer_or_single_contours_is_made_in_doubles():
+    """Contours of integers or of single floats, moved by an origin, give the outline of
+    the same contours in doubles (numpy's promotion), field by field."""
+    from hullslice.kernel.outline import Outline
+
+    square = np.array([[0, 0], [2, 0], [2, 2], [0, 2]])  # counter-clockwise
+    ref = Outline.of([(square.astype(np.float64),)], 1e-9, (0.1, -0.2))
+    for dtype in (np.int64, np.float32):
+        got = Outline.of([(square.astype(dtype),)], 1e-9, (0.1, -0.2))
+        for key, value in vars(ref).items():
+            assert _same(getattr(got, key), value), (dtype, key)
+    assert ref.area[0] == pytest.approx(4.0, rel=1e-15) and ref.zmin[0] == -0.2  # a 2 m square
 
 
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "cylinder"])

@@ -183,6 +183,8 @@ def test_a_new_pitchs_outline_of_its_low_edges_gives_the_whole_outlines_result(
     water higher, makes the kept outline whole, with the same result as afresh. (numpy's
     path: the compiled one-call stage caps its own outline.)"""
     from hullslice.kernel.keel import STEEP_SLOPE
+    from hullslice.kernel.outline import Outline
+    from hullslice.kernel.waterline_table import WaterlineTable
 
     monkeypatch.setenv("HULLSLICE_NUMBA", "0")
     body = hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
@@ -202,7 +204,11 @@ def test_a_new_pitchs_outline_of_its_low_edges_gives_the_whole_outlines_result(
             if step == 0:
                 d = (fr.keel.x[-1] - fr.keel.x[0]) / 32
                 assert top == pytest.approx(level + 2.0 * STEEP_SLOPE * d, rel=1e-12)
-                assert np.any(kept.outline.zlo < top)
+                assert np.all(kept.outline.zlo < top)
+                whole = Outline.of(kept.rows, kept.tol, fr.origin, fr.scale)
+                assert 0 < len(kept.outline.zlo) < len(whole.zlo)  # edges were left out
+                with pytest.raises(ValueError, match="every edge"):  # nor tabulated
+                    WaterlineTable.of(kept.outline, level, kept.tol, "wedge")
                 partial += int(np.count_nonzero(a.sections.dx < 0.999 * d))
             else:
                 assert top == np.inf

@@ -126,6 +126,8 @@ class Outline:
         builds it from the exact cut's own array where ``polygons`` carries one (its
         ``flat``) and no section has a hole: the same outline.
         """
+        if not top < np.inf:  # no top (a NaN one too): every edge
+            top = np.inf
         flat = getattr(polygons, "flat", None)
         if loops is not None and flat is not None:
             oy, oz = (float(v) for v in origin)
@@ -141,9 +143,12 @@ class Outline:
             a = np.concatenate(contours)
             if scale != 1.0:
                 a = a / scale
-            if origin != (0.0, 0.0):  # a column at a time: one loop each, not one a point
-                a[:, 0] += origin[0]
-                a[:, 1] += origin[1]
+            if origin != (0.0, 0.0):
+                if a.dtype == np.float64:  # a column at a time: a loop each, not one a point
+                    a[:, 0] += origin[0]
+                    a[:, 1] += origin[1]
+                else:  # numpy's promotion (integer or single contours)
+                    a = a + np.asarray(origin)
             ends = np.cumsum(sizes)
             b = np.empty_like(a)  # each point's next, each contour closing on its first
             b[:-1] = a[1:]

@@ -85,6 +85,11 @@ class WaterlineTable:
         """The table of ``outline`` up to a little above ``level`` (as high again as the
         water is deep, less if that would evaluate more than ``budget`` edges); None if
         the water's own height needs more."""
+        if outline.top < np.inf:
+            raise ValueError(
+                f"a waterline table needs the outline of every edge, not of those below "
+                f"{outline.top:.6g} m (Outline.of's top)"
+            )
         s = outline.n_stations
         # break points: vertex heights (each edge starts at one), and raised by tol / 5
         z = np.concatenate([outline.za, outline.za + tol / 5])

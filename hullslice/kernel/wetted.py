@@ -82,7 +82,7 @@ def wetted_properties(
     s = outline.n_stations
     top = outline.top
     if top < np.inf:  # the outline of the low edges only: the water below them
-        high = float(np.asarray(level).max(initial=-np.inf))
+        high = float(np.fmax.reduce(np.asarray(level).ravel(), initial=-np.inf))  # no NaN
         if high > top:
             raise ValueError(
                 f"an outline of the edges below {top:.6g} m cannot serve water at "

@@ -49,7 +49,8 @@ class FixedCut:
     range : (int, int) or None
         The stations ``range[0]`` to ``range[1] - 1`` of :attr:`outline` and :attr:`rows`.
     outline : Outline or None
-        The outline of those stations.
+        The outline of those stations: at a new pitch's first evaluation, of their edges
+        below its top only (:attr:`Outline.top`, see :meth:`window`).
     rows : list of contours
         Their contours.
     evaluations : int
@@ -90,7 +91,8 @@ class FixedCut:
         ``top`` (m): a new pitch's first outline keeps only the edges whose lower end is
         below it (:meth:`Outline.of`), the edges an evaluation with the water up to it
         reads: most of a new pitch's outlines serve one evaluation. Any later call makes the
-        outline of all the edges (a held pitch, or its waterline table).
+        outline of all the edges (a held pitch, or its waterline table), and so does the
+        first where its evaluation makes a table (:data:`TABLE_AFTER` at most 1).
 
         Returns ``(outline, polygons, c0)``: the outline and contours (relative to the cg)
         of stations ``c0`` to ``c0 + len(polygons) - 1``, a range holding the ones asked
@@ -116,7 +118,9 @@ class FixedCut:
                     polys.update(zip(missing.tolist(), cuts, strict=True))
                 # all cut just now (a new pitch): the cut itself, with its own array
                 self.rows = cuts if len(missing) == hi - lo else [polys[k] for k in range(lo, hi)]
-                first = self.range is None
+                # a new pitch's first outline, of its low edges only, where this evaluation
+                # makes no waterline table (tabulated, next, counts it)
+                first = self.range is None and self.evaluations + 1 < TABLE_AFTER
                 self.range = held = (lo, hi)
                 self.outline = Outline.of(
                     self.rows,
@@ -370,7 +374,9 @@ def _window_properties(
     ``source`` stations of the outline at ``level - lift``, by slice): one call of
     :func:`wetted_properties`, each station's properties the same as alone. The slices'
     by slice index, each as :func:`_station_at` gives it; none where a waterline table of
-    this outline would serve them (:func:`_station_at` reads it)."""
+    this outline would serve them (:func:`_station_at` reads it), nor for a guess whose
+    water is above the outline's top (:attr:`Outline.top`: a slice moved so far is cut
+    where it is)."""
     k0, k1 = window
     table = None if kept is None else kept.tables.get(deadrise)
     if table is not None and table.outline is outline:
