@@ -104,7 +104,11 @@ class FixedCut:
         k1 = n if k1 is None else k1
         with self._lock:
             held = self.range
-            if held is None or self.outline is None or k0 < held[0] or k1 > held[1]:
+            # a new pitch's first outline, of its low edges only, where this evaluation
+            # makes no waterline table (tabulated, next, counts it); made whole after
+            cap = top if held is None and self.evaluations + 1 < TABLE_AFTER else np.inf
+            grow = held is None or self.outline is None or k0 < held[0] or k1 > held[1]
+            if grow:
                 if held is None:  # a new pitch: only what is asked for
                     lo, hi = k0, k1
                 else:  # the wetted part grows at this pitch: some stations ahead
@@ -118,22 +122,13 @@ class FixedCut:
                     polys.update(zip(missing.tolist(), cuts, strict=True))
                 # all cut just now (a new pitch): the cut itself, with its own array
                 self.rows = cuts if len(missing) == hi - lo else [polys[k] for k in range(lo, hi)]
-                # a new pitch's first outline, of its low edges only, where this evaluation
-                # makes no waterline table (tabulated, next, counts it)
-                first = self.range is None and self.evaluations + 1 < TABLE_AFTER
                 self.range = held = (lo, hi)
+            if grow or self.outline is None or self.outline.top < cap:  # made, or made whole
                 self.outline = Outline.of(
-                    self.rows,
-                    self.tol,
-                    fr.origin,
-                    fr.scale,
-                    loops=loops_in_use("outline"),
-                    top=top if first else np.inf,
-                )
-            elif self.outline.top < np.inf:  # the pitch is held after all: every edge
-                self.outline = Outline.of(
-                    self.rows, self.tol, fr.origin, fr.scale, loops=loops_in_use("outline")
-                )
+                    self.rows, self.tol, fr.origin, fr.scale, loops=loops_in_use("outline"),
+                    top=cap,
+                )  # fmt: skip
+            assert held is not None  # the range, set above where there was none
             return self.outline, self.rows, held[0]
 
     def tabulated(
@@ -147,8 +142,6 @@ class FixedCut:
             if deadrise not in TABULATED or count < TABLE_AFTER:
                 return None
             table = self.tables.get(deadrise)
-            if outline.top < np.inf:  # a new pitch's outline of the low edges: no table
-                return None
             if table is None or table.outline is not outline or level > table.top:
                 # none where one was too costly for this outline at a lower water
                 too_high = self.too_high.get(deadrise)
