@@ -190,8 +190,10 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
     ``x_rel`` at a pitch (``c``, ``s``) about ``(gx, gz)``, mapped by ``m`` (2 x 4) to the
     cutter's ``(Y, Z)``: each point from its edge's end nearer the plane, consecutive points
     closer than ``merge`` along both axes one, contours of fewer than three points or no
-    area left out. Returns ``(points, ring_start, ring_station)`` as
-    :func:`~hullslice.planecut_loops.cut_loops` (stations counted from ``k0``)."""
+    area left out. Returns ``(points, ring_start, ring_station, ring_area)`` as
+    :func:`~hullslice.planecut_loops.cut_loops` (stations counted from ``k0``):
+    ``ring_area`` each kept contour's shoelace sum (twice its area in the cutter's
+    frame), the sum its test of an area takes."""
     n_st = len(x_rel)
     p0, p1 = st_p[k0], st_p[k0 + n_st]
     q0 = st_q[k0]
@@ -230,6 +232,7 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
     out = np.empty((p1 - p0, 2))
     ring_start = np.empty(n_rings + 1, dtype=np.int64)
     ring_station = np.empty(n_rings, dtype=np.int64)
+    ring_area = np.empty(n_rings)
     n_out = 0
     n_ring = 0
     ring_start[0] = 0
@@ -240,29 +243,64 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
             length = ring_len[r]
             r += 1
             first = n_out
-            area = 0.0  # the shoelace sum, term by term in the points' order, closing last
-            for k in range(length):
-                p = at + k
-                pr = p - 1 if k > 0 else at + length - 1
-                if abs(py[p] - py[pr]) > merge or abs(pz[p] - pz[pr]) > merge:
-                    out[n_out, 0] = py[p]
-                    out[n_out, 1] = pz[p]
-                    if n_out > first:
-                        area += (out[n_out - 1, 0] * out[n_out, 1]
-                                 - out[n_out, 0] * out[n_out - 1, 1])  # fmt: skip
-                    n_out += 1
+            if length == 0:
+                continue
+            # the points kept: each farther than merge from the one before along an axis
+            # (the first from the last), in passes of no branch
+            ys, zs = py[at : at + length], pz[at : at + length]
+            last = length - 1
+            out[n_out, 0], out[n_out, 1] = ys[0], zs[0]
+            n_out += (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge)
+            y1, y0, z1, z0 = ys[1:], ys[:last], zs[1:], zs[:last]
+            for k in range(last):
+                out[n_out, 0] = y1[k]
+                out[n_out, 1] = z1[k]
+                n_out += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
             at += length
             kept = n_out - first
-            if kept > 0:
-                k = n_out - 1
-                area += out[k, 0] * out[first, 1] - out[first, 0] * out[k, 1]
+            area = shoelace_loops(out[first:n_out]) if kept >= 3 else 0.0
             if kept >= 3 and area != 0.0:
                 ring_station[n_ring] = i
+                ring_area[n_ring] = area
                 n_ring += 1
                 ring_start[n_ring] = n_out
             else:
                 n_out = first
-    return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring]
+    return out[:n_out], ring_start[: n_ring + 1], ring_station[:n_ring], ring_area[:n_ring]
+
+
+def shoelace_loops(pts):
+    """A contour's shoelace sum (twice its area, ``pts`` its (k, 2) points, k >= 3): four
+    running sums of its terms, the compiler's vector instructions, where their sum's
+    rounding cannot have changed its sign or made it zero; else the sum term by term in
+    the points' order, closing last (numpy's ``bincount``), whose zero is what the cut
+    tests."""
+    y, z = pts[:, 0], pts[:, 1]
+    n = len(y) - 1
+    y0, y1, z0, z1 = y[:n], y[1:], z[:n], z[1:]
+    s0 = s1 = s2 = s3 = 0.0
+    a0 = a1 = a2 = a3 = 0.0
+    for q in range(n // 4):
+        k = 4 * q
+        t0 = y0[k] * z1[k] - y1[k] * z0[k]
+        t1 = y0[k + 1] * z1[k + 1] - y1[k + 1] * z0[k + 1]
+        t2 = y0[k + 2] * z1[k + 2] - y1[k + 2] * z0[k + 2]
+        t3 = y0[k + 3] * z1[k + 3] - y1[k + 3] * z0[k + 3]
+        s0, s1, s2, s3 = s0 + t0, s1 + t1, s2 + t2, s3 + t3
+        a0, a1, a2, a3 = a0 + abs(t0), a1 + abs(t1), a2 + abs(t2), a3 + abs(t3)
+    for k in range(n - n % 4, n):
+        t0 = y0[k] * z1[k] - y1[k] * z0[k]
+        s0, a0 = s0 + t0, a0 + abs(t0)
+    close = y[n] * z[0] - y[0] * z[n]
+    total = ((s0 + s1) + (s2 + s3)) + close
+    size = ((a0 + a1) + (a2 + a3)) + abs(close)
+    # each sum within (n + 1) * 2**-53 * size of the terms' exact sum: 1e-15 covers both
+    if abs(total) > 1e-15 * (n + 1) * size:
+        return total
+    total = 0.0
+    for k in range(n):
+        total += y0[k] * z1[k] - y1[k] * z0[k]
+    return total + close
 
 
 def match_loops(x_rel, c, s, memo, reach_x, reach_z, eps):
@@ -334,7 +372,8 @@ def memo_cut_loops(
     codes; its recipe's edge ends ``(6, p)`` and contour lengths; and each code's face's
     nearest corner's distance. (Seven arrays, not fourteen: each one the call returns
     costs about a third of a microsecond.) Returns
-    ``(points, ring_start, ring_station, status, memo)``, the memo of these stations (the
+    ``(points, ring_start, ring_station, ring_area, status, memo)`` (the first four as
+    :func:`points_loops` gives them), the memo of these stations (the
     one given where it served them all in its order, or the status is not 0). ``margin``
     (m) is rounding's room too."""
     n = len(x_rel)
@@ -356,9 +395,10 @@ def memo_cut_loops(
             kept = False
             break
     if kept:  # every station from the memo, in its order: the memo as it is
-        pts, ring_start, ring_station = points_loops(m_ends6, m_ring_len, m_st_p, m_st_q, k0,
-                                                     x_rel, gx, gz, c, s, m, merge)  # fmt: skip
-        return pts, ring_start, ring_station, 0, memo
+        pts, ring_start, ring_station, ring_area = points_loops(
+            m_ends6, m_ring_len, m_st_p, m_st_q, k0, x_rel, gx, gz, c, s, m, merge
+        )
+        return pts, ring_start, ring_station, ring_area, 0, memo
     n_f = 0
     for i in range(n):
         if src[i] < 0:
@@ -382,7 +422,7 @@ def memo_cut_loops(
      status) = fresh  # fmt: skip
     if status != 0:
         none = np.empty(0, dtype=np.int64)
-        return np.empty((0, 2)), none, none, status, memo
+        return np.empty((0, 2)), none, none, np.empty(0), status, memo
     # the memo of these stations: each one's from the old memo or from the fresh cut
     nb = len(bin_zlo)
     stations = np.empty((6, n))
@@ -432,10 +472,11 @@ def memo_cut_loops(
         for r in range(code_p[i + 1] - code_p[i]):
             codes[code_p[i] + r] = cd[c_a + r]
             code_near[code_p[i] + r] = cn[c_a + r]
-    pts, ring_start, ring_station = points_loops(ends6, ring_len, st_p, st_q, 0, x_rel, gx, gz,
-                                                 c, s, m, merge)  # fmt: skip
+    pts, ring_start, ring_station, ring_area = points_loops(
+        ends6, ring_len, st_p, st_q, 0, x_rel, gx, gz, c, s, m, merge
+    )
     new = (stations, ranges, offsets, codes, ends6, ring_len, code_near)
-    return pts, ring_start, ring_station, 0, new
+    return pts, ring_start, ring_station, ring_area, 0, new
 
 
 def empty_memo(bins: int) -> tuple:

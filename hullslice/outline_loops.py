@@ -15,7 +15,18 @@ import numpy as np
 #: use (see :data:`hullslice.contour_loops.U0`).
 U1 = np.uint64(1)
 
-__all__ = ["hinted_loops", "outline_loops", "stable_order_loops"]
+__all__ = ["hinted_loops", "key_loops", "outline_cut_loops", "outline_loops",
+           "stable_order_loops", "unkey_loops"]  # fmt: skip
+
+#: Order keys: a double's bits as a signed integer, with its magnitude's bits flipped where
+#: it is negative, compare as the double does (finite ones; -0.0 just below +0.0). The
+#: compiler turns running minima and maxima of integers into vector instructions, of
+#: doubles not (a third of the time of :func:`outline_loops`' one pass).
+MAG = np.int64(0x7FFFFFFFFFFFFFFF)
+#: An order key's exponent bits all set: the double is not finite.
+EXP = np.int64(0x7FF0000000000000)
+#: The lowest and highest order keys.
+K_LO, K_HI = np.int64(-0x7FFFFFFFFFFFFFFF - 1), MAG
 
 
 def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap, hint):
@@ -45,21 +56,7 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     """
     n = ring_start[-1]
     r = len(ring_station)
-    # the points moved, in loops over flat arrays that the compiler turns into vector
-    # instructions (a division a coordinate is most of their cost): the same values
-    a = np.empty((n, 2))
-    flat_a = a.reshape(2 * n)
-    flat_p = np.ascontiguousarray(points[:n]).reshape(2 * n)
-    if scale != 1.0:
-        for j in range(2 * n):
-            flat_a[j] = flat_p[j] / scale
-    else:
-        for j in range(2 * n):
-            flat_a[j] = flat_p[j]
-    if oy != 0.0 or oz != 0.0:
-        for i in range(n):
-            a[i, 0] += oy
-            a[i, 1] += oz
+    a = moved_loops(points, n, scale, oy, oz)
     # the edges kept (below their station's cap), in their order, counted by station (the
     # outline's ``start``); the edges' arrays are written for those only (the rest reads no
     # other)
@@ -152,24 +149,8 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
     order = order[:m]
     for s in range(n_st):
         kept[s + 1] += kept[s]
-    if m:
-        lo, hi = (np.nan, np.nan) if nan_seen else (lo_all, hi_all)
-        span = hi - lo
-        key = np.empty(n)  # the kept edges' keys (no other is read)
-        scale_z = span * (1.0 + 1e-9) + 1e-300
-        for j in range(m):
-            i = order[j]
-            key[i] = 2.0 * station[i] + (zlo[i] - lo) / scale_z
-        if not (grouped and (hinted_loops(key, order, hint)
-                             or stable_order_loops(key, kept, order))):  # fmt: skip
-            sub = np.empty(m)
-            for j in range(m):
-                sub[j] = key[order[j]]
-            order = order[np.argsort(sub, kind="mergesort")]
-    hint[0] = m if len(hint) > m else -1  # this call's order, for the next
-    if len(hint) > m:
-        for j in range(m):
-            hint[j + 1] = order[j]
+    lo, hi = (np.nan, np.nan) if nan_seen else (lo_all, hi_all)
+    order = edge_order_loops(order, station, zlo, kept, lo, hi, grouped, hint)
     n = m
     ya, za, yb, zb = np.empty(n), np.empty(n), np.empty(n), np.empty(n)
     o_station, o_zlo, o_contour = np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64)
@@ -183,6 +164,52 @@ def outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, ca
         ok, o_station, ya, za, yb, zb, o_zlo, kept, area, o_contour, c_area,
         part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
     )  # fmt: skip
+
+
+def moved_loops(points, n, scale, oy, oz):
+    """The first ``n`` points divided by ``scale`` (unless 1) and moved by ``(oy, oz)``
+    (unless both are 0), in loops over flat arrays that the compiler turns into vector
+    instructions (a division a coordinate is most of their cost)."""
+    a = np.empty((n, 2))
+    flat_a = a.reshape(2 * n)
+    flat_p = np.ascontiguousarray(points[:n]).reshape(2 * n)
+    if scale != 1.0:
+        for j in range(2 * n):
+            flat_a[j] = flat_p[j] / scale
+    else:
+        for j in range(2 * n):
+            flat_a[j] = flat_p[j]
+    if oy != 0.0 or oz != 0.0:
+        for i in range(n):
+            a[i, 0] += oy
+            a[i, 1] += oz
+    return a
+
+
+def edge_order_loops(order, station, zlo, kept, lo, hi, grouped, hint):
+    """The kept edges ``order`` sorted by station, then by their lower end's height
+    ``zlo`` (over the edges' lowest ``lo`` and highest ``hi``), as numpy's stable sort of
+    one key orders them; ``kept`` counts them by station, ``grouped`` says each station's
+    are one run. From ``hint`` where it holds that order, which is updated to it (see
+    :func:`outline_loops`)."""
+    m = len(order)
+    if m:
+        key = np.empty(len(zlo))  # the kept edges' keys (no other is read)
+        scale_z = (hi - lo) * (1.0 + 1e-9) + 1e-300
+        for j in range(m):
+            i = order[j]
+            key[i] = 2.0 * station[i] + (zlo[i] - lo) / scale_z
+        if not (grouped and (hinted_loops(key, order, hint)
+                             or stable_order_loops(key, kept, order))):  # fmt: skip
+            sub = np.empty(m)
+            for j in range(m):
+                sub[j] = key[order[j]]
+            order = order[np.argsort(sub, kind="mergesort")]
+    hint[0] = m if len(hint) > m else -1  # this call's order, for the next
+    if len(hint) > m:
+        for j in range(m):
+            hint[j + 1] = order[j]
+    return order
 
 
 def hinted_loops(key, order, hint):
@@ -284,3 +311,178 @@ def stable_order_loops(key, start, order):
             run[m] = hi
             n_run = m
     return True
+
+
+def key_loops(v):
+    """The order key of the double ``v`` (see :data:`MAG`)."""
+    b = np.empty(1)
+    b[0] = v
+    k = b.view(np.int64)[0]
+    return k ^ ((k >> 63) & MAG)
+
+
+def unkey_loops(k):
+    """The double of the order key ``k`` (the map is its own inverse)."""
+    b = np.empty(1, dtype=np.int64)
+    b[0] = k ^ ((k >> 63) & MAG)
+    return b.view(np.float64)[0]
+
+
+def below_key_loops(t):
+    """The key a finite double's is below where it is below ``t`` (none for NaN)."""
+    if t != t:
+        return K_LO
+    return np.int64(-1) if t == 0.0 else key_loops(t)  # -0.0's key where t is a zero
+
+
+def above_key_loops(t):
+    """The key a finite double's is at most where it is at most ``t`` (not NaN)."""
+    return np.int64(0) if t == 0.0 else key_loops(t)  # +0.0's key where t is a zero
+
+
+def outline_cut_loops(points, ring_start, ring_station, ring_area, n_st, tol, scale, oy, oz,
+                      cap, hint):  # fmt: skip
+    """:func:`outline_loops` of the exact cut's contours (the same arguments), with
+    ``ring_area`` each contour's shoelace sum in the cutter's frame as
+    :func:`~hullslice.contour_loops.points_loops` gives it: the same arrays, but for the
+    areas, taken from those sums (a contour's half its sum over the scale squared, a
+    station's the sum of its contours'), the same as :func:`outline_loops`' sums of the
+    moved points but for rounding (within about 1e-15 of the area). The extremes, the
+    chines and the edges kept are found by their order keys (:data:`MAG`), in passes the
+    compiler turns into vector instructions: the same values (a zero's sign aside, which
+    :func:`outline_loops` takes from the points' order: it serves where an extreme is a
+    zero, and where a point is not finite)."""
+    n = ring_start[-1]
+    r = len(ring_station)
+    a = moved_loops(points, n, scale, oy, oz)
+    bits = a.reshape(2 * n).view(np.int64)
+    ky, kz = np.empty(n, dtype=np.int64), np.empty(n, dtype=np.int64)
+    bad = False
+    for i in range(n):
+        by, bz = bits[2 * i], bits[2 * i + 1]
+        bad = bad | ((by & EXP) == EXP) | ((bz & EXP) == EXP)
+        ky[i] = by ^ ((by >> 63) & MAG)
+        kz[i] = bz ^ ((bz >> 63) & MAG)
+    if bad:
+        return outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap,
+                             hint)  # fmt: skip
+    # each contour's extremes, and its edges' lower ends' highest (for the order's key)
+    r_ext = np.empty((5, r), dtype=np.int64)  # y lowest, y highest, z lowest, z highest
+    for j in range(r):
+        i0, i1 = ring_start[j], ring_start[j + 1]
+        last = i1 - 1
+        y_lo, y_hi, z_lo, z_hi = ky[last], ky[last], kz[last], kz[last]
+        e_hi = min(kz[last], kz[i0])  # the closing edge's lower end
+        yy, zz, zn = ky[i0:last], kz[i0:last], kz[i0 + 1 : i1]
+        for i in range(len(yy)):
+            y, z = yy[i], zz[i]
+            y_lo = min(y, y_lo)
+            y_hi = max(y, y_hi)
+            z_lo = min(z, z_lo)
+            z_hi = max(z, z_hi)
+            e_hi = max(min(z, zn[i]), e_hi)
+        r_ext[0, j], r_ext[1, j], r_ext[2, j], r_ext[3, j], r_ext[4, j] = (y_lo, y_hi, z_lo,
+                                                                           z_hi, e_hi)  # fmt: skip
+    s_ext = np.empty((3, n_st), dtype=np.int64)  # by station: y lowest, y highest, z lowest
+    for st in range(n_st):
+        s_ext[0, st], s_ext[1, st], s_ext[2, st] = K_HI, K_LO, K_HI
+    lo_k, hi_k = K_HI, K_LO  # every edge's lower end's lowest and highest
+    zero = False
+    part_station = np.empty(r, dtype=np.int64)
+    part_zmax, part_ymin, part_ymax = np.empty(r), np.empty(r), np.empty(r)
+    for j in range(r):
+        st = ring_station[j]
+        part_station[j] = st
+        s_ext[0, st] = min(s_ext[0, st], r_ext[0, j])
+        s_ext[1, st] = max(s_ext[1, st], r_ext[1, j])
+        s_ext[2, st] = min(s_ext[2, st], r_ext[2, j])
+        lo_k, hi_k = min(lo_k, r_ext[2, j]), max(hi_k, r_ext[4, j])
+        part_zmax[j] = unkey_loops(r_ext[3, j])
+        part_ymin[j] = unkey_loops(r_ext[0, j])
+        part_ymax[j] = unkey_loops(r_ext[1, j])
+        zero = zero or part_zmax[j] == 0.0 or part_ymin[j] == 0.0 or part_ymax[j] == 0.0
+    zmin, ymin, ymax = np.full(n_st, np.inf), np.full(n_st, np.inf), np.full(n_st, -np.inf)
+    for st in range(n_st):
+        if s_ext[1, st] != K_LO:  # a station with a contour
+            ymin[st], ymax[st] = unkey_loops(s_ext[0, st]), unkey_loops(s_ext[1, st])
+            zmin[st] = unkey_loops(s_ext[2, st])
+            zero = zero or zmin[st] == 0.0 or ymin[st] == 0.0 or ymax[st] == 0.0
+    # the chines: the lowest of a station's points within tol of its widest
+    inf_k = key_loops(np.inf)
+    low = np.full(n_st, inf_k)
+    for j in range(r):
+        st = ring_station[j]
+        k_hi = below_key_loops(ymax[st] - tol)  # y >= ymax - tol
+        k_lo = above_key_loops(ymin[st] + tol)  # y <= ymin + tol
+        lo = low[st]
+        yy, zz = ky[ring_start[j] : ring_start[j + 1]], kz[ring_start[j] : ring_start[j + 1]]
+        for i in range(len(yy)):
+            y = yy[i]
+            lo = min(lo, zz[i] if (y >= k_hi) | (y <= k_lo) else inf_k)
+        low[st] = lo
+    z_chine = np.empty(n_st)
+    for st in range(n_st):
+        z_chine[st] = unkey_loops(low[st])
+        zero = zero or z_chine[st] == 0.0
+    if zero:  # a zero's sign: the order of the points decides it
+        return outline_loops(points, ring_start, ring_station, n_st, tol, scale, oy, oz, cap,
+                             hint)  # fmt: skip
+    c_area = np.empty(r)
+    area = np.zeros(n_st)
+    sq = scale * scale
+    ok = True
+    for j in range(r):
+        c_area[j] = 0.5 * (ring_area[j] / sq)
+        area[ring_station[j]] += c_area[j]
+        if not c_area[j] > 0.0:
+            ok = False
+    # the edges kept (lower end below the cap), in their order, counted by station
+    station = np.empty(n, dtype=np.int64)
+    contour = np.empty(n, dtype=np.int64)
+    zlo = np.empty(n)
+    order = np.empty(n, dtype=np.int64)
+    kept = np.zeros(n_st + 1, dtype=np.int64)
+    m = 0
+    grouped = True  # the rings' stations ascending: each station's edges one run
+    for j in range(r):
+        st = ring_station[j]
+        if j > 0 and st < ring_station[j - 1]:
+            grouped = False
+        t_key = below_key_loops(cap[st])
+        i0, i1 = ring_start[j], ring_start[j + 1]
+        last = i1 - 1
+        zz, zn, sel = kz[i0:last], kz[i0 + 1 : i1], order[m:]
+        q = 0
+        for i in range(len(zz)):  # each edge written, the count moved where it is kept
+            sel[q] = i0 + i
+            q += min(zz[i], zn[i]) < t_key
+        sel[q] = last
+        q += min(kz[last], kz[i0]) < t_key
+        for p in range(m, m + q):
+            i = order[p]
+            k = i + 1 if i < last else i0
+            station[i] = st
+            contour[i] = j
+            z, z_n = a[i, 1], a[k, 1]
+            zlo[i] = z if (z < z_n or z != z) else z_n
+        m += q
+        kept[st + 1] += q
+    order = order[:m]
+    for st in range(n_st):
+        kept[st + 1] += kept[st]
+    lo, hi = unkey_loops(lo_k), unkey_loops(hi_k)
+    order = edge_order_loops(order, station, zlo, kept, lo, hi, grouped, hint)
+    ya, za, yb, zb = np.empty(m), np.empty(m), np.empty(m), np.empty(m)
+    o_station, o_zlo, o_contour = np.empty(m, np.int64), np.empty(m), np.empty(m, np.int64)
+    for p in range(m):
+        i = order[p]
+        j = contour[i]
+        k = i + 1 if i + 1 < ring_start[j + 1] else ring_start[j]
+        o_station[p] = station[i]
+        ya[p], za[p], yb[p], zb[p] = a[i, 0], a[i, 1], a[k, 0], a[k, 1]
+        o_zlo[p] = zlo[i]
+        o_contour[p] = j
+    return (
+        ok, o_station, ya, za, yb, zb, o_zlo, kept, area, o_contour, c_area,
+        part_station, part_zmax, part_ymin, part_ymax, zmin, ymin, ymax, z_chine,
+    )  # fmt: skip

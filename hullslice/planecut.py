@@ -285,7 +285,7 @@ class PlaneIndex:
         from ``memo``: the sections and the memo of these stations."""
         nb = len(self.bin_zlo)
         m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
-        points, start, ring_station, status, kept = fn(
+        points, start, ring_station, _, status, kept = fn(
             self.key, self.bin_start, self.bin_zlo, self.bin_zhi, self.bin_reach, self.margin,
             self.key_span, self.key_x0, self.xmin, self.corners, self.ends, x_rel,
             float(cg[0]), float(cg[2]), float(c), float(s), m, float(merge), self.scratch(),
@@ -313,7 +313,7 @@ class PlaneIndex:
         the same points."""
         slot = self.scratch()
         m = np.ascontiguousarray(matrix[:2], dtype=np.float64)
-        points, start, ring_station, status = loops(
+        points, start, ring_station, status, _ = loops(
             first, last, self.corners, self.ends, x_rel, float(cg[0]), float(cg[2]),
             float(c), float(s),
             m, float(merge), slot, planecut_loops.K_OUT, planecut_loops.K_IN,

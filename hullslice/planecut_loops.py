@@ -35,6 +35,7 @@ from .contour_loops import (
     points_loops,
     recipe_loops,
     same_sides_loops,
+    shoelace_loops,
 )
 from .frame_loops import (
     above_chord_loops,
@@ -76,7 +77,18 @@ from .keel_loops import (
     side_view_loops,
     sorted_loops,
 )
-from .outline_loops import hinted_loops, outline_loops, stable_order_loops
+from .outline_loops import (
+    above_key_loops,
+    below_key_loops,
+    edge_order_loops,
+    hinted_loops,
+    key_loops,
+    moved_loops,
+    outline_cut_loops,
+    outline_loops,
+    stable_order_loops,
+    unkey_loops,
+)
 from .side_loops import lower_side_loops, turned_outline_loops
 from .slices_loops import (
     ENTRY,
@@ -116,7 +128,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "c434476d6b8abbdb"
+STAGE_HELPERS_DIGEST = "ccec2cc2cc28c447"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -136,9 +148,10 @@ def cut_loops(
     y1 y2``, and :attr:`~hullslice.planecut.PlaneIndex.ends`, the vertices then the
     edges).
 
-    Returns ``(points, ring_start, ring_station, status)``: the kept contours' points one
-    after another, each kept contour's first point (and the end), its station, and 0, or
-    1 where the mesh is not closed along a cut. ``slot`` is scratch space, one integer per
+    Returns ``(points, ring_start, ring_station, status, ring_area)``: the kept contours'
+    points one after another, each kept contour's first point (and the end), its station,
+    0, or 1 where the mesh is not closed along a cut, and each kept contour's shoelace
+    sum (twice its area in the cutter's frame). ``slot`` is scratch space, one integer per
     edge. The recipe of :func:`~hullslice.contour_loops.recipe_loops`, then its points by
     :func:`~hullslice.contour_loops.points_loops`.
     """
@@ -146,9 +159,10 @@ def cut_loops(
     recipe = recipe_loops(first, last, corners, ends, x_rel, gx, gz, c, s, slot, k_out_of,
                           k_in_of, none, np.empty(0, dtype=np.int64), none, none, none)  # fmt: skip
     ends6, ring_len, st_p, st_q, status = recipe[0], recipe[1], recipe[2], recipe[3], recipe[10]
-    points, ring_start, ring_station = points_loops(ends6, ring_len, st_p, st_q, 0, x_rel, gx,
-                                                    gz, c, s, m, merge)  # fmt: skip
-    return points, ring_start, ring_station, status
+    points, ring_start, ring_station, ring_area = points_loops(
+        ends6, ring_len, st_p, st_q, 0, x_rel, gx, gz, c, s, m, merge
+    )
+    return points, ring_start, ring_station, status, ring_area
 
 
 def stage_loops(
@@ -174,8 +188,9 @@ def stage_loops(
     ``xmin`` the index's faces' lowest ``x``, ``reach_x`` and ``reach_z`` the body's reach
     from ``g``) with the cutter's map of :func:`hullslice.geometry._frame`
     (the body's ``bounds`` and ``scale``); their outline (``tol``, by
-    :func:`~hullslice.outline_loops.outline_loops`, from the thread's ``hint`` of its
-    order at the last stage); and
+    :func:`~hullslice.outline_loops.outline_cut_loops`, from the thread's ``hint`` of its
+    order at the last stage: the sections' areas from the cut's own sums, the same as the
+    steps' but for rounding); and
     :func:`~hullslice.held_loops.pitch_loops` on them with
     the body's velocities ``w``, ``u`` and ``q`` (``fout`` to ``v_c`` as there). ``c`` and
     ``s`` are the pitch's cosine and sine. The same arithmetic in the same order as those
@@ -245,7 +260,7 @@ def stage_loops(
     m[0, 0], m[0, 1], m[0, 2], m[0, 3] = scale * 0.0, scale * 1.0, scale * 0.0, scale * -oy
     m[1, 0], m[1, 1], m[1, 2] = scale * s, scale * 0.0, scale * c
     m[1, 3] = scale * (-(s * gx + c * gz) - oz)
-    points, ring_start, ring_station, closed, memo = memo_cut_loops(
+    points, ring_start, ring_station, ring_area, closed, memo = memo_cut_loops(
         key, bin_start, bin_zlo, bin_zhi, bin_reach, margin, span, x0, xmin, corners, ends, x_rel,
         gx, gz, c, s, m, merge, slot, k_out_of, k_in_of, guess, w0, memo, reach_x, reach_z,
     )  # fmt: skip
@@ -261,8 +276,8 @@ def stage_loops(
     for k in (k0, k0 + 1, k1 - 1, k1):
         if w0 <= k < w1:
             cap[k - w0] = top
-    out = outline_loops(points, ring_start, ring_station, n_cut, tol, scale, oy, oz, cap,
-                        hint)  # fmt: skip
+    out = outline_cut_loops(points, ring_start, ring_station, ring_area, n_cut, tol, scale, oy,
+                            oz, cap, hint)  # fmt: skip
     if not out[0]:
         return 103, none2, none1, none1, memo
     extra[0], extra[1] = w0, n_cut
@@ -292,13 +307,13 @@ def stage_loops(
             j += 1
     first, last = range_loops(key, bin_start, bin_zlo, bin_zhi, bin_reach, x_f, gx, gz, c, s,
                               margin, span, x0, guess[:0], 0)  # fmt: skip
-    p_f, rs_f, rst_f, closed = cut_loops(
+    p_f, rs_f, rst_f, closed, area_f = cut_loops(
         first, last, corners, ends, x_f, gx, gz, c, s, m, merge, slot, k_out_of, k_in_of
     )
     if closed != 0:
         return 102, none2, none1, none1, memo
-    o = outline_loops(p_f, rs_f, rst_f, n_f, tol, scale, oy, oz, np.full(n_f, math.inf),
-                      np.full(1, -1, dtype=np.int64))  # fmt: skip
+    o = outline_cut_loops(p_f, rs_f, rst_f, area_f, n_f, tol, scale, oy, oz,
+                          np.full(n_f, math.inf), np.full(1, -1, dtype=np.int64))  # fmt: skip
     if not o[0]:
         return 103, none2, none1, none1, memo
     e_f, f_f = pitch_entries_loops((o[1], o[2], o[3], o[4], o[5], o[6], o[7], o[8], o[9],
@@ -375,6 +390,8 @@ def _inject(callee: str, jit: Callable) -> None:
 
 
 LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loops,
+    key=key_loops, unkey=unkey_loops, below_key=below_key_loops, above_key=above_key_loops,
+    outline_cut=outline_cut_loops, moved=moved_loops, edge_order=edge_order_loops,
     envelope=envelope_loops,
     side=side_view_loops, ranges=range_loops, search=search_loops, gallop=gallop_loops,
     near=near_loops,
@@ -388,7 +405,7 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     turned_outline=turned_outline_loops,
     frame_keel=frame_keel_loops, frame_points=frame_points_loops,
     window_line=window_line_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
-    match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops,
+    match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops, shoelace=shoelace_loops,
 )  # fmt: skip
 #: The loops that others call, by caller, their own helpers before them: compiled before
 #: it, into every module's namespace that holds them (:func:`_inject`; numba calls compiled
@@ -410,12 +427,24 @@ _FRAME_POINTS = (*_SIDE, *_CHAIN, *_REFINE, "refine")
 _FRAME_KEEL = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "line_runs")
 #: What the stage loops call, helpers before callers.
 _STAGE = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "window_line", "gallop",
-          "near", "ranges", "recipe", "points", "match", "sides", "memo_cut", "cut", "order",
-          "hinted", "outline", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
+          "near", "ranges", "recipe", "shoelace", "points", "match", "sides", "memo_cut", "cut",
+          "order", "hinted", "moved", "edge_order", "outline", "key", "unkey", "below_key",
+          "above_key", "outline_cut", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
           "pitch")  # fmt: skip
 CALLS = {
-    "cut": ("recipe", "points"),
-    "memo_cut": ("search", "gallop", "near", "ranges", "recipe", "points", "match", "sides"),
+    "cut": ("recipe", "shoelace", "points"),
+    "points": ("shoelace",),
+    "memo_cut": (
+        "search",
+        "gallop",
+        "near",
+        "ranges",
+        "recipe",
+        "shoelace",
+        "points",
+        "match",
+        "sides",
+    ),
     "held": (*_HELD, "h_interval", "h_table", "h_fcount", "h_fentries"),
     "pitch": (*_HELD, "wetted", "h_entries", "h_fcount", "h_fentries"),
     "window": ("h_right", "h_left", "h_desc", "h_cross", "h_extent", "h_wet"),
@@ -433,7 +462,22 @@ CALLS = {
     "lowest_at": ("search",),
     "ranges": ("search", "gallop", "near"),
     "stage": _STAGE,
-    "outline": ("order", "hinted"),
+    "outline": ("order", "hinted", "moved", "edge_order"),
+    "edge_order": ("order", "hinted"),
+    "lower_side": ("turned_outline",),
+    "below_key": ("key",),
+    "above_key": ("key",),
+    "outline_cut": (
+        "order",
+        "hinted",
+        "moved",
+        "edge_order",
+        "outline",
+        "key",
+        "unkey",
+        "below_key",
+        "above_key",
+    ),
     "keel_arrays": ("row",),
     "h_entries": ("h_div", "h_sidetan", "wetted"),
     "wetted": ("h_div", "h_sidetan"),

@@ -16,6 +16,8 @@ import math
 
 import numpy as np
 
+from .outline_loops import K_HI, K_LO, MAG
+
 __all__ = ["lower_side_loops", "turned_outline_loops"]
 
 
@@ -24,37 +26,59 @@ def turned_outline_loops(outline, gx, gz, c, s):
     :func:`hullslice.kernel.envelope.side_outline`'s points, counter-clockwise) turned nose
     up by a pitch (``c``, ``s``: its cosine and sine) about ``(gx, gz)`` as
     :func:`~hullslice.keel_loops.side_ends_loops` turns the edges' ends. Returns ``(ok, x,
-    z, il, ir, low, high)``: the turned points, the leftmost and the rightmost, and the
-    lowest and highest heights; ``ok`` False where the leftmost or rightmost point is not
-    one point (a face vertical in the side view), a point is not finite, or there are
-    fewer than three."""
+    z, il, ir, low, high)``: the turned points, the leftmost and the rightmost (the first
+    of the lowest abscissa, and of the highest), and the lowest and highest heights (the
+    first of each, a zero's sign its); ``ok`` False where the leftmost or rightmost point
+    is not one point (a face vertical in the side view), a point is not finite (nothing
+    else is meaningful then), or there are fewer than three. The extremes are found by
+    their order keys (:data:`hullslice.outline_loops.MAG`), in passes the compiler turns
+    into vector instructions, and their points by the doubles' own comparisons."""
     m = outline.shape[1]
     xt, zt = np.empty(m), np.empty(m)
-    il = ir = 0
-    ties_l = ties_r = 0
-    low = high = 0.0
-    for i in range(m):
-        rx, rz = outline[0, i] - gx, outline[1, i] - gz
+    ox, oz = outline[0], outline[1]
+    finite = True
+    for i in range(m):  # the turn: no branch
+        rx, rz = ox[i] - gx, oz[i] - gz
         x = rx * c - rz * s
         v = rx * s + rz * c
-        if not (math.isfinite(x) and math.isfinite(v)):
-            return False, xt, zt, 0, 0, 0.0, 0.0
         xt[i] = x
         zt[i] = v
-        if i == 0:
-            low = high = v
-            continue
-        low = low if low <= v else v
-        high = high if high >= v else v
-        if x < xt[il]:
-            il, ties_l = i, 0
-        elif x == xt[il]:
-            ties_l += 1
-        if x > xt[ir]:
-            ir, ties_r = i, 0
-        elif x == xt[ir]:
-            ties_r += 1
-    return m >= 3 and not (ties_l or ties_r), xt, zt, il, ir, low, high
+        finite = finite & (abs(x) < math.inf) & (abs(v) < math.inf)
+    if m == 0 or not finite:
+        return False, xt, zt, 0, 0, 0.0, 0.0
+    bx, bz = xt.view(np.int64), zt.view(np.int64)
+    x_lo, x_hi, z_lo, z_hi = K_HI, K_LO, K_HI, K_LO
+    for i in range(m):
+        kx = bx[i] ^ ((bx[i] >> 63) & MAG)
+        kz = bz[i] ^ ((bz[i] >> 63) & MAG)
+        x_lo = min(kx, x_lo)
+        x_hi = max(kx, x_hi)
+        z_lo = min(kz, z_lo)
+        z_hi = max(kz, z_hi)
+    ext = np.array([x_lo, x_hi, z_lo, z_hi])
+    ext ^= (ext >> 63) & MAG  # the keys' doubles (the map is its own inverse)
+    value = ext.view(np.float64)
+    left, right = value[0], value[1]
+    n_l = n_r = 0
+    for i in range(m):  # the doubles equal to the extremes (a zero either sign)
+        n_l += xt[i] == left
+        n_r += xt[i] == right
+    il = 0
+    while xt[il] != left:
+        il += 1
+    ir = 0
+    while xt[ir] != right:
+        ir += 1
+    low, high = value[2], value[3]
+    j = 0
+    while zt[j] != low:  # the first of the lowest: its zero's sign
+        j += 1
+    low = zt[j]
+    j = 0
+    while zt[j] != high:
+        j += 1
+    high = zt[j]
+    return m >= 3 and n_l == 1 and n_r == 1, xt, zt, il, ir, low, high
 
 
 def lower_side_loops(outline, gx, gz, c, s):
@@ -71,11 +95,13 @@ def lower_side_loops(outline, gx, gz, c, s):
     m = len(xt)
     k = ir - il if ir >= il else ir - il + m
     x_out, z_out = np.empty(k + 1), np.empty(k + 1)
-    j = il
-    for t in range(k + 1):
-        x_out[t] = xt[j]
-        z_out[t] = zt[j]
-        if t > 0 and not x_out[t] > x_out[t - 1]:
-            return False, none, none, 0.0, 0.0
-        j = j + 1 if j + 1 < m else 0
+    n1 = min(k + 1, m - il)  # from the leftmost to the outline's end, then from its start
+    x_out[:n1], z_out[:n1] = xt[il : il + n1], zt[il : il + n1]
+    x_out[n1:], z_out[n1:] = xt[: k + 1 - n1], zt[: k + 1 - n1]
+    forward = True
+    a, b = x_out[1:], x_out[:-1]
+    for t in range(k):  # no branch
+        forward = forward & (a[t] > b[t])
+    if not forward:
+        return False, none, none, 0.0, 0.0
     return True, x_out, z_out, low, high

@@ -84,14 +84,14 @@ class Cutter:
 
     def by_memo(self, x_rel, pitch):
         ix, c, s, m = self._common(pitch)
-        pts, start, station, status, self.memo = self.fns["memo_cut"](
+        pts, start, station, area, status, self.memo = self.fns["memo_cut"](
             ix.key, ix.bin_start, ix.bin_zlo, ix.bin_zhi, ix.bin_reach, ix.margin, ix.key_span,
             ix.key_x0, ix.xmin, ix.corners, ix.ends, x_rel, self.g[0], self.g[2], c, s, m,
             self.merge, ix.scratch(), planecut_loops.K_OUT, planecut_loops.K_IN, self.guess, 0,
             self.memo, *self.reach,
         )  # fmt: skip
         assert status == 0
-        return pts, start, station
+        return pts, start, station, area
 
     def fresh(self, x_rel, pitch):
         ix, c, s, m = self._common(pitch)
@@ -99,12 +99,12 @@ class Cutter:
             ix.key, ix.bin_start, ix.bin_zlo, ix.bin_zhi, ix.bin_reach, x_rel, self.g[0],
             self.g[2], c, s, ix.margin, ix.key_span, ix.key_x0, self.guess, 0,
         )  # fmt: skip
-        pts, start, station, status = self.fns["cut"](
+        pts, start, station, status, area = self.fns["cut"](
             first, last, ix.corners, ix.ends, x_rel, self.g[0], self.g[2], c, s, m, self.merge,
             ix.scratch(), planecut_loops.K_OUT, planecut_loops.K_IN,
         )  # fmt: skip
         assert status == 0
-        return pts, start, station
+        return pts, start, station, area
 
 
 def _walk(hull):
@@ -120,7 +120,8 @@ def _walk(hull):
 
 
 def _assert_same(got, want):
-    for a, b, what in zip(got, want, ("points", "ring starts", "ring stations"), strict=True):
+    names = ("points", "ring starts", "ring stations", "ring areas")
+    for a, b, what in zip(got, want, names[: len(want)], strict=True):
         np.testing.assert_array_equal(a, b, err_msg=what)
 
 
@@ -236,3 +237,38 @@ def test_a_check_tests_again_only_the_faces_near_the_plane(name):
         assert np.array_equal(numpy_memo[3], cutter.memo[3])
     assert checks > 5
     assert tested < 0.2 * candidates, (tested, candidates)
+
+
+def test_a_contours_shoelace_sum_keeps_the_sign_and_the_zero_of_the_sum_term_by_term():
+    """The cut's test of a contour's area: four running sums where their rounding cannot
+    have changed the sign, else the sum term by term (numpy's): random contours within
+    1e-14 of the terms' size of that sum and of its sign; a figure of eight whose two loops
+    cancel, and a flat contour, exactly its zero."""
+    fns = [contour_loops.shoelace_loops]
+    if planecut_loops.available():
+        fns.append(planecut_loops.compiled("shoelace"))
+
+    def term_by_term(p):
+        y, z = p[:, 0].tolist(), p[:, 1].tolist()
+        total = 0.0
+        for k in range(len(y) - 1):
+            total += y[k] * z[k + 1] - y[k + 1] * z[k]
+        return total + (y[-1] * z[0] - y[0] * z[-1])
+
+    rng = np.random.default_rng(5)
+    square = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    eight = np.concatenate([square, square * [-1.0, 1.0]]) * 0.37  # the second clockwise
+    flat = np.stack([np.linspace(0.0, 1.0, 9), np.linspace(0.0, 3.0, 9)], axis=1)
+    for fn in fns:
+        for n in (3, 4, 5, 7, 40, 661):
+            angle = np.sort(rng.uniform(0.0, 2.0 * np.pi, n))
+            pts = np.stack([np.cos(angle), 0.3 + np.sin(angle)], axis=1) * rng.uniform(0.1, 50)
+            for p in (pts, pts[::-1].copy()):
+                want = term_by_term(p)
+                size = float(np.abs(p[:, 0] * np.roll(p[:, 1], -1)).sum()
+                             + np.abs(np.roll(p[:, 0], -1) * p[:, 1]).sum())  # fmt: skip
+                got = fn(p)
+                assert abs(got - want) <= 1e-14 * size and np.sign(got) == np.sign(want)
+        for p in (eight, flat):
+            assert term_by_term(p) == 0.0
+            assert fn(np.ascontiguousarray(p)) == 0.0

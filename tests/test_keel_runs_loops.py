@@ -267,3 +267,30 @@ def test_a_height_of_minus_zero_read_off_the_outline_is_numpys():
                 STEEP_SLOPE,
             )  # fmt: skip
             assert ok and _same(x, want.x) and _same(z, want.z), whole
+
+
+def test_the_turned_outlines_extremes_are_the_first_of_each():
+    # the side outline turned: its leftmost and rightmost points are the first of the
+    # lowest and highest abscissa (one each, or the outline does not serve), and its lowest
+    # and highest heights the first of each, to the sign of a zero (found by order keys,
+    # in which -0.0 lies below +0.0: the doubles' own comparison picks the point)
+    loops = [planecut_loops.LOOPS["turned_outline"]]
+    if planecut_loops.available():
+        loops.append(planecut_loops.compiled("turned_outline"))
+    cases = [  # (x, z), at no pitch about the origin: turned to themselves
+        ([-2.0, -1.0, 1.0, 2.0, 0.0], [1.0, -0.0, 0.0, 1.0, 2.0], (True, 0, 3, -0.0, 2.0)),
+        ([-2.0, 1.0, -1.0, 2.0, 0.0], [1.0, 0.0, -0.0, 1.0, 2.0], (True, 0, 3, 0.0, 2.0)),
+        ([-2.0, -2.0, 1.0, 2.0], [1.0, 0.5, -1.0, 1.0], (False, 0, 3, -1.0, 1.0)),  # a tie
+        ([-2.0, 1.0, 2.0, 2.0], [1.0, 0.5, -1.0, 3.0], (False, 0, 2, -1.0, 3.0)),
+        ([0.0, 1.0], [0.0, 1.0], (False, 0, 1, 0.0, 1.0)),  # fewer than three
+    ]
+    for turned in loops:
+        for x, z, (ok, il, ir, low, high) in cases:
+            outline = np.array([x, z])
+            got = turned(outline, 0.0, 0.0, 1.0, 0.0)
+            assert (got[0], got[3], got[4]) == (ok, il, ir), (x, z, got)
+            assert np.copysign(1.0, got[5]) == np.copysign(1.0, low) and got[5] == low
+            assert got[6] == high
+            assert np.array_equal(got[1], outline[0]) and np.array_equal(got[2], outline[1])
+        bad = np.array([[0.0, 1.0, np.inf], [0.0, 1.0, 0.5]])
+        assert not turned(bad, 0.0, 0.0, 1.0, 0.0)[0]

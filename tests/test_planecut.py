@@ -397,6 +397,90 @@ def test_the_keel_fit_estimator_keeps_numpy(monkeypatch):
     assert float(np.nanmax(ref["penetration"])) > 0.0  # a wetted section was compared
 
 
+def _shoelace_sums(points, ring_start) -> np.ndarray:
+    """Each contour's shoelace sum, term by term in its points' order, closing last (as the
+    cut's loops take it for their test of an area)."""
+    sums = []
+    for i0, i1 in zip(ring_start[:-1].tolist(), ring_start[1:].tolist(), strict=True):
+        y, z = points[i0:i1, 0].tolist(), points[i0:i1, 1].tolist()
+        total = 0.0
+        for k in range(1, len(y)):
+            total += y[k - 1] * z[k] - y[k] * z[k - 1]
+        sums.append(total + (y[-1] * z[0] - y[0] * z[-1]))
+    return np.array(sums)
+
+
+_AREAS = (8, 10)  # outline_loops' areas: the station's and the contours'
+
+
+@pytest.mark.parametrize("name", OUTLINED)
+def test_the_cuts_outline_by_order_keys_equals_the_outline_loops(name):
+    """The one-call stage's outline (:func:`outline_cut_loops`: extremes, chines and kept
+    edges found by integer order keys, areas from the cut's own shoelace sums) is
+    :func:`outline_loops`' on the kernel's contours, every array to the bit (signs of
+    zeros too) but the areas, which are within 1e-14 of the largest (the sums of the
+    cutter's points over its scale squared, not of the moved points): at three pitches,
+    two moves and scales, every edge and a random cap per station (some above the body,
+    some below it, one NaN)."""
+    hull = BODIES[name]
+    paths = [planecut_loops.LOOPS["outline_cut"]]
+    ref = planecut_loops.LOOPS["outline"]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("outline_cut"))
+        ref = planecut_loops.compiled("outline")
+    rng = np.random.default_rng(11)
+    for cut in _kernel_cuts(hull, "numba" if planecut_loops.available() else "python"):
+        points, ring_start, ring_station = cut.flat
+        sums = _shoelace_sums(points, ring_start)
+        n_st = len(cut)
+        for origin, scale in (((0.0, 0.0), 1.0), ((0.3, -1.25), 7.5)):
+            zlo = ref(points, ring_start, ring_station, n_st, 1e-9, scale, *origin,
+                      np.full(n_st, np.inf), NO_HINT.copy())[6]  # fmt: skip
+            caps = rng.uniform(zlo.min() - 1.0, zlo.max() + 1.0, n_st)
+            caps[rng.random(n_st) < 0.2] = np.inf
+            caps[0] = np.nan
+            for cap in (np.full(n_st, np.inf), caps):
+                args = (points, ring_start, ring_station, n_st, 1e-9, scale, *origin, cap)
+                want = ref(*args, NO_HINT.copy())
+                for loops in paths:
+                    got = loops(*args[:3], sums, *args[3:], NO_HINT.copy())
+                    for i, (a, b) in enumerate(zip(got, want, strict=True)):
+                        if i in _AREAS:
+                            top = float(np.abs(b).max(initial=0.0))
+                            assert np.abs(a - b).max(initial=0.0) <= 1e-14 * top, (i, a, b)
+                        else:
+                            assert _same(a, b), (i, a, b)
+
+
+def test_the_cuts_outline_is_the_outline_loops_where_a_figure_is_zero_or_a_point_not_finite():
+    """Where an extreme is a zero (its sign taken from the points' order) or a point is not
+    finite, :func:`outline_cut_loops` gives :func:`outline_loops`' outline, areas and all,
+    to the bit."""
+    hull = BODIES["fuselage_model.obj"]
+    paths = [planecut_loops.LOOPS["outline_cut"]]
+    if planecut_loops.available():
+        paths.append(planecut_loops.compiled("outline_cut"))
+    ref = planecut_loops.LOOPS["outline"]
+    cut = _kernel_cuts(hull, "python")[1]
+    points, ring_start, ring_station = cut.flat
+    n_st, scale = len(cut), 3.0
+    station = int(ring_station[len(ring_station) // 2])
+    lowest = min(float(p[:, 1].min()) for p in cut[station])
+    moved_to_zero = (0.0, -(lowest / scale))  # that station's lowest point moved to z = 0
+    bad = points.copy()
+    bad[ring_start[1], 0] = np.inf
+    for pts, origin in ((points, moved_to_zero), (bad, (0.3, -1.25))):
+        sums = _shoelace_sums(pts, ring_start)
+        args = (pts, ring_start, ring_station, n_st, 1e-9, scale, *origin, np.full(n_st, np.inf))
+        with np.errstate(invalid="ignore"):  # the point at infinity: inf - inf
+            want = ref(*args, NO_HINT.copy())
+            if pts is points:
+                assert want[15][station] == 0.0  # the station's lowest point at zero
+            for loops in paths:
+                got = loops(*args[:3], sums, *args[3:], NO_HINT.copy())
+                assert all(_same(a, b) for a, b in zip(got, want, strict=True))
+
+
 @pytest.mark.parametrize("name", ["fuselage_model.obj", "cylinder"])
 def test_the_outline_capped_keeps_the_edges_below_in_the_full_outlines_order(name):
     """With a cap per station (the one-call stage's: the water's height, or none), the
@@ -507,6 +591,8 @@ def test_the_outlines_order_from_a_hint_is_the_sorted_one(name, monkeypatch):
     sorts: list[int] = []
     real = module.stable_order_loops
     monkeypatch.setattr(module, "stable_order_loops", lambda *a: sorts.append(1) or real(*a))
+    # the Python loops' sort by key (once compiled, the module holds numba's: see _inject)
+    monkeypatch.setattr(module, "edge_order_loops", planecut_loops.LOOPS["edge_order"])
     for a, b in itertools.pairwise(cuts):
         args = (*b.flat, len(b), 1e-9, 7.5, 0.3, -1.25, np.full(len(b), np.inf))
         want = loops(*args, NO_HINT.copy())

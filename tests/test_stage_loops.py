@@ -269,8 +269,8 @@ def test_a_pitch_met_again_goes_the_steps_one_by_one():
     assert model.fused.stage_totals(0.05, z_cg, -2.0, 10.0, 0.0) is None
     total = model.totals_at(z_cg, 0.05, -2.0, 10.0, 0.0)
     assert hull.cache[FRAMES].get(0.05) is not None  # made by the steps one by one
-    steps = _model(hull.with_mass(hull.mass))
-    assert total == steps.totals_at(z_cg, 0.05, -2.0, 10.0, 0.0)
+    other = _model(hull.with_mass(hull.mass))  # a hull of no frame: the one call serves it
+    assert_same_sums(total, other.totals_at(z_cg, 0.05, -2.0, 10.0, 0.0), hull.size)
 
 
 @needs_numba
