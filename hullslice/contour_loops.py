@@ -249,13 +249,23 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
             # (the first from the last), in passes of no branch
             ys, zs = py[at : at + length], pz[at : at + length]
             last = length - 1
-            out[n_out, 0], out[n_out, 1] = ys[0], zs[0]
-            n_out += (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge)
             y1, y0, z1, z0 = ys[1:], ys[:last], zs[1:], zs[:last]
-            for k in range(last):
-                out[n_out, 0] = y1[k]
-                out[n_out, 1] = z1[k]
-                n_out += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
+            n_kept = 1 if (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge) else 0
+            for k in range(last):  # a count first: most contours keep every point
+                n_kept += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
+            if n_kept == length:
+                dest = out[n_out : n_out + length]
+                for k in range(length):
+                    dest[k, 0] = ys[k]
+                    dest[k, 1] = zs[k]
+                n_out += length
+            else:
+                out[n_out, 0], out[n_out, 1] = ys[0], zs[0]
+                n_out += (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge)
+                for k in range(last):
+                    out[n_out, 0] = y1[k]
+                    out[n_out, 1] = z1[k]
+                    n_out += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
             at += length
             kept = n_out - first
             area = shoelace_loops(out[first:n_out]) if kept >= 3 else 0.0

@@ -128,7 +128,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "ccec2cc2cc28c447"
+STAGE_HELPERS_DIGEST = "17edf6be1f15c9cf"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
