@@ -29,8 +29,10 @@ __all__ = [
     "FRAME_HELPERS_DIGEST",
     "above_chord_loops",
     "crossings_loops",
+    "first_below_loops",
     "frame_keel_loops",
     "frame_points_loops",
+    "last_below_loops",
     "lowest_at_loops",
     "merge_loops",
     "refine_loops",
@@ -295,6 +297,47 @@ def frame_points_loops(a, b, outline, whole, gx, gz, c, s, order, merge):
 WINDOW_SPARE = 2
 
 
+#: How many heights :func:`first_below_loops` and :func:`last_below_loops` test at once.
+BLOCK = 16
+
+
+def first_below_loops(z, level):
+    """The first index of ``z`` below ``level`` (``len(z)`` where none is: a NaN is not
+    below), a block of :data:`BLOCK` tested at once (vector instructions), then the block
+    point by point."""
+    k = len(z)
+    i = 0
+    while i < k:
+        block = z[i : min(i + BLOCK, k)]
+        hit = False
+        for t in range(len(block)):
+            hit = hit | (block[t] < level)
+        if hit:
+            for t in range(len(block)):
+                if block[t] < level:
+                    return i + t
+        i += BLOCK
+    return k
+
+
+def last_below_loops(z, level):
+    """The last index of ``z`` below ``level`` (-1 where none is), as
+    :func:`first_below_loops` from the end."""
+    i = len(z)
+    while i > 0:
+        j = max(i - BLOCK, 0)
+        block = z[j:i]
+        hit = False
+        for t in range(len(block)):
+            hit = hit | (block[t] < level)
+        if hit:
+            for t in range(len(block) - 1, -1, -1):
+                if block[t] < level:
+                    return j + t
+        i = j
+    return -1
+
+
 def window_line_loops(x, z, finite, level, n, reach, end_face, steep_slope):
     """:func:`~hullslice.keel_loops.keel_line_loops` of the break points ``x``, ``z`` that
     an evaluation at the water's height ``level`` reads (``n`` fixed slices), with the
@@ -316,14 +359,10 @@ def window_line_loops(x, z, finite, level, n, reach, end_face, steep_slope):
     infinite heights may lie outside), no point is under the water, or the window holds
     nearly every point, the whole line is made."""
     k = len(x)
-    first = 0
-    while first < k and not z[first] < level:
-        first += 1
+    first = first_below_loops(z, level)
     if not finite or first >= k or k < 8:
         return keel_line_loops(x, z, end_face, steep_slope)
-    last = k - 1
-    while not z[last] < level:
-        last -= 1
+    last = last_below_loops(z, level)
     reach = max(reach, (x[k - 1] - x[0]) / n)
     lo = x[max(first - 1, 0)] - reach
     hi = x[min(last + 1, k - 1)] + reach

@@ -40,8 +40,10 @@ from .contour_loops import (
 from .frame_loops import (
     above_chord_loops,
     crossings_loops,
+    first_below_loops,
     frame_keel_loops,
     frame_points_loops,
+    last_below_loops,
     lowest_at_loops,
     merge_loops,
     refine_loops,
@@ -128,7 +130,7 @@ __all__ = [
 #: changes, not when those do: a change of theirs changes this digest too
 #: (``tests/test_stage_loops.py`` checks it), so that the cache of :func:`stage_loops` is
 #: made again.
-STAGE_HELPERS_DIGEST = "17edf6be1f15c9cf"
+STAGE_HELPERS_DIGEST = "5bbad9dc7b5e161d"
 
 #: By a crossed face's code (bit k set for corner k ahead): the corner whose edge to the
 #: next corner leaves the ahead side, and the one whose edge enters it.
@@ -404,7 +406,8 @@ LOOPS.update(outline=outline_loops, order=stable_order_loops, hinted=hinted_loop
     segments=segments_loops, merge=merge_loops,
     turned_outline=turned_outline_loops,
     frame_keel=frame_keel_loops, frame_points=frame_points_loops,
-    window_line=window_line_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
+    window_line=window_line_loops, first_below=first_below_loops,
+    last_below=last_below_loops, stage=stage_loops, recipe=recipe_loops, points=points_loops,
     match=match_loops, sides=same_sides_loops, memo_cut=memo_cut_loops, shoelace=shoelace_loops,
 )  # fmt: skip
 #: The loops that others call, by caller, their own helpers before them: compiled before
@@ -426,7 +429,8 @@ _FRAME_POINTS = (*_SIDE, *_CHAIN, *_REFINE, "refine")
 #: What the keel line's one call calls, helpers before callers.
 _FRAME_KEEL = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "line_runs")
 #: What the stage loops call, helpers before callers.
-_STAGE = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "window_line", "gallop",
+_STAGE = (*_FRAME_POINTS, "frame_points", "run_ends", "keel_line", "first_below",
+          "last_below", "window_line", "gallop",
           "near", "ranges", "recipe", "shoelace", "points", "match", "sides", "memo_cut", "cut",
           "order", "hinted", "moved", "edge_order", "outline", "key", "unkey", "below_key",
           "above_key", "outline_cut", *_HELD, "wetted", "h_entries", "h_fcount", "h_fentries",
@@ -454,7 +458,7 @@ CALLS = {
     "side": _SIDE,
     "frame_keel": _FRAME_KEEL,
     "frame_points": _FRAME_POINTS,
-    "window_line": ("run_ends", "keel_line"),
+    "window_line": ("run_ends", "keel_line", "first_below", "last_below"),
     "runs": ("run_ends", "keel_line", "line_runs"),
     "keel_line": ("run_ends",),
     "refine": ("search", *_REFINE),

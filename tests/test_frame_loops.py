@@ -174,3 +174,22 @@ def _change(q: float, h: float, xp: np.ndarray, fp: np.ndarray) -> float:
     from hullslice import slices_loops as sl
 
     return sl.interp_loops(q + h, xp, fp) - sl.interp_loops(q - h, xp, fp)
+
+
+def test_the_first_and_last_heights_below_the_water_are_found_block_by_block():
+    """The keel line's window starts from its first and last break point below the water:
+    found a block of heights at a time, the same indices as a search point by point (a
+    NaN not below; -1 and the length where none is), at lengths around the block's."""
+    names = ("first_below", "last_below")
+    fns = [tuple(planecut_loops.LOOPS[n] for n in names)]
+    if planecut_loops.available():
+        fns.append(tuple(planecut_loops.compiled(n) for n in names))
+    rng = np.random.default_rng(4)
+    for first, last in fns:
+        for k in (0, 1, 15, 16, 17, 33, 200):
+            z = rng.uniform(0.0, 1.0, k)
+            z[rng.random(k) < 0.1] = np.nan
+            for level in (-1.0, 0.02, 0.5, 2.0):
+                below = np.flatnonzero(z < level)
+                assert first(z, level) == (below[0] if len(below) else k)
+                assert last(z, level) == (below[-1] if len(below) else -1)
