@@ -425,6 +425,8 @@ def bench_airliner(table: Table, repeat: int) -> None:
         table.add(f"{what}: ratio free / held, compiled", f"{ratio:.1f}")
 
 
+#: Rounds of the 1M-face pitch steps (each about 4 s, most of it manifold3d's turns).
+BIG_ROUNDS = 3
 CHILD = textwrap.dedent(
     """
     import resource, runpy, sys, time
@@ -436,13 +438,17 @@ CHILD = textwrap.dedent(
     h = hs.simulate(hull, -1.5, 0.4, dt=0.0002, pitch_rad=0.08, forward_speed=60.0,
                     slices=128, slicing="fixed", stop_on=())
     t_sim = time.perf_counter() - t0
-    peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
+    try:  # this process's own peak (ru_maxrss keeps the parent's across the exec, on Linux)
+        with open("/proc/self/status") as fh:
+            peak = int(next(ln for ln in fh if ln.startswith("VmHWM:")).split()[1]) / 1024
+    except (OSError, StopIteration):
+        peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
     # then the same 100 steps at the held pitch and with free pitch by either cutter,
     # interleaved, by run.py's own code
     bench = runpy.run_path(sys.argv[2])
-    times, steps, _ = bench["step_runs"](hull, 1)
+    times, steps, rounds = bench["step_runs"](hull, bench["BIG_ROUNDS"])
     print(t_load, t_sim, len(h), peak, steps,
-          *(f"{k.replace(' ', '_')}={v}" for k, v in times.items()))
+          *(f"{k.replace(' ', '_')}={','.join(map(str, v))}" for k, v in rounds.items()))
     """
 )
 
@@ -456,7 +462,11 @@ def bench_big_simulation(table: Table, path: Path) -> None:
     )
     words = out.stdout.split()
     t_load, t_sim, steps, peak, pair_steps = (float(v) for v in words[:5])
-    times = {k.replace("_", " "): float(v) for k, v in (w.split("=") for w in words[5:])}
+    rounds = {
+        k.replace("_", " "): [float(t) for t in v.split(",")]
+        for k, v in (w.split("=") for w in words[5:])
+    }
+    times = {k: statistics.median(v) for k, v in rounds.items()}
     table.add("1M: load (in the simulating process)", fmt(t_load))
     table.add(
         f"1M: free fall, {int(steps) - 1} steps, 128 fixed slices, pitch 4.6 deg, 60 m/s",
@@ -476,7 +486,7 @@ def bench_big_simulation(table: Table, path: Path) -> None:
         held <= 5e-4,
     )
     table.add("1M: peak memory of that process", f"{peak:.0f} MB", "< 2048 MB", peak < 2048)
-    pitch_rows(table, "1M", times, int(pair_steps))
+    pitch_rows(table, "1M", times, int(pair_steps), rounds)
 
 
 #: The runs the pitch-step comparison interleaves, by name: (free pitch, cutter, numba).
