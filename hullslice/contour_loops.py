@@ -233,6 +233,7 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
     ring_start = np.empty(n_rings + 1, dtype=np.int64)
     ring_station = np.empty(n_rings, dtype=np.int64)
     ring_area = np.empty(n_rings)
+    kept_at = np.empty(p1 - p0, dtype=np.bool_)  # a contour's points kept
     n_out = 0
     n_ring = 0
     ring_start[0] = 0
@@ -246,30 +247,31 @@ def points_loops(ends6, ring_len, st_p, st_q, k0, x_rel, gx, gz, c, s, m, merge)
             if length == 0:
                 continue
             # the points kept: each farther than merge from the one before along an axis
-            # (the first from the last), in passes of no branch
-            ys, zs = py[at : at + length], pz[at : at + length]
+            # (the first from the last)
+            ys, zs, keep = py[at : at + length], pz[at : at + length], kept_at[:length]
             last = length - 1
-            y1, y0, z1, z0 = ys[1:], ys[:last], zs[1:], zs[:last]
-            n_kept = 1 if (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge) else 0
-            for k in range(last):  # a count first: most contours keep every point
-                n_kept += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
-            if n_kept == length:
-                dest = out[n_out : n_out + length]
+            keep[0] = (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge)
+            n_kept = 1 if keep[0] else 0
+            y1, y0, z1, z0, keep1 = ys[1:], ys[:last], zs[1:], zs[:last], keep[1:]
+            for k in range(last):  # flags and a count first: most contours keep every point
+                keep1[k] = (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
+                n_kept += keep1[k]
+            dest = out[n_out : n_out + n_kept]
+            if n_kept == length:  # a copy with no branch
                 for k in range(length):
                     dest[k, 0] = ys[k]
                     dest[k, 1] = zs[k]
-                n_out += length
             else:
-                out[n_out, 0], out[n_out, 1] = ys[0], zs[0]
-                n_out += (abs(ys[0] - ys[last]) > merge) | (abs(zs[0] - zs[last]) > merge)
-                for k in range(last):
-                    out[n_out, 0] = y1[k]
-                    out[n_out, 1] = z1[k]
-                    n_out += (abs(y1[k] - y0[k]) > merge) | (abs(z1[k] - z0[k]) > merge)
+                j = 0
+                for k in range(length):
+                    if keep[k]:
+                        dest[j, 0] = ys[k]
+                        dest[j, 1] = zs[k]
+                        j += 1
+            n_out += n_kept
             at += length
-            kept = n_out - first
-            area = shoelace_loops(out[first:n_out]) if kept >= 3 else 0.0
-            if kept >= 3 and area != 0.0:
+            area = shoelace_loops(dest) if n_kept >= 3 else 0.0
+            if n_kept >= 3 and area != 0.0:
                 ring_station[n_ring] = i
                 ring_area[n_ring] = area
                 n_ring += 1

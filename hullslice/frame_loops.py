@@ -44,7 +44,7 @@ __all__ = [
 #: ``side_loops.py``). numba's cache of these loops goes stale when this file changes, not
 #: when those do: a change of theirs changes this digest too
 #: (``tests/test_frame_loops.py`` checks it), so that their cache is made again.
-FRAME_HELPERS_DIGEST = "c00a8c164bbc8e70"
+FRAME_HELPERS_DIGEST = "704598336c27e22d"
 
 #: How many times the refinement halves an interval where two segments cross (as
 #: :data:`hullslice.kernel.envelope.CROSSING_PASSES`, which a test holds equal).

@@ -56,7 +56,9 @@ def turned_outline_loops(outline, gx, gz, c, s):
         z_lo = min(kz, z_lo)
         z_hi = max(kz, z_hi)
     ext = np.array([x_lo, x_hi, z_lo, z_hi])
-    ext ^= (ext >> 63) & MAG  # the keys' doubles (the map is its own inverse)
+    # the keys' doubles (the map is its own inverse; outline_loops.unkey_loops's, written
+    # here: a helper from another file would leave this file's compiled cache stale)
+    ext ^= (ext >> 63) & MAG
     value = ext.view(np.float64)
     left, right = value[0], value[1]
     n_l = n_r = 0
