@@ -65,6 +65,19 @@ def fake_entry_points(monkeypatch):
     registry.refresh()
 
 
+def flipped_wedge_obj(folder) -> Path:
+    """An OBJ file in ``folder`` of the 30-degree wedge prism with one face wound against
+    its neighbours: a mesh that needs a fix (re-orienting 1 face) to be read."""
+    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
+    f = f.copy()
+    f[0] = f[0][::-1]
+    mesh = Path(folder) / "flipped.obj"
+    rows = [f"v {a!r} {b!r} {c!r}" for a, b, c in v.tolist()]
+    rows += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f.tolist()]
+    mesh.write_text("\n".join(rows) + "\n")
+    return mesh
+
+
 def exact_prism_section(x: np.ndarray, draft: float) -> dict[str, np.ndarray]:
     """The paper prism's section at stations ``x`` from its definition (METHOD section 4)."""
     p = shapes.PAPER_PRISM

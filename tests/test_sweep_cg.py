@@ -123,15 +123,9 @@ def test_a_sweep_of_slice_counts_equals_single_runs_exactly():
 def test_a_sweep_reads_its_mesh_as_a_single_run_does(tmp_path):
     # no_fix: a mesh that needs a fix (one face wound against its neighbours) is refused by
     # a sweep as by hullslice simulate, naming the pass, and nothing is computed
-    from hullslice import shapes
+    from .conftest import flipped_wedge_obj
 
-    v, f = shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=30.0)
-    f = f.copy()
-    f[0] = f[0][::-1]
-    mesh = tmp_path / "flipped.obj"
-    rows = [f"v {a!r} {b!r} {c!r}" for a, b, c in v.tolist()]
-    rows += [f"f {a + 1} {b + 1} {c + 1}" for a, b, c in f.tolist()]
-    mesh.write_text("\n".join(rows) + "\n")
+    mesh = flipped_wedge_obj(tmp_path)
     base = {**BASE, "mesh": str(mesh), "no_fix": True}
     with pytest.raises(hs.MeshError, match="would fix it"):
         hs.sweep(base, {"velocity": [-3.0, -4.0]}, workers=1)

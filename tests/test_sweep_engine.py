@@ -11,6 +11,7 @@ import sys
 import warnings
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import hullslice as hs
@@ -35,9 +36,38 @@ def test_cases_of_one_pitch_stay_together_and_the_last_tasks_are_small():
     assert sorted(i for t in tasks for i in t) == list(range(32))
     # every task is of one pitch and mass: 6 whole pitches, then 2 pitches in pairs
     assert all(len({_key(plan, i) for i in t}) == 1 for t in tasks)
-    assert [len(t) for t in tasks] == [4] * 6 + [2] * 4
+    assert [len(t) for t in tasks] == [4] * 6 + [1] * 8
     # one worker: the same, the last task split
-    assert [len(t) for t in groups(plan, list(range(32)), 1)] == [4] * 7 + [2] * 2
+    assert [len(t) for t in groups(plan, list(range(32)), 1)] == [4] * 7 + [1] * 4
+
+
+class _Client:
+    """What DaskRun asks of a Dask client, recording each task's cases and priority."""
+
+    def __init__(self):
+        self.tasks = []
+
+    def scheduler_info(self):
+        return {"workers": {"a": {}, "b": {}}}
+
+    def submit(self, fn, *args, pure=True, retries=0, priority=0):
+        if fn is run_batch:
+            self.tasks.append(([i for i, _ in args[1]], priority))
+        return object()
+
+
+def test_the_tasks_go_to_dask_with_priorities_in_their_order():
+    # Dask hands out the waiting task of the highest priority first; without priorities it
+    # does not keep the order they were submitted in, and a large task could come last
+    from hullslice.sweeps.engine import DaskRun
+
+    plan = make_plan(BASE, {"pitch": [1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0],
+                            "velocity": [-1.0, -2.0, -3.0, -4.0]})  # fmt: skip
+    client = _Client()
+    DaskRun(client, plan, list(range(32)), {}, False, "t", None)
+    assert [cases for cases, _ in client.tasks] == groups(plan, list(range(32)), 2)
+    priorities = [p for _, p in client.tasks]
+    assert priorities == sorted(priorities, reverse=True) and len(set(priorities)) == 14
 
 
 def test_too_few_pitches_are_split_to_give_every_worker_tasks():
@@ -73,13 +103,52 @@ def test_a_hull_that_cannot_be_built_fails_the_cases_by_name(monkeypatch):
     assert all(r["error"] == "this hull cannot be built" for _, r in out)
 
 
-@pytest.mark.parametrize("workers", [1])
-def test_a_sweep_in_this_process_keeps_no_worker_hull(workers):
-    from hullslice.sweeps import run as sweep_run
+def _counting_reads(monkeypatch) -> list:
+    """Every mesh a sweep reads from its file, by path."""
+    import hullslice.mesh
 
-    before = dict(sweep_run._SHARED)
-    hs.sweep(BASE, {"mass": [8.0]}, workers=workers)
-    assert sweep_run._SHARED == before
+    reads: list = []
+    load = hullslice.mesh.load_hull
+
+    def counted(path, **kw):
+        reads.append(Path(path).name)
+        return load(path, **kw)
+
+    monkeypatch.setattr(hullslice.mesh, "load_hull", counted)
+    return reads
+
+
+def test_a_second_sweep_of_the_same_file_does_not_read_it_again(monkeypatch, tmp_path):
+    # the process keeps the hull under the file's SHA-256 and shaping, as a worker does
+    reads = _counting_reads(monkeypatch)
+    mesh = tmp_path / "hull.stl"
+    mesh.write_bytes(WEDGE.read_bytes())
+    base = {**BASE, "mesh": str(mesh)}
+    first = hs.sweep(base, {"mass": [8.0, 12.0]}, workers=1)
+    again = hs.sweep(base, {"mass": [8.0, 12.0]}, workers=1)
+    assert reads == ["hull.stl"]
+    # the same hull, its fixed slicing's cuts kept from the first sweep: equal to rounding
+    # (as a worker's, test_with_the_fixed_slicing_a_worker_reuses_its_cuts_to_rounding)
+    np.testing.assert_allclose(again["peak_force"].values, first["peak_force"].values, rtol=1e-12)
+    # shaped otherwise (scaled): read again, and a larger hull takes a larger load
+    scaled = hs.sweep({**base, "scale": 1.5}, {"mass": [8.0, 12.0]}, workers=1)
+    assert reads == ["hull.stl"] * 2
+    assert (scaled["peak_force"].values > first["peak_force"].values).all()
+    # the file changed under the same name (another hull): read again, not the one kept
+    hs.Hull(*hs.shapes.wedge_prism(length=1.0, beam=0.2, deadrise_deg=10.0)).save(mesh)
+    changed = hs.sweep(base, {"mass": [8.0, 12.0]}, workers=1)
+    assert reads == ["hull.stl"] * 3
+    assert (changed["peak_force"].values != first["peak_force"].values).all()
+
+
+def test_a_kept_hull_shows_its_reading_warnings_again(tmp_path):
+    # a mesh that needed a fix warns at every sweep, whether it is read or kept
+    from .conftest import flipped_wedge_obj
+
+    mesh = flipped_wedge_obj(tmp_path)
+    for _ in range(2):
+        with pytest.warns(hs.MeshRepairWarning, match="re-oriented 1 faces"):
+            hs.sweep({**BASE, "mesh": str(mesh)}, {"velocity": [-3.0]}, workers=1)
 
 
 def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):

@@ -82,11 +82,15 @@ def sweep(
     if workers is not None and client is None:
         workers = capped_workers(int(workers))
     mesh_path = Path(base["mesh"])
-    hull, inputs = load_inputs(base)
+    try:
+        mesh_sha = sha256(mesh_path)
+    except OSError:  # reading the mesh says what is wrong, in its own words
+        mesh_sha = ""
+    token = f"{mesh_sha}:{shaping(base)!r}" if mesh_sha else ""
+    hull, inputs = load_inputs(base, token)  # kept under the token for the next sweep
     # the base case's own mass properties are checked here, once (warnings shown once)
     hull_for(hull, base, inputs)
     solver = get_solver(base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {}))
-    mesh_sha = sha256(mesh_path)
     kept = (
         Partial(
             Path(partial),
@@ -111,7 +115,6 @@ def sweep(
         if progress is not None:
             progress(len(records), total, failed)
 
-    token = f"{mesh_sha}:{shaping(base)!r}"
     with session(client, workers, timeout, needed=bool(todo)) as dask_client:
         if kept is not None:
             kept.create()

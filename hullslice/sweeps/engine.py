@@ -44,7 +44,7 @@ MIN_TASKS_PER_WORKER = 4
 #: The most cases in one task.
 MAX_TASK_CASES = 16
 #: Cases in each of the last, small tasks of a sweep (see :func:`groups`).
-TAIL_TASK_CASES = 2
+TAIL_TASK_CASES = 1
 
 
 def require(*modules: str) -> None:
@@ -78,7 +78,7 @@ def groups(plan: Plan, todo: list[int], n_workers: int) -> list[list[int]]:
         out += [cases[j : j + size] for j in range(0, len(cases), size)]
     out.sort(key=len, reverse=True)
     # the finish: the last tasks, one per worker, in small ones, so that the workers end
-    # together (Dask hands out the tasks in the order they were given)
+    # together (DaskRun hands them to Dask in this order, as priorities)
     w = max(1, n_workers)
     if len(out) > w:
         n = TAIL_TASK_CASES
@@ -224,17 +224,20 @@ class DaskRun:
             n_workers = max(1, len(client.scheduler_info().get("workers", {})))
             self.source = client.submit(_value, source, pure=False)
             self.inputs = client.submit(_value, inputs, pure=False)
-            for group in groups(plan, todo, n_workers):
-                self.futures[self.submit(group)] = group
+            tasks = groups(plan, todo, n_workers)
+            for k, group in enumerate(tasks):  # handed out in this order (Dask's priority)
+                self.futures[self.submit(group, priority=len(tasks) - k)] = group
         except BaseException:
             self.cancel()
             raise
 
-    def submit(self, group: list[int]):
+    def submit(self, group: list[int], priority: int = 0):
+        """The task running the cases ``group``; of the tasks waiting, Dask hands out those
+        of the highest ``priority`` first (without it, not in the order they came)."""
         items = [(i, self.plan.case(i)) for i in group]
         return self.client.submit(
             run_batch, self.source, items, self.inputs, self.keep, self.token, pure=False,
-            retries=1,
+            retries=1, priority=priority,
         )  # fmt: skip
 
     def cancel(self) -> None:

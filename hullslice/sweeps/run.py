@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 import time
 import traceback
+import warnings
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import Any
@@ -25,9 +26,11 @@ import numpy as np
 
 from ..errors import HullsliceError
 
-#: The hull each worker process keeps, by token (see run_batch).
+#: The hull each process keeps, by token (see run_batch and read_mesh).
 _SHARED: dict[str, Any] = {}
 _SHARED_KEPT = 2
+#: The warnings the reading of each hull kept by :func:`read_mesh` gave, by token.
+_READ_WARNINGS: dict[str, list] = {}
 
 #: Hulls with their mass properties, kept by each worker process (key: mesh and mass).
 _HULLS: dict[tuple, Any] = {}
@@ -43,11 +46,39 @@ def shaping(case: Mapping[str, Any]) -> dict[str, Any]:
     return mesh_options(case)
 
 
-def read_mesh(case: Mapping[str, Any]):
-    """The mesh of a checked case, without mass, read as a single run reads it."""
+def read_mesh(case: Mapping[str, Any], token: str = ""):
+    """The mesh of a checked case, without mass, read as a single run reads it.
+
+    With a ``token`` (the mesh file's SHA-256 and its shaping, as :func:`run_batch`'s), the
+    process keeps the hull under it, as the workers do: a later sweep of the same file,
+    shaped the same way, does not read and check it again (0.5 s for a 128k-face mesh), and
+    the warnings its reading gave are shown again."""
     from ..mesh import load_hull
 
-    return load_hull(Path(case["mesh"]), **shaping(case))
+    if token and token in _SHARED:
+        for w in _READ_WARNINGS.get(token, []):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        return _SHARED[token]
+    caught: list = []
+    try:
+        with warnings.catch_warnings(record=True) as caught:  # the filters as they are
+            hull = load_hull(Path(case["mesh"]), **shaping(case))
+    finally:  # shown as they came, once recording has stopped
+        for w in caught:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    if token:
+        _keep(token, hull)
+        _READ_WARNINGS[token] = list(caught)
+    return hull
+
+
+def _keep(token: str, hull) -> None:
+    """Keep ``hull`` under ``token``, the last :data:`_SHARED_KEPT` of them."""
+    _SHARED[token] = hull
+    while len(_SHARED) > _SHARED_KEPT:
+        gone = next(iter(_SHARED))
+        _SHARED.pop(gone)
+        _READ_WARNINGS.pop(gone, None)
 
 
 def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
@@ -65,10 +96,10 @@ def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
     return inputs
 
 
-def load_inputs(case: Mapping[str, Any]) -> tuple[Any, dict[str, Any]]:
-    """The mesh of a checked case without mass (:func:`read_mesh`) and its files'
-    contents (:func:`read_files`)."""
-    return read_mesh(case), read_files(case)
+def load_inputs(case: Mapping[str, Any], token: str = "") -> tuple[Any, dict[str, Any]]:
+    """The mesh of a checked case without mass (:func:`read_mesh`, kept under ``token``
+    if given) and its files' contents (:func:`read_files`)."""
+    return read_mesh(case, token), read_files(case)
 
 
 class HullState:
@@ -195,10 +226,8 @@ def run_batch(
                 found = hull.build() if isinstance(hull, HullState) else hull
             except HullsliceError as exc:
                 return [(index, {"error": str(exc), "runtime": 0.0}) for index, _ in items]
-            _SHARED[token] = found
+            _keep(token, found)
         hull = found
-        while len(_SHARED) > _SHARED_KEPT:
-            _SHARED.pop(next(iter(_SHARED)))
     out = []
     for index, case in items:
         start = time.perf_counter()
