@@ -346,20 +346,26 @@ class Rings(list):
 
 class StationRings(ByStation):
     """:class:`Rings` of the loops' contours made station by station as they are read
-    (a result whose sections are seldom drawn need not split them all): station ``i``'s
-    contours, a tuple of views of ``points``, in the rings' order."""
+    (a result whose sections are seldom drawn need not split them all, nor sort its rings
+    by station until one is read): station ``i``'s contours, a tuple of views of
+    ``points``, in the rings' order."""
 
     def __init__(self, points: np.ndarray, start: np.ndarray, ring_station: np.ndarray, n: int):
         self.flat = (points, start, ring_station)
-        self._order = np.argsort(ring_station, kind="stable")  # the rings by station
-        self._first = np.searchsorted(ring_station[self._order], np.arange(n + 1))
+        self._n = n
+        self._by_station: tuple[np.ndarray, np.ndarray] | None = None
 
     def __len__(self) -> int:
-        return len(self._first) - 1
+        return self._n
 
     def _station(self, i: int) -> tuple[np.ndarray, ...]:
-        points, start, _ = self.flat
-        rings = self._order[self._first[i] : self._first[i + 1]].tolist()
+        points, start, ring_station = self.flat
+        if self._by_station is None:  # the rings by station, and each station's first
+            order = np.argsort(ring_station, kind="stable")
+            first = np.searchsorted(ring_station[order], np.arange(self._n + 1))
+            self._by_station = (order, first)
+        order, first = self._by_station
+        rings = order[first[i] : first[i + 1]].tolist()
         return tuple(points[start[k] : start[k + 1]] for k in rings)
 
 

@@ -55,6 +55,7 @@ LAYERS: dict[str, int] = {
     # 3 cut: frames, caches of cuts, the slicing API
     "hullslice.planecut": 3,
     "hullslice.planecut_loops": 3,
+    "hullslice.stage_kit": 3,
     "hullslice.contour_loops": 3,
     "hullslice.planecut_numpy": 3,
     "hullslice.wetted_loops": 3,

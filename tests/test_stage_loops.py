@@ -18,6 +18,7 @@ import pytest
 
 import hullslice as hs
 from hullslice import planecut_loops
+from hullslice.contour_loops import empty_memo
 from hullslice.forces import fused
 from hullslice.geometry import FRAMES, frame
 from hullslice.motion import ForceModel
@@ -222,6 +223,58 @@ def test_the_one_calls_cache_sees_its_helpers():
     assert planecut_loops.STAGE_HELPERS_DIGEST == digest, (
         f"set STAGE_HELPERS_DIGEST = {digest!r} in hullslice/planecut_loops.py (its helpers "
         "changed)"
+    )
+
+
+@needs_numba
+@pytest.mark.parametrize("name", ["fuselage_model.obj", "wedge_prism.stl"])
+def test_the_stage_kits_call_is_the_stages_own(name):
+    """:func:`~hullslice.stage_kit.kit_stage_loops` is the stage's loops called with the
+    arguments the kit holds: over a run of new pitches, each at a new draft, the same
+    status, sums, columns, contours and memo, to the bit, as the stage given copies of
+    those arguments and the memo it returned last."""
+    import numba
+
+    from hullslice import stage_kit
+
+    kit_memo = numba.njit(lambda kit: kit.memo)
+    hull = _massive(BODIES[name])
+    fused_eval = _model(hull).fused
+    kit, _, scal, hull_args, buffers = fused_eval._kit()
+    own = lambda v: v.copy() if isinstance(v, np.ndarray) else v  # noqa: E731
+    args, bufs = tuple(own(v) for v in hull_args), tuple(own(v) for v in buffers)
+    memo = empty_memo(len(hull_args[13]))
+    rng = np.random.default_rng(5)
+    statuses = []
+    for pitch in rng.uniform(0.02, 0.14, 12):
+        fr = frame(hull.with_mass(hull.mass), pitch)
+        z_cg = -(fr.lowest + float(rng.uniform(0.05, 0.4)) * (fr.highest - fr.lowest))
+        numbers = (float(np.cos(pitch)), float(np.sin(pitch)), z_cg, -1.5, 19.0, 0.1)
+        status = stage_kit.kit_stage_loops(kit, *numbers)
+        want = fused_eval.stage(*args, *numbers, *bufs, memo)
+        memo = want[4]
+        statuses.append(status)
+        assert status == want[0]
+        for a, b in zip(buffers, bufs, strict=True):  # the sums, columns, extra
+            np.testing.assert_array_equal(a, b)
+        if status == 0:
+            for a, b in zip(stage_kit.kit_rings_loops(kit), want[1:4], strict=True):
+                np.testing.assert_array_equal(a, b)
+            for a, b in zip(kit_memo(kit), memo, strict=True):
+                np.testing.assert_array_equal(a, b)
+    assert statuses.count(0) >= 10, statuses
+    assert scal is buffers[2]
+
+
+def test_the_stage_kits_cache_sees_the_stage():
+    """numba's cache of :mod:`hullslice.stage_kit`'s call is stale when its own file
+    changes; it calls the stage's loops, whose file (holding its helpers' digest) its
+    file holds the digest of."""
+    root = Path(planecut_loops.__file__).parent
+    digest = hashlib.sha256((root / "planecut_loops.py").read_bytes()).hexdigest()[:16]
+    text = (root / "stage_kit.py").read_text()
+    assert f'STAGE_DIGEST = "{digest}"' in text, (
+        f"set STAGE_DIGEST = {digest!r} in hullslice/stage_kit.py (the stage's loops changed)"
     )
 
 
@@ -457,14 +510,21 @@ def test_a_moved_slice_reads_its_source_below_the_edges_the_call_keeps(name):
         return status
 
     captured = []
-    real = model.fused.stage
-    model.fused.stage = lambda *a: captured.append(a) or real(*a)
+    real = model.fused.kit_stage
+
+    def capture(kit, *numbers):  # the call's arguments, the kit's and the stage's six
+        hull_args, buffers = model.fused._local.stage[4:]
+        memo = empty_memo(len(hull_args[13]))  # each replayed call cuts its stations afresh
+        captured.append((*hull_args, *numbers, *buffers, memo))
+        return real(kit, *numbers)
+
+    model.fused.kit_stage = capture
     rng = np.random.default_rng(8)
     for pitch in rng.uniform(-0.1, 0.35, 30):
         fr = frame(hull.with_mass(hull.mass), pitch)
         draft = float(rng.uniform(0.002, 0.5)) * (fr.highest - fr.lowest)
         model.fused.stage_totals(pitch, -(fr.lowest + draft), -1.0, 5.0, 0.1)
-    model.fused.stage = real
+    model.fused.kit_stage = real
     space["pitch_loops"] = watched
     try:
         for args in captured:

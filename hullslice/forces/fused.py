@@ -126,8 +126,15 @@ class FusedEvaluation:
         # the keel line's arrays by the compiled loops where these are compiled
         compiled = self.loops is not planecut_loops.LOOPS["held"]
         self.pack = planecut_loops.compiled("keel_arrays") if compiled else None
-        # a new pitch's frame, cut, outline and sums in one call, with the compiled loops
+        # a new pitch's frame, cut, outline and sums in one call, with the compiled loops,
+        # its arguments kept in one object (hullslice.stage_kit)
         self.stage = planecut_loops.compiled("stage") if compiled else None
+        self.kit_stage: Any = None
+        self.kit_rings: Any = None
+        if self.stage is not None:
+            from .. import stage_kit
+
+            self.kit_stage, self.kit_rings = stage_kit.kit_stage_loops, stage_kit.kit_rings_loops
         # the wetted entries of sections cut afresh (the first contact's slices)
         entries = planecut_loops.compiled("h_entries") if compiled else None
         self.entries = entries or planecut_loops.LOOPS["h_entries"]
@@ -304,55 +311,56 @@ class FusedEvaluation:
             kept.tables["wedge"] = new
         return new
 
-    def _one_call(self, pitch: float, z_cg: float, w: float, u: float, q: float, fout, iout):
+    def _one_call(self, pitch: float, z_cg: float, w: float, u: float, q: float):
         """:func:`~hullslice.planecut_loops.stage_loops` at a pitch (rad) the hull has no
         frame for and this thread has not cut in one call lately, the centre of gravity at
-        height ``z_cg`` (m), the body's velocities ``w``, ``u``, ``q``, all finite:
-        ``(points, ring_start, ring_station, extra, scal)`` (see there; ``scal`` this
-        thread's sums), or None where the steps one by one must serve: numpy's loops,
-        another cutter, a pitch with a frame (its kept cut and tables), a pitch met again
-        (its frame is made then, and its kept cut and tables serve it from there on), or
-        a status of the call. Where the keel line is nowhere under the water,
-        ``(DRY, None, None, extra, None)``: the pitch is not kept as met (a frame would
-        serve it no better; the two middle stages of a step in the air share a pitch).
+        height ``z_cg`` (m), the body's velocities ``w``, ``u``, ``q``, all finite, by
+        :func:`~hullslice.stage_kit.kit_stage_loops` on this thread's kit (its buffers,
+        the sums and columns those of :meth:`_buffers`): ``(kit, extra, scal)`` (the
+        contours kept on the kit, :func:`~hullslice.stage_kit.kit_rings_loops`; ``extra``
+        and ``scal`` the call's, see there), or None where the steps one by one must
+        serve: numpy's loops, another cutter, a pitch with a frame (its kept cut and
+        tables), a pitch met again (its frame is made then, and its kept cut and tables
+        serve it from there on), or a status of the call. Where the keel line is nowhere
+        under the water, ``(DRY, extra, None)``: the pitch is not kept as met (a frame
+        would serve it no better; the two middle stages of a step in the air share a
+        pitch).
 
         The stage's loops are compiled (numba, read when the model first evaluated: see
         :func:`fused_for`), so the keel line of the steps one by one would be too
         (:func:`~hullslice.geometry.keel_loops`): the same numbers either way."""
-        stage = self.stage
+        call = self.kit_stage
         pitch = float(pitch)
-        if stage is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
+        if call is None or self.key[2] != "exact" or not abs(pitch) < KERNEL_MAX_PITCH:
             return None
         if self.hull.cache[FRAMES].get(pitch) is not None:
             return None
         state = getattr(self._local, "stage", None)
-        if state is None:  # this thread's: the pitches met, the call's arguments, the memo
-            kit = self._kit()  # kit[13]: the index's bins' lowest z
-            state = self._local.stage = [deque(maxlen=SEEN_PITCHES), kit, empty_memo(len(kit[13]))]
-        seen, kit, memo = state
+        if state is None:  # this thread's: the pitches met, the kit, and what it holds
+            state = self._local.stage = (deque(maxlen=SEEN_PITCHES), *self._kit())
+        seen, kit, extra, scal = state[:4]
         if pitch in seen:
             return None
         seen.append(pitch)
-        opts, scal, _, _ = self._buffers()
-        extra = np.empty(8)
-        status, points, ring_start, ring_station, state[2] = stage(
-            *kit, float(np.cos(pitch)), float(np.sin(pitch)), z_cg, w, u, q, fout, iout, scal,
-            extra, opts, self.a_c, self.v_c, memo,
-        )  # fmt: skip
+        status = call(kit, float(np.cos(pitch)), float(np.sin(pitch)), z_cg, w, u, q)
         if status == DRY_STATUS:
             seen.pop()
-            return DRY, None, None, extra, None
+            return DRY, extra, None
         if status != 0:
             return None
-        return points, ring_start, ring_station, extra, scal
+        return kit, extra, scal
 
     def _kit(self) -> tuple:
-        """What :func:`~hullslice.planecut_loops.stage_loops` reads of the hull, in its order
-        up to ``reach_z``, with this thread's own: the ends' order, the scratch array, the
-        candidate ranges found last, by station (its guesses), and the outline's last
-        order (its hint, :data:`HINT_SIZE` integers). The thread's memo of
-        the stations cut last (:func:`~hullslice.contour_loops.memo_cut_loops`) is kept
-        beside it."""
+        """This thread's kit of :func:`~hullslice.planecut_loops.stage_loops`'s arguments
+        (:func:`~hullslice.stage_kit.new_kit`), its ``extra`` and ``scal``, then the
+        arguments it holds: those it reads of the hull, in its order up to ``reach_z``,
+        with this thread's own (the ends' order, the scratch array, the candidate ranges
+        found last, by station (its guesses), and the outline's last order, its hint of
+        :data:`HINT_SIZE` integers), and its buffers after the six numbers of a stage but
+        the memo. The memo of the stations cut last
+        (:func:`~hullslice.contour_loops.memo_cut_loops`) starts empty."""
+        from ..stage_kit import new_kit
+
         args = self._stage_args
         if args is None:
             args = self._stage_args = stage_arrays(self.hull, self.key[1], self.model.slices)
@@ -360,7 +368,12 @@ class FusedEvaluation:
         order = _side_order(self.hull, 2 * len(args[0]))
         guess = np.full((self.model.slices, len(index.bin_zlo), 2), -1)
         hint = np.full(HINT_SIZE, -1, dtype=np.int64)  # the outline's last order
-        return (*args[:4], order, *args[4:20], index.scratch(), guess, hint, *args[20:])
+        hull = (*args[:4], order, *args[4:20], index.scratch(), guess, hint, *args[20:])
+        opts, scal, fout, iout = self._buffers()
+        extra = np.empty(8)
+        buffers = (fout, iout, scal, extra, opts, self.a_c, self.v_c)
+        kit = new_kit(hull, buffers, empty_memo(len(index.bin_zlo)))
+        return kit, extra, scal, hull, buffers
 
     def stage_totals(
         self, pitch: float, z_cg: float, w: float, u: float, q: float
@@ -369,8 +382,7 @@ class FusedEvaluation:
         the centre of gravity at height ``z_cg`` (m), all finite: the keel line, the cut,
         the outline and the sums in one compiled call, with no frame made or kept; the
         same sums. None where the steps one by one must serve (see :meth:`_one_call`)."""
-        _, _, fout, iout = self._buffers()
-        done = self._one_call(pitch, z_cg, w, u, q, fout, iout)
+        done = self._one_call(pitch, z_cg, w, u, q)
         if done is None:
             return None
         return (0.0, 0.0, 0.0) if done[0] is DRY else _sums(done[-1])  # dry: no section
@@ -386,12 +398,16 @@ class FusedEvaluation:
         result has no section, as numpy's path's."""
         _, _, fout, iout = self._buffers()  # the result takes copies of what it needs
         done = self._one_call(pitch, z_cg, motion.velocity, motion.forward_speed,
-                              motion.pitch_rate, fout, iout)  # fmt: skip
+                              motion.pitch_rate)  # fmt: skip
         if done is None:
             return None
-        points, ring_start, ring_station, extra, scal = done
-        dry = points is DRY
-        rows = () if dry else StationRings(points, ring_start, ring_station, int(extra[1]))
+        kit, extra, scal = done
+        dry = kit is DRY
+        if dry:
+            rows: Any = ()
+        else:
+            points, ring_start, ring_station = self.kit_rings(kit)
+            rows = StationRings(points, ring_start, ring_station, int(extra[1]))
         m, length = (0, 0.0) if dry else (int(scal[0]), float(scal[1]))
         pose = Pose(float(extra[6]), pitch)
         scale = CUTTER_SIZE / self.hull.size  # the frame's (geometry._frame)
