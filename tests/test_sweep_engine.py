@@ -34,7 +34,7 @@ def test_cases_of_one_pitch_stay_together_and_the_last_tasks_are_small():
                             "velocity": [-1.0, -2.0, -3.0, -4.0]})  # fmt: skip
     tasks = groups(plan, list(range(32)), 2)
     assert sorted(i for t in tasks for i in t) == list(range(32))
-    # every task is of one pitch and mass: 6 whole pitches, then 2 pitches in pairs
+    # every task is of one pitch and mass: 6 whole pitches, then 2 pitches a case a task
     assert all(len({_key(plan, i) for i in t}) == 1 for t in tasks)
     assert [len(t) for t in tasks] == [4] * 6 + [1] * 8
     # one worker: the same, the last task split
@@ -118,8 +118,17 @@ def _counting_reads(monkeypatch) -> list:
     return reads
 
 
+def _nothing_kept(monkeypatch) -> None:
+    """This process's kept hulls, as at its start (other tests keep the catalogued ones)."""
+    from hullslice.sweeps import run as sweep_run
+
+    monkeypatch.setattr(sweep_run, "_SHARED", {})
+    monkeypatch.setattr(sweep_run, "_READ_WARNINGS", {})
+
+
 def test_a_second_sweep_of_the_same_file_does_not_read_it_again(monkeypatch, tmp_path):
-    # the process keeps the hull under the file's SHA-256 and shaping, as a worker does
+    # the process keeps the hull under the file's SHA-256, path and shaping, as a worker
+    _nothing_kept(monkeypatch)
     reads = _counting_reads(monkeypatch)
     mesh = tmp_path / "hull.stl"
     mesh.write_bytes(WEDGE.read_bytes())
@@ -139,16 +148,47 @@ def test_a_second_sweep_of_the_same_file_does_not_read_it_again(monkeypatch, tmp
     changed = hs.sweep(base, {"mass": [8.0, 12.0]}, workers=1)
     assert reads == ["hull.stl"] * 3
     assert (changed["peak_force"].values != first["peak_force"].values).all()
+    # the same bytes under another name: a hull of its own (its messages name its file)
+    twin = tmp_path / "twin.stl"
+    twin.write_bytes(mesh.read_bytes())
+    hs.sweep({**base, "mesh": str(twin)}, {"mass": [8.0]}, workers=1)
+    assert reads == ["hull.stl"] * 3 + ["twin.stl"]
 
 
-def test_a_kept_hull_shows_its_reading_warnings_again(tmp_path):
-    # a mesh that needed a fix warns at every sweep, whether it is read or kept
+def test_a_mass_distribution_changed_between_sweeps_is_read_again(monkeypatch, tmp_path):
+    # the kept hull's mass properties come from the files as this sweep reads them
+    _nothing_kept(monkeypatch)
+    line = tmp_path / "mass.csv"
+    base = {**BASE, "mass_distribution": str(line)}
+    line.write_text("x,mass_per_metre\n0,10\n1,10\n")  # 10 kg, even
+    even = hs.sweep(base, {"velocity": [-4.0]}, workers=1)
+    line.write_text("x,mass_per_metre\n0,2\n1,18\n")  # 10 kg, aft-heavy
+    aft = hs.sweep(base, {"velocity": [-4.0]}, workers=1)
+    want = hs.sweep(base, {"velocity": [-4.0]}, workers=1)  # read again, the same
+    assert aft["peak_moment"].item() != even["peak_moment"].item()
+    assert aft["peak_moment"].item() == pytest.approx(want["peak_moment"].item(), rel=1e-12)
+
+
+def test_a_kept_hull_shows_its_reading_warnings_again(monkeypatch, tmp_path):
+    # a mesh that needed a fix warns once at every sweep, whether it is read or kept, as
+    # from where it was given (a filter on its module sees it)
     from .conftest import flipped_wedge_obj
 
+    _nothing_kept(monkeypatch)
+    reads = _counting_reads(monkeypatch)
     mesh = flipped_wedge_obj(tmp_path)
     for _ in range(2):
-        with pytest.warns(hs.MeshRepairWarning, match="re-oriented 1 faces"):
+        with warnings.catch_warnings(record=True) as seen:
+            warnings.simplefilter("always")
             hs.sweep({**BASE, "mesh": str(mesh)}, {"velocity": [-3.0]}, workers=1)
+        fixed = [w for w in seen if issubclass(w.category, hs.MeshRepairWarning)]
+        assert len(fixed) == 1 and "re-oriented 1 faces" in str(fixed[0].message)
+    assert reads == ["flipped.obj"]
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always")
+        warnings.filterwarnings("ignore", category=hs.MeshRepairWarning, module="hullslice")
+        hs.sweep({**BASE, "mesh": str(mesh)}, {"velocity": [-3.0]}, workers=1)
+    assert not [w for w in seen if issubclass(w.category, hs.MeshRepairWarning)]
 
 
 def test_a_sweeps_own_cluster_leaves_the_malloc_threshold_unset(monkeypatch):

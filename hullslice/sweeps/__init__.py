@@ -21,7 +21,10 @@ How a case flows, module by module:
 4. **workers** (:mod:`.engine`, :mod:`.run`): the hull travels to the workers once, as its
    state (the arrays and mass properties, cheap to send); each worker builds it (its
    ``Manifold``) at its first task, all of them at the same time, and keeps it under a
-   token of the mesh, so a worker keeps its cuts from one case to the next. Each case is
+   token of the mesh (its SHA-256, path and shaping), so a worker keeps its cuts from one
+   case to the next; the sweep's own process keeps the hull it read under the same token,
+   so a later sweep of the same file does not read it again. The tasks go to Dask with
+   priorities in their order, the largest first and single cases last. Each case is
    computed as a single run computes it: :func:`~hullslice.sweeps.run.hull_for` gives the
    hull the case's mass properties, and the case, made a :class:`~hullslice.Study`, runs
    by :func:`hullslice.study.simulation`, the call ``hullslice simulate`` makes for it.

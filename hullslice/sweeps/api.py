@@ -11,7 +11,7 @@ from ..errors import InputError
 from .dataset import build, provenance
 from .engine import CONNECT_TIMEOUT, capped_workers, require, run_cases, session
 from .plan import Plan, load_sweep, make_plan
-from .run import hull_for, load_inputs, shaping
+from .run import load_inputs, shaping, with_case_mass
 from .store import Partial, sha256, spec
 
 
@@ -86,10 +86,11 @@ def sweep(
         mesh_sha = sha256(mesh_path)
     except OSError:  # reading the mesh says what is wrong, in its own words
         mesh_sha = ""
-    token = f"{mesh_sha}:{shaping(base)!r}" if mesh_sha else ""
+    token = f"{mesh_sha}:{mesh_path.resolve()}:{shaping(base)!r}" if mesh_sha else ""
     hull, inputs = load_inputs(base, token)  # kept under the token for the next sweep
-    # the base case's own mass properties are checked here, once (warnings shown once)
-    hull_for(hull, base, inputs)
+    # the base case's own mass properties are checked here, at each sweep (its warnings
+    # shown once, whatever hull the process kept)
+    with_case_mass(hull, base, inputs)
     solver = get_solver(base.get("solver", DEFAULT_SOLVER), **base.get("solver_options", {}))
     kept = (
         Partial(

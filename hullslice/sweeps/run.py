@@ -4,7 +4,7 @@ properties, the motion call, and the record of its results.
 A checked ``simulate`` case (:func:`~hullslice.case.validate_case`) becomes a history in
 three steps, each written once here and used by every path of a sweep (in this process or
 on a Dask worker): :func:`read_mesh` and :func:`read_files` read the mesh and the case's
-files, once per sweep;
+files, once per sweep (the mesh's hull kept for a later sweep of the same file);
 :func:`hull_for` gives the hull the case's mass properties (kept for the next case with the
 same ones); :func:`run_case` makes the case a :class:`~hullslice.Study` and runs it by
 :func:`hullslice.study.simulation`, the call ``hullslice simulate`` makes for the same
@@ -15,6 +15,8 @@ one's results (:func:`summarise`) or its one-line error.
 from __future__ import annotations
 
 import math
+import sys
+import threading
 import time
 import traceback
 import warnings
@@ -31,6 +33,7 @@ _SHARED: dict[str, Any] = {}
 _SHARED_KEPT = 2
 #: The warnings the reading of each hull kept by :func:`read_mesh` gave, by token.
 _READ_WARNINGS: dict[str, list] = {}
+_KEEP_LOCK = threading.Lock()
 
 #: Hulls with their mass properties, kept by each worker process (key: mesh and mass).
 _HULLS: dict[tuple, Any] = {}
@@ -49,36 +52,58 @@ def shaping(case: Mapping[str, Any]) -> dict[str, Any]:
 def read_mesh(case: Mapping[str, Any], token: str = ""):
     """The mesh of a checked case, without mass, read as a single run reads it.
 
-    With a ``token`` (the mesh file's SHA-256 and its shaping, as :func:`run_batch`'s), the
-    process keeps the hull under it, as the workers do: a later sweep of the same file,
-    shaped the same way, does not read and check it again (0.5 s for a 128k-face mesh), and
-    the warnings its reading gave are shown again."""
+    With a ``token`` (the mesh file's SHA-256, path and shaping, as :func:`run_batch`'s),
+    the process keeps the hull under it, as the workers do: a later sweep of the same file,
+    shaped the same way, does not read and check it again (0.5 s for a 128k-face mesh). The
+    warnings its reading gave are recorded, all of them, and shown through the filters as
+    they are, now and at each later sweep that takes the kept hull, each as from where it
+    was given (its module's name and registry: a warning the filters show once is shown
+    once, as reading the file again would show it)."""
     from ..mesh import load_hull
 
     if token and token in _SHARED:
-        for w in _READ_WARNINGS.get(token, []):
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        _show(_READ_WARNINGS.get(token, []))
         return _SHARED[token]
     caught: list = []
     try:
-        with warnings.catch_warnings(record=True) as caught:  # the filters as they are
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")  # every one, to be shown through the filters
             hull = load_hull(Path(case["mesh"]), **shaping(case))
-    finally:  # shown as they came, once recording has stopped
-        for w in caught:
-            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+    finally:  # once recording has stopped (warnings before a failure too)
+        _show(caught)
     if token:
-        _keep(token, hull)
-        _READ_WARNINGS[token] = list(caught)
+        _keep(token, hull, caught)
     return hull
 
 
-def _keep(token: str, hull) -> None:
-    """Keep ``hull`` under ``token``, the last :data:`_SHARED_KEPT` of them."""
-    _SHARED[token] = hull
-    while len(_SHARED) > _SHARED_KEPT:
-        gone = next(iter(_SHARED))
-        _SHARED.pop(gone)
-        _READ_WARNINGS.pop(gone, None)
+def _show(caught: list) -> None:
+    """Show recorded warnings through the filters as :func:`warnings.warn` shows them: with
+    the name and the registry of the module they were given from."""
+    for w in caught:
+        module, registry = _origin(w.filename)
+        warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, module=module,
+                               registry=registry)  # fmt: skip
+
+
+def _origin(filename: str) -> tuple[str | None, dict | None]:
+    """The name and warnings registry of the module loaded from ``filename`` (None, None
+    where none was)."""
+    for mod in list(sys.modules.values()):
+        if getattr(mod, "__file__", None) == filename:
+            return mod.__name__, vars(mod).setdefault("__warningregistry__", {})
+    return None, None
+
+
+def _keep(token: str, hull, caught: list | None = None) -> None:
+    """Keep ``hull`` under ``token`` (with the warnings its reading gave, ``caught``), the
+    last :data:`_SHARED_KEPT` of them (a worker's threads may keep one at once)."""
+    with _KEEP_LOCK:
+        _SHARED[token] = hull
+        _READ_WARNINGS[token] = list(caught or [])
+        while len(_SHARED) > _SHARED_KEPT:
+            gone = next(iter(_SHARED))
+            _SHARED.pop(gone, None)
+            _READ_WARNINGS.pop(gone, None)
 
 
 def read_files(case: Mapping[str, Any]) -> dict[str, Any]:
@@ -129,22 +154,30 @@ def _mass_key(case: Mapping[str, Any]) -> tuple:
     )
 
 
-def hull_for(hull, case: Mapping[str, Any], inputs: Mapping[str, Any]):
-    """The hull with the case's mass properties (``mass``, ``mass_distribution``, ``cg``,
-    ``inertia``), kept for the next case that has them."""
-    key = (id(hull), _mass_key(case))
-    found = _HULLS.get(key)
-    if found is not None and found[0] is hull:
-        return found[1]
-    h = hull.with_mass(
+def with_case_mass(hull, case: Mapping[str, Any], inputs: Mapping[str, Any]):
+    """The hull with the case's mass properties (``mass``, ``mass_distribution`` as read
+    into ``inputs``, ``cg``, ``inertia``), checked and made afresh (with its warnings)."""
+    return hull.with_mass(
         case.get("mass"),
         mass_distribution=inputs.get("mass_distribution"),
         cg=case.get("cg"),
         inertia=case.get("inertia"),
     )
-    _HULLS[key] = (hull, h)
+
+
+def hull_for(hull, case: Mapping[str, Any], inputs: Mapping[str, Any]):
+    """:func:`with_case_mass`, kept for the next case of the same hull, the same mass
+    distribution as read (the same object: a sweep reads its files once, and a later
+    sweep reads them again) and the same other mass properties."""
+    md = inputs.get("mass_distribution")
+    key = (id(hull), id(md), _mass_key(case))
+    found = _HULLS.get(key)
+    if found is not None and found[0] is hull and found[1] is md:
+        return found[2]
+    h = with_case_mass(hull, case, inputs)
+    _HULLS[key] = (hull, md, h)
     while len(_HULLS) > _HULLS_KEPT:
-        _HULLS.pop(next(iter(_HULLS)))
+        _HULLS.pop(next(iter(_HULLS)), None)
     return h
 
 
