@@ -299,7 +299,7 @@ def _pitches_kept(sha: str) -> list[float]:
 
     shared = [h for token, h in sw._SHARED.items() if token.startswith(sha)]
     assert len(shared) <= 1  # the mesh is kept once, whatever copies Dask handed over
-    hulls = [h for base, h in sw._HULLS.values() if base in shared and h.mass == 10.0]
+    hulls = [h for base, _, h in sw._HULLS.values() if base in shared and h.mass == 10.0]
     from hullslice.geometry import FRAMES
 
     return sorted(round(p, 12) for h in hulls for p in h.cache[FRAMES])
