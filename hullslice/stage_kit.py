@@ -35,14 +35,15 @@ STAGE_DIGEST = "ed18986a2f7e2d8d"
 
 #: How many of the stage's arguments come before the six numbers of a stage.
 HULL_ARGS = 32
-#: How many come after them, the memo last.
-BUFFER_ARGS = 8
+#: How many come after them but the memo (their last).
+BUFFER_ARGS = 7
 
 
 @structref.register
 class StageKitType(types.StructRef):
     """numba's type of a :class:`StageKit`: fields ``hull`` (the stage's first
-    :data:`HULL_ARGS` arguments, a tuple), ``buffers`` (its last arguments but the memo),
+    :data:`HULL_ARGS` arguments, a tuple), ``buffers`` (its :data:`BUFFER_ARGS` after the
+    six numbers of a stage),
     ``memo`` and ``rings`` (the last call's contours: points, ring starts, ring
     stations)."""
 
@@ -104,9 +105,9 @@ def new_kit(hull: tuple, buffers: tuple, memo: tuple) -> StageKit:
     memo ``buffers`` and the memo ``memo``. The fields' types are those numba gives these
     values and the stage's returns at them (the stage is compiled for them here, or read
     from numba's cache)."""
-    if len(hull) != HULL_ARGS or len(buffers) != BUFFER_ARGS - 1:
+    if len(hull) != HULL_ARGS or len(buffers) != BUFFER_ARGS:
         raise ValueError(
-            f"a stage kit takes {HULL_ARGS} and {BUFFER_ARGS - 1} arguments, "
+            f"a stage kit takes {HULL_ARGS} and {BUFFER_ARGS} arguments, "
             f"not {len(hull)} and {len(buffers)}"
         )
     typeof = numba.typeof
