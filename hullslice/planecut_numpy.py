@@ -129,19 +129,47 @@ def contours(memo, k0, x_rel, c, s, cg, matrix, merge) -> list[tuple[np.ndarray,
     da -= xs
     db = (xb - cg[0]) * c - (zb - cg[2]) * s
     db -= xs
-    m = matrix
-    y_a = m[0, 0] * xa + m[0, 1] * ya + m[0, 2] * za + m[0, 3]
-    z_a = m[1, 0] * xa + m[1, 1] * ya + m[1, 2] * za + m[1, 3]
-    y_b = m[0, 0] * xb + m[0, 1] * yb + m[0, 2] * zb + m[0, 3]
-    z_b = m[1, 0] * xb + m[1, 1] * yb + m[1, 2] * zb + m[1, 3]
+    y_a, y_b = _mapped(matrix[0], xa, ya, za), _mapped(matrix[0], xb, yb, zb)
+    z_a, z_b = _mapped(matrix[1], xa, ya, za), _mapped(matrix[1], xb, yb, zb)
     near_a = np.abs(da) <= np.abs(db)
-    ta = da / (da - db)
-    tb = db / (db - da)
-    y = np.where(near_a, y_a + ta * (y_b - y_a), y_b + tb * (y_a - y_b))
-    z = np.where(near_a, z_a + ta * (z_b - z_a), z_b + tb * (z_a - z_b))
+    y = _between(near_a, da, db, y_a, y_b)
+    z = _between(near_a, da, db, z_a, z_b)
     length = ring_len[st_q[k0] : st_q[k0 + n_st]]
     root_station = np.repeat(np.arange(n_st), np.diff(st_q[k0 : k0 + n_st + 1]))
     return _finish(y, z, length, root_station, n_st, merge)
+
+
+def _between(near_a, da, db, va, vb) -> np.ndarray:
+    """Each point's value from its edge's end values ``va``, ``vb`` at the ends' distances
+    ``da``, ``db`` ahead of the plane, from the nearer end (``near_a``):
+    ``va + ta * (vb - va)`` with ``ta = da / (da - db)``, else ``vb + tb * (va - vb)`` with
+    ``tb = db / (db - da)``; written with the differences' signs turned (exact), in fewer
+    passes."""
+    w = da - db  # -(db - da)
+    u = vb - va  # -(va - vb)
+    a = da / w
+    a *= u
+    a += va
+    u *= db / w  # tb * (va - vb)
+    u += vb
+    return np.where(near_a, a, u)
+
+
+def _mapped(row: np.ndarray, x: np.ndarray, y: np.ndarray, z: np.ndarray) -> np.ndarray:
+    """``row[0] * x + row[1] * y + row[2] * z + row[3]``, summed in that order, the terms
+    of a zero coefficient left out: the same values for finite points (a term of zero adds
+    nothing), and the cutter's map has two zeros a row."""
+    out = None
+    for coef, v in ((row[0], x), (row[1], y), (row[2], z)):
+        if coef != 0.0:
+            if out is None:
+                out = coef * v
+            else:
+                out += coef * v
+    if out is None:
+        return np.full(len(x), float(row[3]))
+    out += row[3]
+    return out
 
 
 def _combined(memo, src, fresh) -> tuple:
@@ -270,26 +298,51 @@ def _finish(
     rings = len(length)
     ring = np.repeat(np.arange(rings), length)
     first = np.cumsum(length) - length
-    prev = np.arange(n) - 1
-    prev[first] = first + length - 1
     # repeated points dropped: a vertex on the plane (reached from several edges), or
     # points closer than ``merge`` along both axes (a plane through a ring of vertices up
     # to rounding; manifold3d's grid joins them too)
-    keep = (np.abs(y - y[prev]) > merge) | (np.abs(z - z[prev]) > merge)
+    full = length > 0
+    keep = _apart(y, first, length, full, merge, -1)
+    keep |= _apart(z, first, length, full, merge, -1)
     if not keep.all():
         y, z, ring = y[keep], z[keep], ring[keep]
         length = np.bincount(ring, minlength=rings)
         first = np.cumsum(length) - length
-    nxt = np.arange(len(ring)) + 1
-    full = length > 0
-    nxt[(first + length - 1)[full]] = first[full]
-    cross = y * z[nxt] - y[nxt] * z
+        full = length > 0
+    z_next = _shifted(z, first, length, full, 1)
+    cross = y * z_next
+    z_next = _shifted(y, first, length, full, 1)  # now the next y
+    z_next *= z
+    cross -= z_next
     area = np.bincount(ring, weights=cross, minlength=rings)
     bounds = np.concatenate([[0], np.cumsum(length)])
     ordered = np.stack([y, z], axis=1)
     for i in np.flatnonzero((length >= 3) & (area != 0.0)):  # contours with an area
         out[int(root_station[i])].append(ordered[bounds[i] : bounds[i + 1]])
     return [tuple(c) for c in out]
+
+
+def _shifted(v, first, length, full, step: int) -> np.ndarray:
+    """Each point's neighbour around its ring (rings of ``length`` points from ``first``,
+    one after another; ``full``: the rings with a point): the next one for ``step`` 1 (the
+    first after the last), the one before for -1."""
+    out = np.empty_like(v)
+    if step > 0:
+        out[:-1] = v[1:]
+        out[(first + length - 1)[full]] = v[first[full]]
+    else:
+        out[1:] = v[:-1]
+        out[first[full]] = v[(first + length - 1)[full]]
+    return out
+
+
+def _apart(v, first, length, full, merge: float, step: int) -> np.ndarray:
+    """Whether each point's ``v`` is farther than ``merge`` from its neighbour's
+    (:func:`_shifted`)."""
+    d = _shifted(v, first, length, full, step)
+    np.subtract(v, d, out=d)
+    np.abs(d, out=d)
+    return d > merge
 
 
 def _walk(succ: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:

@@ -325,6 +325,27 @@ def test_one_evaluation_of_many_stations_at_their_own_levels_is_each_alone(
             np.testing.assert_array_equal(got, want, err_msg=f"{key} of station {k}")
 
 
+@pytest.mark.parametrize("lead", [False, True])
+def test_an_outlines_stations_taken_are_each_its_own(lead):
+    # stations taken (repeated, out of order; or every one in order and then a few more,
+    # as a window and its moved slices' sources are): each station of the result, read
+    # alone, the very same arrays as the outline's station it was taken of
+    outline, _, _ = outline_of(fuselage_hull(), 6.0, 24)
+    n = outline.n_stations
+    rng = np.random.default_rng(5)
+    picks = rng.integers(0, n, 3)
+    picks = np.concatenate([np.arange(n), picks]) if lead else rng.integers(0, n, 2 * n)
+    got = outline.take(picks)
+    assert got.n_stations == len(picks)
+    assert np.array_equal(got.start, np.searchsorted(got.station, np.arange(len(picks) + 1)))
+    for j, k in enumerate(picks.tolist()):
+        mine, theirs = got.window(j, j + 1), outline.window(k, k + 1)
+        for name in Outline.__dataclass_fields__:
+            np.testing.assert_array_equal(
+                getattr(mine, name), getattr(theirs, name), err_msg=f"{name} of station {k}"
+            )
+
+
 def test_break_points_a_rounding_apart_make_a_table_all_the_same():
     # the generic fuselage (128k faces) held at 5 deg and cut by the exact kernel: one
     # station has two vertices whose heights are a rounding apart. The table's samples of

@@ -154,25 +154,32 @@ class Outline:
             b[:-1] = a[1:]
             b[ends - 1] = a[ends - sizes]
             contour = np.repeat(np.arange(len(contours)), sizes)
-            station = np.repeat(np.repeat(np.arange(s), [len(secs) for secs in polygons]), sizes)
+            per = [len(secs) for secs in polygons]
+            # one contour a station (the usual sections): a station's edges are its contour's
+            single = len(contours) == s and per.count(1) == s
+            station = contour if single else np.repeat(np.repeat(np.arange(s), per), sizes)
         else:
             a = b = np.empty((0, 2))
             contour = station = np.empty(0, dtype=np.int64)
+            single = False
         cross = a[:, 0] * b[:, 1] - b[:, 0] * a[:, 1]
-        # float with no point too (numpy's bincount then counts, in integers)
-        area = np.bincount(station, weights=0.5 * cross, minlength=s).astype(float, copy=False)
         c_area = 0.5 * np.bincount(contour, weights=cross, minlength=len(contours))
+        if single:  # the same sums (halving each term or the sum is exact)
+            area = c_area
+        else:  # float with no point too (numpy's bincount then counts, in integers)
+            area = np.bincount(station, weights=0.5 * cross, minlength=s).astype(float, copy=False)
         outer = (c_area > 0.0)[contour] if len(a) else contour > 0
         part_area, renumber = _part_areas(contours, c_area, polygons)
         if outer.all():  # no holes (the usual case): nothing to drop
             contour = renumber[contour]
         else:
             station, a, b, contour = station[outer], a[outer], b[outer], renumber[contour[outer]]
+            single = False
         ya, za, yb, zb = a[:, 0], a[:, 1], b[:, 0], b[:, 1]
         # per station and per contour, while both are still contiguous
         c = len(part_area)
         start = np.searchsorted(station, np.arange(s + 1))
-        cstart = np.searchsorted(contour, np.arange(c + 1))
+        cstart = start if single else np.searchsorted(contour, np.arange(c + 1))
         zmin = grouped(np.minimum, za, start, np.inf)
         ymax = grouped(np.maximum, ya, start, -np.inf)
         ymin = grouped(np.minimum, ya, start, np.inf)
@@ -183,8 +190,11 @@ class Outline:
         z_chine = group_min(side, z_side, s)
         part_station = station[cstart[:-1]] if c else np.empty(0, dtype=np.int64)
         part_zmax = grouped(np.maximum, za, cstart, -np.inf)
-        part_ymin = grouped(np.minimum, ya, cstart, np.inf)
-        part_ymax = grouped(np.maximum, ya, cstart, -np.inf)
+        if single:  # each part is its station's section
+            part_ymin, part_ymax = ymin, ymax
+        else:
+            part_ymin = grouped(np.minimum, ya, cstart, np.inf)
+            part_ymax = grouped(np.maximum, ya, cstart, -np.inf)
         # then each station's edges by the height of their lower end
         zlo = np.minimum(za, zb)
         # one sort of a combined key: the station, and the height scaled into [0, 1)
