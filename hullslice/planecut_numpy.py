@@ -55,12 +55,20 @@ def served(index, memo, x_rel, c, s, cg) -> np.ndarray:
     check = np.flatnonzero(far_ok & ~quiet)
     if len(check):  # the sign test again on each candidate whose nearest corner was near
         kk = k[check]
-        ranges = memo[1][kk]
-        station, face = range_faces(ranges[:, :, 0], ranges[:, :, 1])
         code_p = memo[2][0]
-        at = _spans(code_p[kk], code_p[kk + 1] - code_p[kk])
+        count = code_p[kk + 1] - code_p[kk]
+        at = _spans(code_p[kk], count)
+        station = np.repeat(np.arange(len(check)), count)
         test = np.flatnonzero(~(move[check][station] < memo[6][at] - eps))
-        station, face = station[test], face[test]
+        # the faces of those candidates alone: each one's place among its station's
+        # ranges, bin by bin, in the order the recipe listed them (range_faces')
+        ranges = memo[1][kk]
+        first = ranges[:, :, 0].ravel()
+        sizes = np.maximum(ranges[:, :, 1].ravel() - first, 0)
+        ends = np.cumsum(sizes)
+        slot = np.searchsorted(ends, test, side="right")
+        face = first[slot] + (test - (ends[slot] - sizes[slot]))
+        station = station[test]
         _, code = _sides(index, station, face, x_rel[check], c, s, cg)
         wrong = np.bincount(station[code != memo[3][at[test]]], minlength=len(check))
         src[check[wrong > 0]] = -1
