@@ -73,8 +73,9 @@ import numpy as np
 import hullslice as hs
 from hullslice import planecut_loops, shapes
 from hullslice.forces import solve_accelerations
-from hullslice.geometry import REGIONS, frame
+from hullslice.geometry import frame
 from hullslice.motion import ForceModel
+from hullslice.regions import REGIONS
 
 ROOT = Path(__file__).resolve().parents[1]
 # stations, points; 128k only for the time step at a held and at a free pitch

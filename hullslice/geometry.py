@@ -15,15 +15,7 @@ For one pitch, three things do not depend on the draft and are computed once
 ``Z_k(X)``, exact as a polyline) and the manifold3d object that cuts the body along earth
 planes ``X = const``.
 
-Turning a mesh for a new pitch costs manifold3d time in proportion to its vertices (about
-0.1 s for a million faces), so a large hull is cut through a **region**: the body trimmed
-to a band of its own ``x`` that holds every face the planes to cut can cross (the planes'
-reach along ``x`` at the pitch, widened by the longest face). Only that band is turned.
-Trimming leaves the faces inside the band as they are, so a section cut through a region
-has the same points as one cut through the whole body. A region is kept on the hull and
-serves every pitch whose planes it holds; a larger one is made when the wetted part
-outgrows it. A hull cut at one pitch only is cut whole: making a region costs more than
-turning the whole once.
+A large hull is turned for manifold3d through a region of it (:mod:`hullslice.regions`).
 """
 
 from __future__ import annotations
@@ -31,7 +23,7 @@ from __future__ import annotations
 import threading
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -44,12 +36,13 @@ from .kernel.envelope import (
     lowest_segments,
     merged,
     refined,
-    side_envelope,
     side_outline,
+    side_points,
 )
-from .kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine
+from .kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine, window_points
 from .planecut import plane_index
 from .reduce import row_max, row_min
+from .regions import REGION_CACHE, region
 
 __all__ = ["CUTTERS", "Frame", "KeelLine", "check_cutter", "frame"]
 
@@ -83,28 +76,59 @@ class Frame:
         Heights of the body's lowest and highest points above the centre of gravity in the
         pitched frame, m.
     keel : KeelLine
-        The keel line, relative to the centre of gravity.
+        The keel line, relative to the centre of gravity (made when first read where the
+        frame was made with its break points only).
     """
 
     pitch: float
     cg: np.ndarray
     lowest: float
     highest: float
-    keel: KeelLine
+    _keel: KeelLine | None = field(repr=False)
     _hull: Any = field(repr=False)
     _matrix: np.ndarray = field(repr=False)  # body point -> cutter (Y, Z, X), 3 x 4
     _offset: np.ndarray = field(repr=False)  # (Y, Z, X) of the cutter's origin, rel. cg
     _scale: float = 1.0  # the cutter's coordinates are metres times this
+    #: The keel line's break points ``(x, z)`` where the line is made when first read.
+    _points: tuple[np.ndarray, np.ndarray] | None = field(default=None, repr=False)
     _slicers: LRU[tuple[float, float] | None, Any] = field(
         default_factory=lambda: LRU(REGION_CACHE), repr=False
     )
     #: What the layers above keep for this pitch (see :mod:`hullslice.caching`).
     cache: Cache = field(default_factory=Cache, repr=False)
 
+    @property
+    def keel(self) -> KeelLine:
+        """The keel line, relative to the centre of gravity."""
+        line = self._keel
+        if line is None:  # made of its break points when first read (frozen: set once)
+            assert self._points is not None
+            line = KeelLine(*self._points)
+            object.__setattr__(self, "_keel", line)
+        return line
+
+    def _line_ends(self) -> tuple[float, float]:
+        """The keel line's first and last break points' ``x`` (m, relative)."""
+        x = self._keel.x if self._keel is not None else cast(tuple, self._points)[0]
+        return float(x[0]), float(x[-1])
+
+    def keel_for(self, level: float, n: int, reach: float) -> KeelLine:
+        """The keel line an evaluation with the water at ``level`` (m, relative) and ``n``
+        fixed slices reads at a pitch met for the first time: where the frame holds its
+        line's break points only (numpy's lower side of the body's side view), the line of
+        those :func:`~hullslice.kernel.keel.window_points` keeps around the water (within
+        ``reach``, m), which the compiled stage reads at such a pitch. What the evaluation
+        reads of it is the whole line's but for rounding (the running sums of its runs
+        start at its first point within the window). Else the whole line."""
+        if self._keel is not None or self._points is None:
+            return self.keel
+        window = window_points(*self._points, level, n, reach)
+        return self.keel if window is None else KeelLine(*window)
+
     def fixed_stations(self, n: int) -> tuple[float, np.ndarray]:
         """Thickness and mid-stations (relative to the cg) of ``n`` equal slices over the
         body's length at this pitch."""
-        xa, xb = float(self.keel.x[0]), float(self.keel.x[-1])
+        xa, xb = self._line_ends()
         d = (xb - xa) / n
         return d, xa + (np.arange(n) + 0.5) * d
 
@@ -192,24 +216,10 @@ MERGE = 1e-12
 KERNEL_MAX_PITCH = 1.2
 #: How many pitches' frames a hull keeps.
 FRAME_CACHE = 4
-#: Hulls with fewer faces are always cut whole (turning them is cheap).
-REGION_MIN_FACES = 50_000
-#: A region longer than this share of the body is not worth trimming: the whole is cut.
-REGION_MAX_SHARE = 0.6
-#: Room to grow given to a new region on either side, as a share of the range asked for.
-REGION_ROOM = 0.25
-#: How many regions a hull keeps (and turned copies of them a frame keeps).
-REGION_CACHE = 2
 
 
 #: A hull's frames by pitch (rad): they depend on its centre of gravity.
 FRAMES: Entry[LRU[float, Frame]] = Entry("frames", lambda: LRU(FRAME_CACHE))
-#: A hull's regions by their ``x`` range (m): trimmed manifold3d bodies, see :func:`region`.
-#: Kept per hull (not shared by :meth:`~hullslice.mesh.Hull.with_mass`): a hull makes its
-#: first region at its second pitch.
-REGIONS: Entry[LRU[tuple[float, float], Any]] = Entry("regions", lambda: LRU(REGION_CACHE))
-#: The longest extent of a face along ``x``, m (see :func:`region`).
-FACE_REACH: Entry[Once[float]] = Entry("face reach", Once, geometry=True)
 #: The silhouette edges' end points (see :func:`silhouette_edges`).
 SILHOUETTE: Entry[Once[tuple[np.ndarray, np.ndarray]]] = Entry("silhouette", Once, geometry=True)
 #: The silhouette edges' end vertices (see :func:`silhouette_ends`).
@@ -232,55 +242,20 @@ def frame(hull, pitch: float) -> Frame:
     return fr
 
 
-def region(hull, lo: float, hi: float) -> tuple[tuple[float, float] | None, object]:
-    """A manifold3d body holding every face of the hull that reaches between body
-    ``x = lo`` and ``hi`` (m) unchanged: ``(key, manifold)``, key None for the whole hull.
-
-    The hull trimmed by two planes ``x = const`` beyond that range by the longest face's
-    length along ``x`` and some room to grow (:data:`REGION_ROOM` of the range's length,
-    at least 2 % of the body's); kept on the hull. Small hulls, and ranges over most of
-    the body, get the whole hull.
-    """
-    xa, xb = (float(v) for v in hull.bounds[:, 0])
-    length = xb - xa
-    if len(hull.faces) < REGION_MIN_FACES:
-        return None, hull.manifold
-    reach = _face_reach(hull)
-    need_lo, need_hi = lo - reach, hi + reach
-    regions = hull.cache[REGIONS]
-    found = regions.find(lambda key: key[0] < need_lo and need_hi < key[1])
-    if found is not None:
-        return found
-    room = max(REGION_ROOM * (hi - lo), 0.02 * length)
-    a, b = need_lo - room, need_hi + room
-    if b - a > REGION_MAX_SHARE * length:
-        return None, hull.manifold
-    body = hull.manifold
-    if a > xa:
-        body = body.trim_by_plane((1.0, 0.0, 0.0), a)
-    if b < xb:
-        body = body.trim_by_plane((-1.0, 0.0, 0.0), -b)
-    regions.put((a, b), body)
-    return (a, b), body
-
-
-def _face_reach(hull) -> float:
-    """The longest extent of a face along ``x``, m (kept on the hull)."""
-
-    def reach() -> float:
-        x = hull.vertices[:, 0][hull.faces]
-        return float((row_max(x) - row_min(x)).max())
-
-    return hull.cache[FACE_REACH].get(reach)
-
-
 def _frame(hull, pitch: float) -> Frame:
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
-    a, b = silhouette_edges(hull)
-    keel, lowest, highest = _side_keel(hull, a, b, side_outline_points(hull), pitch, _side_order)
+    outline = side_outline_points(hull)
+    side = _side_points(hull, outline, c, s)  # numpy's: the line made when first read
+    keel: KeelLine | None = None
+    points: tuple[np.ndarray, np.ndarray] | None = None
+    if side is not None:
+        points, lowest, highest = side
+    else:
+        a, b = silhouette_edges(hull)
+        keel, lowest, highest = _side_keel(hull, a, b, outline, pitch, _side_order)
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
     bounds = hull.bounds
@@ -304,12 +279,29 @@ def _frame(hull, pitch: float) -> Frame:
         cg=g,
         lowest=lowest,
         highest=highest,
-        keel=keel,
+        _keel=keel,
         _hull=hull,
         _matrix=cut_matrix,
         _offset=np.array([oy, oz, ox]),
         _scale=scale,
+        _points=points,
     )
+
+
+def _side_points(
+    hull, outline: tuple[np.ndarray, bool], c: float, s: float
+) -> tuple[tuple[np.ndarray, np.ndarray], float, float] | None:
+    """By numpy's path (the keel line's loops not in use), where the body's side
+    ``outline`` (:func:`side_outline_points`' pair) has all the silhouette edges' ends and
+    its lower side serves (:func:`~hullslice.kernel.envelope.side_points`), turned by the
+    pitch's cosine ``c`` and sine ``s`` about the centre of gravity: the keel line's break
+    points ``(x, z)`` (close ones merged) and the lowest and highest heights, m, as
+    :func:`_side_keel` makes them; else None."""
+    if loops_in_use("frame_keel") is not None or not (outline[1] and outline[0].shape[1]):
+        return None
+    g = np.asarray(hull.cg, dtype=np.float64)
+    rx, rz = outline[0][0] - g[0], outline[0][1] - g[2]
+    return side_points(rx * c - rz * s, rx * s + rz * c, TOL.keel_merge * hull.size)
 
 
 def _side_keel(
@@ -336,9 +328,9 @@ def _side_keel(
             rx, rz = outline[0][0] - g[0], outline[0][1] - g[2]
             side = (rx * c - rz * s, rx * s + rz * c)
             if outline[1]:  # its points are all the edges' ends: the edges not turned
-                found = side_envelope(*side, merge)
+                found = side_points(*side, merge)
                 if found is not None:
-                    return found
+                    return KeelLine(*found[0]), found[1], found[2]
                 side = None  # its lower side does not serve: the edges' envelope must
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]

@@ -46,7 +46,7 @@ from .kernel.outline import Outline, Polygons
 from .kernel.wetted import DEADRISE_ESTIMATORS, section_properties, wetted_properties
 from .limits import check_slice_count
 from .mesh import Hull
-from .slicing.assemble import assemble
+from .slicing.assemble import assemble, keel_window
 from .slicing.fixed import TABLE_AFTER, fixed_sections
 from .slicing.record import Sections, ShiftedPolygons
 from .state import Pose
@@ -170,19 +170,24 @@ def sections_at(
     slicing: str = "wetted",
     cache: bool = True,
     cutter: str = "manifold3d",
+    first: bool = False,
 ) -> Sections:
     """The sections at a pose, inputs already checked (see :func:`cut`).
 
     ``slicing="fixed"`` places the slices over the body's length (see :data:`SLICINGS`);
     ``cache=False`` cuts its stations afresh instead of reusing the pitch's cut (the same
     numbers, for checking); ``cutter`` names how a new pitch is cut
-    (:data:`~hullslice.geometry.CUTTERS`).
+    (:data:`~hullslice.geometry.CUTTERS`); ``first``: the pitch's first evaluation in a
+    run's stage (its frame made just now), whose fixed slices read the keel line where
+    they are (:meth:`~hullslice.geometry.Frame.keel_for`).
     """
     fr = frame(hull, pose.pitch)
     level = fr.lowest + pose.draft  # the water surface, relative to the cg
-    extent = fr.keel.bottom(level)
+    fixed = slicing == "fixed" and stations is None
+    line = fr.keel_for(level, n, keel_window(hull)) if first and fixed else fr.keel
+    extent = line.bottom(level)
     tol = TOL.coordinate * hull.size
-    if slicing == "fixed" and stations is None:
+    if fixed:
         return fixed_sections(
             hull,
             fr,
@@ -194,6 +199,7 @@ def sections_at(
             tol=tol,
             cache=cache,
             cutter=cutter,
+            line=line,
         )
     if extent is None:
         x0 = x1 = float(fr.keel.x[np.argmin(fr.keel.z)])

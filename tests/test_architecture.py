@@ -68,6 +68,7 @@ LAYERS: dict[str, int] = {
     "hullslice.slices_loops": 3,
     "hullslice.loops_layout": 3,
     "hullslice.geometry": 3,
+    "hullslice.regions": 3,
     "hullslice.waterline": 3,
     "hullslice.sections": 3,
     "hullslice.slicing": 3,

@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 
 import hullslice as hs
-from hullslice import geometry, shapes
+from hullslice import regions, shapes
 from hullslice.constants import TOL
-from hullslice.geometry import REGIONS, frame
+from hullslice.geometry import frame
 from hullslice.motion import ForceModel, simulate
+from hullslice.regions import REGIONS
 from hullslice.slicing import fixed as fixed_slicing
 
 MESHES = Path(__file__).resolve().parents[1] / "meshes"
@@ -123,7 +124,7 @@ def test_unknown_slicing(paper_hull):
 
 @pytest.fixture(scope="module")
 def fuselage_model():
-    # 128k faces: above geometry.REGION_MIN_FACES, so cut through regions
+    # 128k faces: above regions.REGION_MIN_FACES, so cut through regions
     return hs.load_hull(MESHES / "fuselage_model.obj", mass=60.0)
 
 
@@ -161,7 +162,7 @@ def test_regions_give_the_forces_of_the_whole_hull(fuselage_model, monkeypatch):
     banded_hull = fuselage_model.with_mass(60.0)
     banded = run(ForceModel(banded_hull, slices=96, slicing="fixed"))
     assert banded_hull.cache[REGIONS]
-    monkeypatch.setattr(geometry, "REGION_MIN_FACES", 10**9)
+    monkeypatch.setattr(regions, "REGION_MIN_FACES", 10**9)
     whole_hull = fuselage_model.with_mass(60.0)
     whole = run(ForceModel(whole_hull, slices=96, slicing="fixed", cache=False))
     assert not whole_hull.cache[REGIONS]

@@ -22,6 +22,7 @@ __all__ = [
     "refined",
     "side_envelope",
     "side_outline",
+    "side_points",
 ]
 
 
@@ -82,10 +83,21 @@ def side_envelope(
     the rightmost, running forward; close ones merged), and the ends' lowest and highest
     heights (m). None where the lower side does not serve (:func:`lower_side`): then the
     edges' envelope must be found."""
+    found = side_points(x, z, merge)
+    if found is None:
+        return None
+    return KeelLine(*found[0]), found[1], found[2]
+
+
+def side_points(
+    x: np.ndarray, z: np.ndarray, merge: float = 0.0
+) -> tuple[tuple[np.ndarray, np.ndarray], float, float] | None:
+    """:func:`side_envelope`'s keel line as its break points ``(x, z)``, before the line
+    is made of them, and the same lowest and highest heights; None where it gives None."""
     chain = lower_side(x, z)
     if chain is None:
         return None
-    return KeelLine(*merged(*chain, merge)), float(z.min()), float(z.max())
+    return merged(*chain, merge), float(z.min()), float(z.max())
 
 
 def _abscissae(a: np.ndarray, b: np.ndarray) -> np.ndarray:

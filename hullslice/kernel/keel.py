@@ -12,7 +12,7 @@ from dataclasses import InitVar, dataclass, field
 
 import numpy as np
 
-__all__ = ["END_FACE_SLOPE", "STEEP_SLOPE", "KeelLine"]
+__all__ = ["END_FACE_SLOPE", "STEEP_SLOPE", "WINDOW_SPARE", "KeelLine", "window_points"]
 
 #: Slope of the side view beyond which a facet at an end of the keel line is an end face
 #: (a transom, a blunt bow or tail; tan 75 deg), not the bottom.
@@ -22,6 +22,10 @@ END_FACE_SLOPE = float(np.tan(np.radians(75.0)))
 #: bottom (a corner between the bottom and a step's or an end face's edge seen at the
 #: pitch, or such a face itself once the pitch leans it below END_FACE_SLOPE).
 STEEP_SLOPE = 1.0
+#: Break points a keel line's window keeps beyond its reach on either side (see
+#: :func:`window_points`; :data:`hullslice.frame_loops.WINDOW_SPARE`, which a test holds
+#: equal).
+WINDOW_SPARE = 2
 
 
 @dataclass(frozen=True, eq=False)
@@ -352,3 +356,34 @@ def _chords(
     lo = np.where(bottom, x[first[np.maximum(run, 0)]], x[:-1])
     hi = np.where(bottom, x[last[np.maximum(run, 0)]], x[:-1])
     return x, height, lo, hi
+
+
+def window_points(
+    x: np.ndarray, z: np.ndarray, level: float, n: int, reach: float
+) -> tuple[np.ndarray, np.ndarray] | None:
+    """The break points of a keel line (``x``, ``z``, all finite) that an evaluation with
+    the water at ``level`` (m) and ``n`` fixed slices reads, as
+    :func:`hullslice.frame_loops.window_line_loops` keeps them: from ``reach`` (m; at
+    least a station spacing) before the point before the first under the water to
+    ``reach`` after the point after the last, :data:`WINDOW_SPARE` more each side, and the
+    line's first and last as they are (its ends, length and stations the whole line's).
+    Every break point left out is at the level or above. None where the whole line must
+    serve: fewer than 8 points, none under the water, or a window of more than half."""
+    k = len(x)
+    under = np.flatnonzero(z < level)
+    if k < 8 or not len(under):
+        return None
+    first, last = int(under[0]), int(under[-1])
+    reach = max(reach, (float(x[-1]) - float(x[0])) / n)
+    lo = x[max(first - 1, 0)] - reach
+    hi = x[min(last + 1, k - 1)] + reach
+    # back from the point before the first under the water to one at or before lo, on
+    # from the point after the last to one at or past hi (the loops' walks)
+    i0 = min(max(first - 1, 0), max(int(np.searchsorted(x, lo, side="right")) - 1, 0))
+    i1 = max(min(last + 1, k - 1), min(int(np.searchsorted(x, hi, side="left")), k - 1))
+    i0 = max(i0 - WINDOW_SPARE, 1)  # the first point is kept as it is
+    i1 = min(i1 + WINDOW_SPARE, k - 2)  # and the last
+    if 2 * (i1 - i0 + 3) > k:  # nearly every point: the whole line
+        return None
+    keep = np.concatenate(([0], np.arange(i0, i1 + 1), [k - 1]))
+    return x[keep], z[keep]

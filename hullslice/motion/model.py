@@ -8,7 +8,7 @@ from typing import cast
 from ..constants import SOUND_WATER
 from ..forces import ForceResult, MomentumTerms, force_on, momentum_terms
 from ..forces.fused import FusedEvaluation, fused_for
-from ..geometry import check_cutter, frame
+from ..geometry import FRAMES, KERNEL_MAX_PITCH, check_cutter, frame
 from ..limits import no_mass
 from ..mesh import Hull
 from ..renamed import renamed_keywords
@@ -81,13 +81,13 @@ class ForceModel:
         """True when the solver is a momentum-form solver."""
         return self.solver.kind == MOMENTUM
 
-    def _sections(self, pose: Pose):
+    def _sections(self, pose: Pose, first: bool = False):
         height = _height_at(self.hull, pose.pitch)
         if pose.draft > height:
             pose = Pose(height, pose.pitch)
         return sections_at(
             self.hull, pose, self.slices, self.deadrise, slicing=self.slicing, cache=self.cache,
-            cutter=self.cutter,
+            cutter=self.cutter, first=first,
         )  # fmt: skip
 
     @property
@@ -112,13 +112,42 @@ class ForceModel:
         return self._numpy(pose, motion, acceleration)
 
     def _numpy(
-        self, pose: Pose, motion: Motion, acceleration: Acceleration | None = None
+        self,
+        pose: Pose,
+        motion: Motion,
+        acceleration: Acceleration | None = None,
+        first: bool = False,
     ) -> ForceResult:
-        """:meth:`__call__` by numpy's path (the layers' steps, whatever the model)."""
+        """:meth:`__call__` by numpy's path (the layers' steps, whatever the model);
+        ``first`` as :func:`~hullslice.sections.sections_at` takes it."""
         return force_on(
-            self._sections(pose), motion, self.solver, self.fluid, float(self.hull.cg[0]),
-            acceleration=acceleration, mass=self.hull.mass,
+            self._sections(pose, first), motion, self.solver, self.fluid,
+            float(self.hull.cg[0]), acceleration=acceleration, mass=self.hull.mass,
         )  # fmt: skip
+
+    def _first_at(
+        self, z_cg: float, pitch_rad: float, w: float, u: float, q: float
+    ) -> tuple[ForceResult, Pose] | None:
+        """By numpy's path, at the state of an equation of motion (as :meth:`totals_at`)
+        whose pitch the hull has no frame for (a free-pitch stage's new pitch), its fixed
+        slices cut by the exact kernel: the result and the pose (its draft :meth:`draft`),
+        the keel line read over the slices the evaluation reads
+        (:meth:`~hullslice.geometry.Frame.keel_for`), as the compiled stage reads it at
+        such a pitch (:meth:`~hullslice.forces.fused.FusedEvaluation.stage_result`); the
+        same result but for rounding. None elsewhere (a pitch with a frame, another
+        slicing or cutter, a state not finite)."""
+        if not (
+            self.slicing == "fixed"
+            and self.cache
+            and self.cutter == "exact"
+            and math.isfinite(z_cg + pitch_rad + w + u + q)
+            and max(abs(w), abs(u)) < SOUND_WATER
+            and abs(pitch_rad) < KERNEL_MAX_PITCH
+            and self.hull.cache[FRAMES].get(float(pitch_rad)) is None
+        ):
+            return None
+        pose = Pose(self.draft(z_cg, pitch_rad), pitch_rad)  # the frame made here
+        return self._numpy(pose, Motion(w, u, q), first=True), pose
 
     def totals(self, pose: Pose, motion: Motion) -> tuple[float, float, float]:
         """The vertical force (N), the moment about the centre of gravity (N m) and the
@@ -153,7 +182,11 @@ class ForceModel:
             out = fused.totals_at(fr, max(0.0, -(fr.lowest + z_cg)), w, u, q)
             if out is not None:
                 return out
-        r = self._numpy(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
+        got = self._first_at(z_cg, pitch_rad, w, u, q) if fused is None else None
+        if got is not None:
+            r = got[0]
+        else:
+            r = self._numpy(Pose(self.draft(z_cg, pitch_rad), pitch_rad), Motion(w, u, q))
         return r.total, r.moment, r.total_x
 
     def result_at(
@@ -162,13 +195,13 @@ class ForceModel:
         """:meth:`__call__` at the state of an equation of motion (as :meth:`totals_at`)
         with the pose of that state (its draft :meth:`draft`), where the fused evaluation
         makes it in one call at a new pitch (see
-        :meth:`~hullslice.forces.fused.FusedEvaluation.stage_result`), or None."""
+        :meth:`~hullslice.forces.fused.FusedEvaluation.stage_result`) or, by numpy's path,
+        at a new pitch with its keel line read where the slices are (see
+        :meth:`_first_at`), or None."""
         fused = self.fused
-        if (
-            fused is None
-            or not math.isfinite(z_cg + pitch_rad + w + u + q)
-            or not max(abs(w), abs(u)) < SOUND_WATER
-        ):
+        if fused is None:  # numpy's path: at a new pitch, its keel line where it is read
+            return self._first_at(z_cg, pitch_rad, w, u, q)
+        if not math.isfinite(z_cg + pitch_rad + w + u + q) or not max(abs(w), abs(u)) < SOUND_WATER:
             return None
         return fused.stage_result(z_cg, pitch_rad, Motion(w, u, q))
 

@@ -12,6 +12,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 
 from ..geometry import Frame
+from ..kernel.keel import KeelLine
 from ..kernel.outline import Polygons
 from ..mesh import Hull
 from ..state import Pose
@@ -66,6 +67,7 @@ def assemble(
     lift: np.ndarray | None = None,
     keel: np.ndarray | None = None,
     slope_width: np.ndarray | None = None,
+    line: KeelLine | None = None,
 ) -> Sections:
     """:class:`Sections` from per-station positions and per-entry properties.
 
@@ -98,12 +100,16 @@ def assemble(
         ``dx`` when not given. Fixed slices give their wetted part or half the slice,
         whichever is longer, so that a slice beginning to wet does not take the slope of
         the one facet under it; given stations their spacing.
+    line : KeelLine, optional
+        The keel line read (default the frame's; see
+        :meth:`~hullslice.geometry.Frame.keel_for`).
     """
     st = props["station"]
-    keel_z = fr.keel.height(rel) if keel is None else keel
+    line = fr.keel if line is None else line
+    keel_z = line.height(rel) if keel is None else keel
     # the keel's slope is its chord over the slice; its curvature is averaged over the
     # wetted slice or half a beam, whichever is longer
-    slope = fr.keel.mean_slope(rel, dx if slope_width is None else slope_width)
+    slope = line.mean_slope(rel, dx if slope_width is None else slope_width)
     window = np.maximum(dx, keel_window(hull))
     # a station in a gap between parts one behind the other has no section: its (dry)
     # entry's keel is put at the water, not infinitely high (no NaN in its kinematics)
@@ -113,7 +119,7 @@ def assemble(
     m_station = station_mass(hull, fr, props["area"], rel, dx)
     keel_slope = slope[st]
     keel_at = (keel_z + z_cg)[st]
-    curvature = fr.keel.mean_curvature(rel, window)[st]
+    curvature = line.mean_curvature(rel, window)[st]
     # on a body of separate pieces each entry takes its own piece's keel line
     own = own_keels(
         hull, fr, props, x=rel, chord=dx if slope_width is None else slope_width,

@@ -16,7 +16,7 @@ import numpy as np
 
 from ..caching import Entry
 from ..geometry import Frame, loops_in_use
-from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE
+from ..kernel.keel import END_FACE_SLOPE, STEEP_SLOPE, KeelLine
 from ..kernel.outline import Outline, Polygons, prefix_index
 from ..kernel.waterline_table import TABULATED, WaterlineTable
 from ..kernel.wetted import wetted_properties
@@ -182,13 +182,15 @@ def fixed_sections(
     tol: float,
     cache: bool = True,
     cutter: str = "manifold3d",
+    line: KeelLine | None = None,
 ) -> Sections:
     """Fixed slices over the body's length; the wetted ones at this waterline.
 
     ``level`` is the water's height above the centre of gravity in the pitched frame (m),
     ``extent`` the keel line's wetted ``x`` range (m, relative), ``tol`` the coordinate
     tolerance (m); ``cache=False`` cuts the stations afresh; ``cutter`` as for
-    :meth:`~hullslice.geometry.Frame.cut`.
+    :meth:`~hullslice.geometry.Frame.cut`; ``line`` the keel line read (default the
+    frame's, see :meth:`~hullslice.geometry.Frame.keel_for`).
 
     Interior slices use their mid-station's section. A slice only partly wetted counts its
     wetted length and stands at that part's middle, where the keel line gives its
@@ -200,7 +202,8 @@ def fixed_sections(
     as the water reaches it, with no jump as the water passes its mid-station, and a round
     bottom keeps its own shape.
     """
-    xa = float(fr.keel.x[0])
+    line = fr.keel if line is None else line
+    xa = float(line.x[0])
     d, mids = fr.fixed_stations(n)
     if extent is None:
         return assemble(
@@ -214,6 +217,7 @@ def fixed_sections(
             props=wetted_properties(Outline.of([], tol), level, tol, deadrise),
             polys=[],
             deadrise=deadrise,
+            line=line,
         )
     x0, x1 = extent
     k = np.arange(
@@ -236,7 +240,7 @@ def fixed_sections(
         (outline, polys), c0 = outline_of(fr, mids, tol, cutter), 0
     full = np.abs(hi - lo - d) <= 1e-12 * d
     x = np.where(full, mids[k], 0.5 * (lo + hi))
-    keel = fr.keel.height(x)
+    keel = line.height(x)
     # a partial slice takes its own mid-station's section, moved down to its depth (it
     # may be dry at this water), or its neighbour's where its own station has no bottom's
     # section (past the body's end, or through a pitched transom's face); with no wetted
@@ -245,7 +249,7 @@ def fixed_sections(
     neighbour = np.minimum(np.maximum(k + inward, 0), n - 1)
     own = full | np.isfinite(outline.zmin[k - c0])
     if not full.all():
-        own[~full] &= np.abs(fr.keel.at(mids[k[~full]])[1]) <= END_FACE_SLOPE
+        own[~full] &= np.abs(line.at(mids[k[~full]])[1]) <= END_FACE_SLOPE
     source = np.where(own, k, neighbour)
     # a partial slice's source moved by this much (where the slice takes a moved section)
     with np.errstate(invalid="ignore"):
@@ -312,7 +316,7 @@ def fixed_sections(
         fr,
         pose=pose,
         level=level,
-        length=fr.keel.wet_length(level, x0, x1),
+        length=line.wet_length(level, x0, x1),
         rel=x,
         dx=hi - lo,
         props=sel,
@@ -321,6 +325,7 @@ def fixed_sections(
         lift=lift,
         keel=keel,
         slope_width=np.maximum(hi - lo, 0.5 * d),
+        line=line,
     )
 
 
