@@ -84,6 +84,32 @@ def test_the_runs_by_loops_equal_numpy_on_made_lines(name):
         _assert_same_runs(x, z)
 
 
+def test_one_run_of_bottom_facets_is_the_loops_runs_to_the_bit(monkeypatch):
+    # lines whose every facet has a finite slope, none an end face's (a keel line's window
+    # near the water, most often): numpy's shorter way (_Runs._one_run) gives the loops'
+    # arrays, the chords too, on the drawn lines of no end face (140 of 300) with flats,
+    # signed zeros, and facets leaning past the steep slope
+    taken = []
+    one_run = _Runs._one_run.__func__
+
+    def spy(cls, *args):
+        taken.append(1)
+        return one_run(cls, *args)
+
+    monkeypatch.setattr(_Runs, "_one_run", classmethod(spy))
+    rng = np.random.default_rng(4)
+    for _ in range(300):
+        n = int(rng.integers(2, 40))
+        x = np.cumsum(rng.uniform(0.001, 1.0, n))
+        z = rng.normal(0.0, 0.4, n) * float(rng.choice([0.0, 0.3, 1.0, 3.0]))
+        if rng.random() < 0.3:
+            z = np.round(z, 1)
+        z[rng.random(n) < 0.1] = -0.0
+        if np.all(np.abs(np.diff(z) / np.diff(x)) <= END_FACE_SLOPE):
+            _assert_same_runs(x, z)
+    assert len(taken) >= 100
+
+
 def _assert_arrays_in_the_runs_pass(x: np.ndarray, z: np.ndarray) -> None:
     """:func:`keel_line_loops`' arrays are :func:`keel_arrays_loops`' of :func:`runs_loops`'
     arrays to the last bit (the stage's own and the frames' fused arrays), its runs

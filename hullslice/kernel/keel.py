@@ -282,6 +282,8 @@ class _Runs:
             return cls(mid[:1] if n else np.zeros(1), np.zeros(1), none, np.zeros(1),
                        np.zeros(max(n, 1), dtype=bool), np.zeros(1))  # fmt: skip
         steep = finite & (np.abs(slopes) > END_FACE_SLOPE)
+        if finite.all() and not steep.any():  # one run of bottom facets (a window's, most)
+            return cls._one_run(x, z, mid, slopes, steep)
         fin = np.flatnonzero(finite)
         fmid, fslopes = mid[fin], slopes[fin]
         # a run starts at a finite facet whose steepness differs from the finite facet
@@ -302,6 +304,23 @@ class _Runs:
         turn = np.where(new[1:] | ~(leaning[1:] | leaning[:-1]), 0.0, np.diff(fslopes))
         bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
         return cls(fmid, cont, starts, offsets, steep, bend, _chords(x, z, finite & ~steep))
+
+    @classmethod
+    def _one_run(
+        cls, x: np.ndarray, z: np.ndarray, mid: np.ndarray, slopes: np.ndarray, steep: np.ndarray
+    ) -> _Runs:
+        """:meth:`of` for break points whose facets all have a finite slope, none steeper
+        than :data:`END_FACE_SLOPE` (``mid``, ``slopes`` and ``steep`` as it finds them):
+        one run with no offset, every facet a bottom facet: the same arrays, in fewer
+        steps."""
+        n = len(slopes)
+        cont = slopes + np.zeros(n)  # the offset's sum, as the runs' (a zero's sign too)
+        leaning = np.abs(slopes) > STEEP_SLOPE
+        turn = np.where(~(leaning[1:] | leaning[:-1]), 0.0, np.diff(slopes))
+        bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
+        height = np.concatenate([[0.0], np.cumsum(np.diff(z))])  # the bottom's rise
+        chords = (x, height, np.full(n, x[0]), np.full(n, x[n]))
+        return cls(mid, cont, x[:0].copy(), np.zeros(1), steep, bend, chords)
 
     @classmethod
     def from_loops(cls, x: np.ndarray, out: tuple) -> _Runs | None:
