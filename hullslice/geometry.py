@@ -247,15 +247,12 @@ def _frame(hull, pitch: float) -> Frame:
     c, s = np.cos(pitch), np.sin(pitch)
     # side view: the silhouette edges turned by the pitch, in (X, Z) relative to the cg;
     # the lowest and highest points at any pitch are on them
-    outline = side_outline_points(hull)
-    side = _side_points(hull, outline, c, s)  # numpy's: the line made when first read
-    keel: KeelLine | None = None
-    points: tuple[np.ndarray, np.ndarray] | None = None
-    if side is not None:
-        points, lowest, highest = side
-    else:
-        a, b = silhouette_edges(hull)
-        keel, lowest, highest = _side_keel(hull, a, b, outline, pitch, _side_order)
+    # (where numpy's lower side of the side outline serves, the line's break points: the
+    # line is made when first read)
+    line, lowest, highest = _side_keel(
+        hull, *silhouette_edges(hull), side_outline_points(hull), pitch, _side_order, lazy=True
+    )
+    keel, points = (None, line) if isinstance(line, tuple) else (line, None)
     # centre the cutter's coordinates on the body (its sections are rounded to a fixed
     # grid): the bounding-box centre, in the pitched frame relative to the cg
     bounds = hull.bounds
@@ -288,22 +285,6 @@ def _frame(hull, pitch: float) -> Frame:
     )
 
 
-def _side_points(
-    hull, outline: tuple[np.ndarray, bool], c: float, s: float
-) -> tuple[tuple[np.ndarray, np.ndarray], float, float] | None:
-    """By numpy's path (the keel line's loops not in use), where the body's side
-    ``outline`` (:func:`side_outline_points`' pair) has all the silhouette edges' ends and
-    its lower side serves (:func:`~hullslice.kernel.envelope.side_points`), turned by the
-    pitch's cosine ``c`` and sine ``s`` about the centre of gravity: the keel line's break
-    points ``(x, z)`` (close ones merged) and the lowest and highest heights, m, as
-    :func:`_side_keel` makes them; else None."""
-    if loops_in_use("frame_keel") is not None or not (outline[1] and outline[0].shape[1]):
-        return None
-    g = np.asarray(hull.cg, dtype=np.float64)
-    rx, rz = outline[0][0] - g[0], outline[0][1] - g[2]
-    return side_points(rx * c - rz * s, rx * s + rz * c, TOL.keel_merge * hull.size)
-
-
 def _side_keel(
     hull,
     a: np.ndarray,
@@ -311,13 +292,15 @@ def _side_keel(
     outline: tuple[np.ndarray, bool],
     pitch: float,
     order_of: Callable,
-) -> tuple[KeelLine, float, float]:
+    lazy: bool = False,
+) -> tuple[KeelLine | tuple[np.ndarray, np.ndarray], float, float]:
     """The keel line at ``pitch`` of the silhouette edges ``a`` to ``b`` (end points, m),
     and their ends' lowest and highest heights (m): by the compiled loops where they are
     in use (from the order ``order_of(hull, 2 * len(a))`` gives), else by numpy's lower
     envelope; where the lower side of the body's side ``outline``
     (:func:`side_outline_points`' pair; an empty one never serves) runs forward, that
-    side's points are its break points."""
+    side's points are its break points (``lazy``: given as ``(x, z)``, the line not
+    made)."""
     g = np.asarray(hull.cg, dtype=np.float64)
     c, s = np.cos(pitch), np.sin(pitch)
     merge = TOL.keel_merge * hull.size  # break points of the keel line this close are one
@@ -330,7 +313,7 @@ def _side_keel(
             if outline[1]:  # its points are all the edges' ends: the edges not turned
                 found = side_points(*side, merge)
                 if found is not None:
-                    return KeelLine(*found[0]), found[1], found[2]
+                    return (found[0] if lazy else KeelLine(*found[0])), found[1], found[2]
                 side = None  # its lower side does not serve: the edges' envelope must
         ta, tb = _turn(a - g, c, s), _turn(b - g, c, s)
         za, zb = ta[:, 1], tb[:, 1]
@@ -452,7 +435,8 @@ def keel_line_of(hull, pitch: float, edges: np.ndarray, piece: int) -> KeelLine:
     :func:`silhouette_edges`): that of a body's ``piece``, made as the body's is."""
     a, b = silhouette_edges(hull)
     order_of = lambda h, n: _side_order(h, n, piece)  # noqa: E731
-    return _side_keel(hull, a[edges], b[edges], (np.empty((2, 0)), False), pitch, order_of)[0]
+    line = _side_keel(hull, a[edges], b[edges], (np.empty((2, 0)), False), pitch, order_of)[0]
+    return cast(KeelLine, line)  # not lazy: a line
 
 
 def _silhouette_ends(hull) -> np.ndarray:

@@ -317,11 +317,10 @@ def _finish(
         length = np.bincount(ring, minlength=rings)
         first = np.cumsum(length) - length
         full = length > 0
-    z_next = _shifted(z, first, length, full, 1)
-    cross = y * z_next
-    z_next = _shifted(y, first, length, full, 1)  # now the next y
-    z_next *= z
-    cross -= z_next
+    cross = y * _shifted(z, first, length, full, 1)  # y z_next - y_next z
+    y_next = _shifted(y, first, length, full, 1)
+    y_next *= z
+    cross -= y_next
     area = np.bincount(ring, weights=cross, minlength=rings)
     bounds = np.concatenate([[0], np.cumsum(length)])
     ordered = np.stack([y, z], axis=1)

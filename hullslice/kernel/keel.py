@@ -320,7 +320,7 @@ class _Runs:
         bend = cont - np.concatenate([[0.0], np.cumsum(turn)]) if turn.any() else cont
         height = np.concatenate([[0.0], np.cumsum(np.diff(z))])  # the bottom's rise
         chords = (x, height, np.full(n, x[0]), np.full(n, x[n]))
-        return cls(mid, cont, x[:0].copy(), np.zeros(1), steep, bend, chords)
+        return cls(mid, cont, np.empty(0), np.zeros(1), steep, bend, chords)
 
     @classmethod
     def from_loops(cls, x: np.ndarray, out: tuple) -> _Runs | None:

@@ -156,7 +156,7 @@ class Outline:
             contour = np.repeat(np.arange(len(contours)), sizes)
             per = [len(secs) for secs in polygons]
             # one contour a station (the usual sections): a station's edges are its contour's
-            single = len(contours) == s and per.count(1) == s
+            single = per.count(1) == s
             station = contour if single else np.repeat(np.repeat(np.arange(s), per), sizes)
         else:
             a = b = np.empty((0, 2))
